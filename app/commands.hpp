@@ -1,0 +1,11 @@
+#pragma once
+// Each fetic command registers itself on the command line; its callback stores the
+// command's exit status in `exit_code`.
+
+#include <CLI/CLI.hpp>
+
+namespace fetic::app {
+
+void register_solve(CLI::App& app, int& exit_code);
+
+}  // namespace fetic::app

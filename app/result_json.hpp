@@ -1,0 +1,25 @@
+#pragma once
+// The result file of SCENES.md: scene, method, load factor, convergence, per-strut nodes
+// and displacements, per-contact pairs with gap, force and activity, and the history.
+
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "solver/method.hpp"
+
+namespace fetic::app {
+
+struct RunInfo {
+  std::string scene_path;
+  solver::MethodKind method = solver::MethodKind::ActiveSet;
+  solver::Preconditioner preconditioner = solver::Preconditioner::Dirichlet;
+  double tolerance = 0.0;
+  double setup_seconds = 0.0;
+  double solve_seconds = 0.0;
+};
+
+nlohmann::json result_json(const solver::Model& model, const solver::Snapshot& final_state,
+                           const std::vector<solver::HistoryEntry>& history, const RunInfo& info);
+
+}  // namespace fetic::app

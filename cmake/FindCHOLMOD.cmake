@@ -1,0 +1,17 @@
+# CHOLMOD (SuiteSparse) ships neither a CMake config nor a .pc file on Debian 12:
+# find the header and the libraries and wrap them in an imported target.
+find_path(CHOLMOD_INCLUDE_DIR cholmod.h PATH_SUFFIXES suitesparse)
+find_library(CHOLMOD_LIBRARY cholmod)
+find_library(SUITESPARSECONFIG_LIBRARY suitesparseconfig)
+
+include(FindPackageHandleStandardArgs)
+find_package_handle_standard_args(CHOLMOD
+  REQUIRED_VARS CHOLMOD_LIBRARY SUITESPARSECONFIG_LIBRARY CHOLMOD_INCLUDE_DIR)
+
+if(CHOLMOD_FOUND AND NOT TARGET SuiteSparse::CHOLMOD)
+  add_library(SuiteSparse::CHOLMOD INTERFACE IMPORTED)
+  set_target_properties(SuiteSparse::CHOLMOD PROPERTIES
+    INTERFACE_INCLUDE_DIRECTORIES "${CHOLMOD_INCLUDE_DIR}"
+    INTERFACE_LINK_LIBRARIES "${CHOLMOD_LIBRARY};${SUITESPARSECONFIG_LIBRARY}")
+endif()
+mark_as_advanced(CHOLMOD_INCLUDE_DIR CHOLMOD_LIBRARY SUITESPARSECONFIG_LIBRARY)

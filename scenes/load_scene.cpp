@@ -1,0 +1,560 @@
+#include "scenes/load_scene.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <map>
+#include <optional>
+#include <sstream>
+
+#include <toml++/toml.h>
+
+#include "scenes/validate_scene.hpp"
+
+namespace fetic::scenes {
+namespace {
+
+constexpr long long kMaxElements = 10'000'000;
+constexpr long long kMaxSubdomains = 1'000'000;
+
+const std::vector<std::string> kTopKeys = {"title", "model", "defaults",
+                                           "strut", "load",  "contact"};
+const std::vector<std::string> kStrutKeys = {"name",
+                                             "from",
+                                             "to",
+                                             "E",
+                                             "area",
+                                             "elements",
+                                             "subdomains",
+                                             "fixed",
+                                             "height",
+                                             "thickness",
+                                             "nu",
+                                             "elements_across",
+                                             "subdomains_across"};
+const std::vector<std::string> kLoadKeys = {"strut", "at", "force", "per_length"};
+const std::vector<std::string> kContactKeys = {"a", "b"};
+
+int line_of(const toml::node& node) {
+  return static_cast<int>(node.source().begin.line);
+}
+int line_of(const toml::key& key) {
+  return static_cast<int>(key.source().begin.line);
+}
+
+std::string type_name(const toml::node& node) {
+  switch (node.type()) {
+    case toml::node_type::table:
+      return "a table";
+    case toml::node_type::array:
+      return "an array";
+    case toml::node_type::string:
+      return "a string";
+    case toml::node_type::integer:
+      return "an integer";
+    case toml::node_type::floating_point:
+      return "a number";
+    case toml::node_type::boolean:
+      return "a boolean";
+    case toml::node_type::date:
+      return "a date";
+    case toml::node_type::time:
+      return "a time";
+    case toml::node_type::date_time:
+      return "a date-time";
+    default:
+      return "nothing";
+  }
+}
+
+std::string quoted(std::string_view text) {
+  return "'" + std::string(text) + "'";
+}
+
+std::string number_text(double value) {
+  std::ostringstream out;
+  out << value;
+  return out.str();
+}
+
+size_t edit_distance(std::string_view a, std::string_view b) {
+  std::vector<size_t> row(b.size() + 1);
+  for (size_t j = 0; j <= b.size(); ++j)
+    row[j] = j;
+  for (size_t i = 1; i <= a.size(); ++i) {
+    size_t diagonal = row[0];
+    row[0] = i;
+    for (size_t j = 1; j <= b.size(); ++j) {
+      const size_t above = row[j];
+      const bool same = std::tolower(static_cast<unsigned char>(a[i - 1])) ==
+                        std::tolower(static_cast<unsigned char>(b[j - 1]));
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (same ? 0 : 1)});
+      diagonal = above;
+    }
+  }
+  return row[b.size()];
+}
+
+// " (did you mean 'area'?)" when a known key is close to the unknown one.
+std::string suggestion(std::string_view key, const std::vector<std::string>& known) {
+  std::string best;
+  size_t best_distance = 3;
+  for (const std::string& candidate : known) {
+    const size_t d = edit_distance(key, candidate);
+    if (d < best_distance) {
+      best_distance = d;
+      best = candidate;
+    }
+  }
+  return best.empty() ? "" : " (did you mean " + quoted(best) + "?)";
+}
+
+bool valid_name(std::string_view name) {
+  return !name.empty() && std::all_of(name.begin(), name.end(), [](char c) {
+    return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-';
+  });
+}
+
+// Reads typed values out of TOML tables and records every problem it meets.
+class Reader {
+ public:
+  explicit Reader(std::vector<Problem>& problems) : problems_(problems) {}
+
+  void error(int line, std::string message) { problems_.push_back({line, std::move(message)}); }
+
+  void check_keys(const toml::table& table, const std::vector<std::string>& known,
+                  const std::string& where) {
+    for (auto&& [key, node] : table) {
+      if (std::find(known.begin(), known.end(), key.str()) == known.end())
+        error(line_of(key),
+              "unknown key " + quoted(key.str()) + " in " + where + suggestion(key.str(), known));
+    }
+  }
+
+  std::optional<double> number(const toml::node& node, const std::string& what) {
+    if (auto v = node.as_floating_point()) {
+      const double value = v->get();
+      if (!std::isfinite(value)) {
+        error(line_of(node), what + " must be a finite number, got " + number_text(value));
+        return std::nullopt;
+      }
+      return value;
+    }
+    if (auto v = node.as_integer()) return static_cast<double>(v->get());
+    error(line_of(node), what + " must be a number, got " + type_name(node));
+    return std::nullopt;
+  }
+
+  std::optional<double> positive(const toml::node& node, const std::string& what) {
+    auto value = number(node, what);
+    if (value && !(*value > 0.0)) {
+      error(line_of(node), what + " must be greater than 0, got " + number_text(*value));
+      return std::nullopt;
+    }
+    return value;
+  }
+
+  std::optional<long long> integer(const toml::node& node, const std::string& what, long long low,
+                                   long long high) {
+    auto v = node.as_integer();
+    if (!v) {
+      error(line_of(node), what + " must be an integer, got " + type_name(node));
+      return std::nullopt;
+    }
+    const long long value = v->get();
+    if (value < low || value > high) {
+      error(line_of(node), what + " must be between " + std::to_string(low) + " and " +
+                               std::to_string(high) + ", got " + std::to_string(value));
+      return std::nullopt;
+    }
+    return value;
+  }
+
+  std::optional<std::string> string(const toml::node& node, const std::string& what) {
+    if (auto v = node.as_string()) return v->get();
+    error(line_of(node), what + " must be a string, got " + type_name(node));
+    return std::nullopt;
+  }
+
+  std::optional<Point> point(const toml::node& node, const std::string& what) {
+    const toml::array* array = node.as_array();
+    if (!array || array->size() != 2) {
+      error(line_of(node), what + " must be an array of two numbers [x, y], got " +
+                               (array ? "an array of " + std::to_string(array->size()) + " values"
+                                      : type_name(node)));
+      return std::nullopt;
+    }
+    auto x = number(*array->get(0), what + "[0]");
+    auto y = number(*array->get(1), what + "[1]");
+    if (!x || !y) return std::nullopt;
+    return Point{*x, *y};
+  }
+
+  std::optional<StrutEnd> end(const toml::node& node, const std::string& what) {
+    auto text = string(node, what);
+    if (!text) return std::nullopt;
+    if (*text == "from") return StrutEnd::From;
+    if (*text == "to") return StrutEnd::To;
+    error(line_of(node), what + " must be \"from\" or \"to\", got \"" + *text + "\"");
+    return std::nullopt;
+  }
+
+ private:
+  std::vector<Problem>& problems_;
+};
+
+// A strut key looked up in the strut's own table, then in [defaults].
+class StrutKeys {
+ public:
+  StrutKeys(const toml::table& own, const toml::table* defaults) : own_(own), defaults_(defaults) {}
+  const toml::node* find(std::string_view key) const {
+    if (const toml::node* node = own_.get(key)) return node;
+    return defaults_ ? defaults_->get(key) : nullptr;
+  }
+
+ private:
+  const toml::table& own_;
+  const toml::table* defaults_;
+};
+
+class SceneParser {
+ public:
+  SceneParser(Scene& scene, std::vector<Problem>& problems) : scene_(scene), read_(problems) {}
+
+  void parse(const toml::table& root) {
+    read_.check_keys(root, kTopKeys, "the scene (top level)");
+    parse_header(root);
+    const toml::table* defaults = parse_defaults(root);
+    parse_struts(root, defaults);
+    parse_loads(root);
+    parse_contacts(root);
+  }
+
+ private:
+  void parse_header(const toml::table& root) {
+    if (const toml::node* title = root.get("title")) {
+      if (auto text = read_.string(*title, "'title'")) scene_.title = *text;
+    }
+    const toml::node* model = root.get("model");
+    if (!model) {
+      read_.error(0, "missing key 'model' (\"bar\" or \"plane\")");
+      return;
+    }
+    if (auto text = read_.string(*model, "'model'")) {
+      if (*text == "bar") {
+        scene_.model = ModelKind::Bar;
+      } else if (*text == "plane") {
+        scene_.model = ModelKind::Plane;
+      } else {
+        read_.error(line_of(*model), "'model' must be \"bar\" or \"plane\", got \"" + *text + "\"");
+      }
+    }
+  }
+
+  const toml::table* parse_defaults(const toml::table& root) {
+    const toml::node* node = root.get("defaults");
+    if (!node) return nullptr;
+    const toml::table* defaults = node->as_table();
+    if (!defaults) {
+      read_.error(line_of(*node), "'defaults' must be a table [defaults], got " + type_name(*node));
+      return nullptr;
+    }
+    read_.check_keys(*defaults, kStrutKeys, "[defaults]");
+    return defaults;
+  }
+
+  // The array of tables under `key`, or nullptr after reporting what is wrong.
+  const toml::array* table_array(const toml::table& root, std::string_view key) {
+    const toml::node* node = root.get(key);
+    if (!node) return nullptr;
+    const toml::array* array = node->as_array();
+    if (!array || !array->is_array_of_tables()) {
+      read_.error(line_of(*node), quoted(key) + " must be an array of tables [[" +
+                                      std::string(key) + "]], got " + type_name(*node));
+      return nullptr;
+    }
+    return array;
+  }
+
+  void parse_struts(const toml::table& root, const toml::table* defaults) {
+    const toml::array* struts = table_array(root, "strut");
+    if (!struts) {
+      if (!root.get("strut")) read_.error(0, "the scene has no [[strut]]");
+      return;
+    }
+    std::map<std::string, int> first_line;
+    for (size_t i = 0; i < struts->size(); ++i) {
+      const toml::table& table = *struts->get(i)->as_table();
+      Strut strut = parse_strut(table, defaults, static_cast<int>(i));
+      if (!strut.name.empty()) {
+        auto [it, inserted] = first_line.emplace(strut.name, strut.line);
+        if (!inserted)
+          read_.error(strut.line, "duplicate strut name " + quoted(strut.name) +
+                                      " (first defined on line " + std::to_string(it->second) +
+                                      ")");
+      }
+      scene_.struts.push_back(std::move(strut));
+    }
+  }
+
+  Strut parse_strut(const toml::table& table, const toml::table* defaults, int index) {
+    read_.check_keys(table, kStrutKeys, "[[strut]]");
+    const StrutKeys keys(table, defaults);
+    Strut strut;
+    strut.line = line_of(table);
+    std::string label = "strut #" + std::to_string(index + 1);
+    if (const toml::node* name = keys.find("name")) {
+      if (auto text = read_.string(*name, "strut 'name'")) {
+        if (valid_name(*text)) {
+          strut.name = *text;
+          label = "strut " + quoted(*text);
+        } else {
+          read_.error(line_of(*name), "strut name \"" + *text +
+                                          "\" must be non-empty and use only letters, digits, "
+                                          "'_' and '-'");
+        }
+      }
+    } else {
+      read_.error(strut.line, label + ": missing key 'name'");
+    }
+    auto required = [&](std::string_view key) -> const toml::node* {
+      const toml::node* node = keys.find(key);
+      if (!node) read_.error(strut.line, label + ": missing key " + quoted(key));
+      return node;
+    };
+    auto what = [&](std::string_view key) { return label + ": " + quoted(key); };
+
+    if (auto node = required("from"))
+      if (auto p = read_.point(*node, what("from"))) strut.from = *p;
+    if (auto node = required("to"))
+      if (auto p = read_.point(*node, what("to"))) strut.to = *p;
+    if (auto node = required("E"))
+      if (auto v = read_.positive(*node, what("E"))) strut.E = *v;
+    if (auto node = required("elements"))
+      if (auto v = read_.integer(*node, what("elements"), 1, kMaxElements))
+        strut.elements = static_cast<int>(*v);
+    if (auto node = keys.find("subdomains")) {
+      if (auto v = read_.integer(*node, what("subdomains"), 1, kMaxSubdomains)) {
+        strut.subdomains = static_cast<int>(*v);
+        if (strut.elements > 0 && strut.subdomains > strut.elements)
+          read_.error(line_of(*node), what("subdomains") + " must be between 1 and elements (" +
+                                          std::to_string(strut.elements) + "), got " +
+                                          std::to_string(strut.subdomains));
+      }
+    }
+    if (auto node = keys.find("fixed")) parse_fixed(*node, what("fixed"), strut);
+
+    if (scene_.model == ModelKind::Bar) {
+      if (auto node = required("area"))
+        if (auto v = read_.positive(*node, what("area"))) strut.area = *v;
+    } else {
+      parse_plane_keys(keys, strut, label, required, what);
+    }
+    return strut;
+  }
+
+  template <class Required, class What>
+  void parse_plane_keys(const StrutKeys& keys, Strut& strut, const std::string& label,
+                        Required required, What what) {
+    (void)label;
+    if (auto node = required("height"))
+      if (auto v = read_.positive(*node, what("height"))) strut.height = *v;
+    if (auto node = required("thickness"))
+      if (auto v = read_.positive(*node, what("thickness"))) strut.thickness = *v;
+    if (auto node = required("nu")) {
+      if (auto v = read_.number(*node, what("nu"))) {
+        if (*v > -1.0 && *v < 0.5)
+          strut.nu = *v;
+        else
+          read_.error(line_of(*node), what("nu") +
+                                          " (Poisson's ratio) must lie strictly between -1 and "
+                                          "0.5, got " +
+                                          number_text(*v));
+      }
+    }
+    if (auto node = required("elements_across"))
+      if (auto v = read_.integer(*node, what("elements_across"), 1, kMaxElements))
+        strut.elements_across = static_cast<int>(*v);
+    if (auto node = keys.find("subdomains_across")) {
+      if (auto v = read_.integer(*node, what("subdomains_across"), 1, kMaxSubdomains)) {
+        strut.subdomains_across = static_cast<int>(*v);
+        if (strut.elements_across > 0 && strut.subdomains_across > strut.elements_across)
+          read_.error(line_of(*node), what("subdomains_across") +
+                                          " must be between 1 and elements_across (" +
+                                          std::to_string(strut.elements_across) + "), got " +
+                                          std::to_string(strut.subdomains_across));
+      }
+    }
+  }
+
+  void parse_fixed(const toml::node& node, const std::string& what, Strut& strut) {
+    const toml::array* array = node.as_array();
+    if (!array) {
+      read_.error(line_of(node), what +
+                                     " must be an array: [], [\"from\"], [\"to\"] or "
+                                     "[\"from\", \"to\"], got " +
+                                     type_name(node));
+      return;
+    }
+    for (const toml::node& item : *array) {
+      auto end = read_.end(item, what + " entry");
+      if (!end) continue;
+      bool& flag = *end == StrutEnd::From ? strut.fixed_from : strut.fixed_to;
+      if (flag) read_.error(line_of(item), what + " lists \"" + to_string(*end) + "\" twice");
+      flag = true;
+    }
+  }
+
+  // Resolved after all struts are read, so loads and contacts may come first in the file.
+  int find_strut(const std::string& name) const {
+    for (size_t i = 0; i < scene_.struts.size(); ++i)
+      if (scene_.struts[i].name == name) return static_cast<int>(i);
+    return -1;
+  }
+
+  std::optional<int> strut_reference(const toml::node& node, const std::string& what) {
+    auto name = read_.string(node, what);
+    if (!name) return std::nullopt;
+    const int index = find_strut(*name);
+    if (index < 0) {
+      read_.error(line_of(node), what + " names an unknown strut " + quoted(*name));
+      return std::nullopt;
+    }
+    return index;
+  }
+
+  void parse_loads(const toml::table& root) {
+    const toml::array* loads = table_array(root, "load");
+    if (!loads) return;
+    for (size_t i = 0; i < loads->size(); ++i) {
+      const toml::table& table = *loads->get(i)->as_table();
+      read_.check_keys(table, kLoadKeys, "[[load]]");
+      Load load;
+      load.line = line_of(table);
+      const std::string label = "load #" + std::to_string(i + 1);
+      bool ok = true;
+      if (const toml::node* node = table.get("strut")) {
+        auto index = strut_reference(*node, label + ": 'strut'");
+        ok = ok && index.has_value();
+        if (index) load.strut = *index;
+      } else {
+        read_.error(load.line, label + ": missing key 'strut'");
+        ok = false;
+      }
+      const toml::node* at = table.get("at");
+      const toml::node* force = table.get("force");
+      const toml::node* per_length = table.get("per_length");
+      if (per_length && (at || force)) {
+        read_.error(load.line, label +
+                                   ": give either 'at' and 'force' (a force at a strut end) "
+                                   "or 'per_length' (a force per unit length), not both");
+        ok = false;
+      } else if (per_length) {
+        load.per_length = true;
+        auto p = read_.point(*per_length, label + ": 'per_length'");
+        ok = ok && p.has_value();
+        if (p) load.force = *p;
+      } else if (at || force) {
+        if (!at) read_.error(load.line, label + ": missing key 'at' (\"from\" or \"to\")");
+        if (!force) read_.error(load.line, label + ": missing key 'force' ([fx, fy] in N)");
+        ok = ok && at && force;
+        if (at) {
+          auto end = read_.end(*at, label + ": 'at'");
+          ok = ok && end.has_value();
+          if (end) load.at = *end;
+        }
+        if (force) {
+          auto p = read_.point(*force, label + ": 'force'");
+          ok = ok && p.has_value();
+          if (p) load.force = *p;
+        }
+      } else {
+        read_.error(load.line, label +
+                                   ": missing the force: give 'at' and 'force', or "
+                                   "'per_length'");
+        ok = false;
+      }
+      if (ok) scene_.loads.push_back(load);
+    }
+  }
+
+  std::optional<EndRef> end_reference(const toml::node& node, const std::string& what) {
+    auto text = read_.string(node, what);
+    if (!text) return std::nullopt;
+    const size_t dot = text->rfind('.');
+    const std::string name = dot == std::string::npos ? *text : text->substr(0, dot);
+    const std::string end = dot == std::string::npos ? "" : text->substr(dot + 1);
+    if (end != "from" && end != "to") {
+      read_.error(line_of(node), what +
+                                     " must name a strut end as \"NAME.from\" or "
+                                     "\"NAME.to\", got \"" +
+                                     *text + "\"");
+      return std::nullopt;
+    }
+    const int index = find_strut(name);
+    if (index < 0) {
+      read_.error(line_of(node), what + " names an unknown strut " + quoted(name));
+      return std::nullopt;
+    }
+    return EndRef{index, end == "from" ? StrutEnd::From : StrutEnd::To};
+  }
+
+  void parse_contacts(const toml::table& root) {
+    const toml::array* contacts = table_array(root, "contact");
+    if (!contacts) return;
+    for (size_t i = 0; i < contacts->size(); ++i) {
+      const toml::table& table = *contacts->get(i)->as_table();
+      read_.check_keys(table, kContactKeys, "[[contact]]");
+      Contact contact;
+      contact.line = line_of(table);
+      const std::string label = "contact #" + std::to_string(i + 1);
+      std::optional<EndRef> a, b;
+      if (const toml::node* node = table.get("a"))
+        a = end_reference(*node, label + ": 'a'");
+      else
+        read_.error(contact.line, label + ": missing key 'a'");
+      if (const toml::node* node = table.get("b"))
+        b = end_reference(*node, label + ": 'b'");
+      else
+        read_.error(contact.line, label + ": missing key 'b'");
+      if (!a || !b) continue;
+      contact.a = *a;
+      contact.b = *b;
+      scene_.contacts.push_back(contact);
+    }
+  }
+
+  Scene& scene_;
+  Reader read_;
+};
+
+}  // namespace
+
+Scene parse_scene(std::string_view text, const std::string& path) {
+  toml::table root;
+  try {
+    root = toml::parse(text, path);
+  } catch (const toml::parse_error& error) {
+    throw SceneError(path, {{static_cast<int>(error.source().begin.line),
+                             "TOML syntax error: " + std::string(error.description())}});
+  }
+  Scene scene;
+  scene.path = path;
+  std::vector<Problem> problems;
+  SceneParser(scene, problems).parse(root);
+  if (problems.empty()) problems = validate_scene(scene);
+  if (!problems.empty()) throw SceneError(path, std::move(problems));
+  return scene;
+}
+
+Scene load_scene_file(const std::string& path) {
+  std::ifstream file(path, std::ios::binary);
+  if (!file) throw SceneError(path, {{0, "cannot open the scene file"}});
+  std::ostringstream text;
+  text << file.rdbuf();
+  if (file.bad()) throw SceneError(path, {{0, "cannot read the scene file"}});
+  return parse_scene(text.str(), path);
+}
+
+}  // namespace fetic::scenes

@@ -1,0 +1,152 @@
+#include "scenes/validate_scene.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <numeric>
+#include <sstream>
+
+#include "scenes/load_scene.hpp"
+#include "scenes/scene_geometry.hpp"
+
+namespace fetic::scenes {
+namespace {
+
+// Geometric comparisons are relative to the size of the struts involved.
+constexpr double kRelativeTolerance = kGapRoundingTolerance;
+
+std::string quoted(const std::string& text) {
+  return "'" + text + "'";
+}
+
+std::string number_text(double value) {
+  std::ostringstream out;
+  out.precision(6);
+  out << value;
+  return out.str();
+}
+
+void check_strut_geometry(const Scene& scene, std::vector<Problem>& problems) {
+  for (const Strut& strut : scene.struts) {
+    const double l = length(strut);
+    const double size = std::max({std::abs(strut.from[0]), std::abs(strut.from[1]),
+                                  std::abs(strut.to[0]), std::abs(strut.to[1])});
+    if (!std::isfinite(l)) {
+      problems.push_back({strut.line, "strut " + quoted(strut.name) +
+                                          ": coordinates too large to compute its length"});
+    } else if (!(l > kRelativeTolerance * size) || l == 0.0) {
+      problems.push_back(
+          {strut.line, "strut " + quoted(strut.name) + ": 'from' and 'to' coincide (zero length)"});
+    }
+  }
+  const long long total = unknowns(scene);
+  if (total > kMaxUnknowns)
+    problems.push_back({0, "the scene has " + std::to_string(total) +
+                               " unknowns, more than the limit of " +
+                               std::to_string(kMaxUnknowns)});
+}
+
+void check_contacts(const Scene& scene, std::vector<Problem>& problems) {
+  std::map<std::pair<int, int>, int> end_used;  // (strut, end) -> line of first contact
+  for (const Contact& contact : scene.contacts) {
+    const std::string label =
+        "contact " + end_label(scene, contact.a) + " - " + end_label(scene, contact.b);
+    for (EndRef ref : {contact.a, contact.b}) {
+      auto [it, inserted] =
+          end_used.emplace(std::make_pair(ref.strut, static_cast<int>(ref.end)), contact.line);
+      if (!inserted && it->second != contact.line)
+        problems.push_back({contact.line, label + ": strut end " + end_label(scene, ref) +
+                                              " is already in the contact on line " +
+                                              std::to_string(it->second) +
+                                              " (an end takes part in at most one contact)"});
+    }
+    if (contact.a.strut == contact.b.strut) {
+      problems.push_back(
+          {contact.line, label + ": a contact joins the ends of two different struts"});
+      continue;
+    }
+    const Strut& a = scene.struts[contact.a.strut];
+    const Strut& b = scene.struts[contact.b.strut];
+    if (!(length(a) > 0.0) || !(length(b) > 0.0) || !std::isfinite(length(a)) ||
+        !std::isfinite(length(b)))
+      continue;  // already reported as a degenerate strut
+    const ContactGeometry g = contact_geometry(scene, contact);
+    const double scale = std::max(length(a), length(b));
+    if (g.misalignment > 1e-6 || !g.b_faces_a) {
+      problems.push_back({contact.line, label + ": the ends do not face each other along a "
+                                                "common axis (the struts must be collinear, "
+                                                "end facing end)"});
+      continue;
+    }
+    if (g.offset > 1e-6 * scale) {
+      problems.push_back({contact.line, label +
+                                            ": the struts are parallel but not collinear "
+                                            "(offset " +
+                                            number_text(g.offset) + " across the axis)"});
+      continue;
+    }
+    if (g.gap < -kRelativeTolerance * scale) {
+      problems.push_back({contact.line, label + ": the ends overlap by " + number_text(-g.gap) +
+                                            " (a negative gap is not allowed)"});
+      continue;
+    }
+    if (scene.model == ModelKind::Plane && a.elements_across != b.elements_across)
+      problems.push_back({contact.line, label +
+                                            ": the end faces have different numbers of "
+                                            "nodes (" +
+                                            std::to_string(a.elements_across + 1) + " and " +
+                                            std::to_string(b.elements_across + 1) +
+                                            "); node-to-node contact pairs them one by one"});
+  }
+}
+
+// Bar model: every group of struts linked by contacts needs a clamped strut.
+void check_bar_struts_held(const Scene& scene, std::vector<Problem>& problems) {
+  std::vector<int> parent(scene.struts.size());
+  std::iota(parent.begin(), parent.end(), 0);
+  auto root = [&](int i) {
+    while (parent[i] != i)
+      i = parent[i] = parent[parent[i]];
+    return i;
+  };
+  for (const Contact& contact : scene.contacts)
+    parent[root(contact.a.strut)] = root(contact.b.strut);
+  std::map<int, bool> group_held;
+  for (size_t i = 0; i < scene.struts.size(); ++i)
+    group_held[root(static_cast<int>(i))] |= scene.struts[i].clamped();
+  for (size_t i = 0; i < scene.struts.size(); ++i) {
+    if (group_held[root(static_cast<int>(i))]) continue;
+    const Strut& strut = scene.struts[i];
+    problems.push_back(
+        {strut.line, "strut " + quoted(strut.name) +
+                         " can be held by no support: it has no clamped end (fixed = "
+                         "[\"from\"], [\"to\"] or both) and no chain of contacts leads to a "
+                         "strut that has one"});
+  }
+}
+
+// Plane model: a frictionless end-face contact cannot stop a strut from sliding across
+// its axis, so every strut needs a clamped end of its own.
+void check_plane_struts_held(const Scene& scene, std::vector<Problem>& problems) {
+  for (const Strut& strut : scene.struts)
+    if (!strut.clamped())
+      problems.push_back({strut.line, "strut " + quoted(strut.name) +
+                                          " has no clamped end: in the plane model its "
+                                          "frictionless contacts cannot hold it across its axis"});
+}
+
+}  // namespace
+
+std::vector<Problem> validate_scene(const Scene& scene) {
+  std::vector<Problem> problems;
+  check_strut_geometry(scene, problems);
+  if (!problems.empty()) return problems;
+  check_contacts(scene, problems);
+  if (scene.model == ModelKind::Bar)
+    check_bar_struts_held(scene, problems);
+  else
+    check_plane_struts_held(scene, problems);
+  return problems;
+}
+
+}  // namespace fetic::scenes

@@ -1,0 +1,15 @@
+#pragma once
+// Cross-checks of a scene whose keys, types and ranges are already valid: references,
+// contact geometry (facing, collinear, no overlap, matching faces) and whether every
+// strut can be held by a support, directly or through contacts.
+
+#include <vector>
+
+#include "scenes/scene.hpp"
+#include "scenes/scene_error.hpp"
+
+namespace fetic::scenes {
+
+std::vector<Problem> validate_scene(const Scene& scene);
+
+}  // namespace fetic::scenes

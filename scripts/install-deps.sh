@@ -1,0 +1,28 @@
+#!/usr/bin/env bash
+# Installs every build and test dependency from Debian 12's packages.
+set -euo pipefail
+packages=(
+  cmake ninja-build g++ pkg-config
+  libeigen3-dev libsuitesparse-dev          # linear algebra, CHOLMOD
+  libtomlplusplus-dev libcli11-dev nlohmann-json3-dev   # scenes, command line, results
+  libimgui-dev libglfw3-dev libstb-dev      # window, overlay, PNG
+  libegl-dev libegl1-mesa-dev libgl-dev libgles-dev libopengl-dev libegl-mesa0 libgl1-mesa-dri
+  fonts-dejavu-core                         # text in rendered frames
+  catch2 libcgal-dev libgmp-dev libmpfr-dev # tests: Catch2, CGAL's exact QP solver
+  coinor-libipopt-dev                       # benchmark: a general-purpose QP solver
+  xvfb xauth xdotool                        # window tests
+  ffmpeg                                    # movies
+)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "install-deps: all ${#packages[@]} packages already installed"
+  exit 0
+fi
+sudo=""
+if [ "$(id -u)" -ne 0 ]; then sudo="sudo"; fi
+export DEBIAN_FRONTEND=noninteractive
+$sudo apt-get update -qq
+$sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"

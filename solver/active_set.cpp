@@ -1,0 +1,270 @@
+#include "solver/active_set.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <set>
+
+#include <Eigen/LU>
+#include <Eigen/SVD>
+
+namespace fetic::solver {
+namespace {
+
+// S = A K^+ A', block by block: each strut contributes only through the rows touching it.
+SparseMatrix schur_complement(const PrimalProblem& problem) {
+  const RowSparseMatrix& A = problem.contact_rows();
+  const SparseMatrix At = A.transpose();  // column k = row k of A
+  std::vector<Eigen::Triplet<double>> entries;
+  for (const StrutBlock& block : problem.blocks()) {
+    std::vector<int> rows;
+    for (int k = 0; k < A.rows(); ++k) {
+      for (RowSparseMatrix::InnerIterator it(A, k); it; ++it)
+        if (it.col() >= block.offset && it.col() < block.offset + block.size) {
+          rows.push_back(k);
+          break;
+        }
+    }
+    if (rows.empty()) continue;
+    const int r = static_cast<int>(rows.size());
+    Eigen::MatrixXd local = Eigen::MatrixXd::Zero(block.size, r);  // A_b' restricted
+    for (int j = 0; j < r; ++j)
+      for (SparseMatrix::InnerIterator it(At, rows[j]); it; ++it)
+        if (it.row() >= block.offset && it.row() < block.offset + block.size)
+          local(it.row() - block.offset, j) = it.value();
+    Eigen::MatrixXd solved(block.size, r);
+    block.inverse.apply(local.data(), solved.data(), r);
+    const Eigen::MatrixXd Sb = local.transpose() * solved;
+    for (int i = 0; i < r; ++i)
+      for (int j = 0; j < r; ++j)
+        entries.emplace_back(rows[i], rows[j], Sb(i, j));
+  }
+  SparseMatrix S(A.rows(), A.rows());
+  S.setFromTriplets(entries.begin(), entries.end());
+  return S;
+}
+
+}  // namespace
+
+ActiveSet::ActiveSet(const Model& model, const SolveOptions& options)
+    : Method(model, options, 0), problem_(model) {
+  if (options.max_iterations <= 0)
+    max_iterations_ = 20 * static_cast<int>(model.pairs.size()) + 100;
+  S_ = schur_complement(problem_);
+  AR_ = SparseMatrix(problem_.contact_rows() * problem_.kernel());
+}
+
+double ActiveSet::slack(int row) const {
+  return problem_.gaps()(row) - problem_.contact_rows().row(row).dot(x_);
+}
+
+void ActiveSet::begin(const Snapshot* warm) {
+  const double load_factor = load_factor_;
+  const int n = problem_.size();
+  x_ = Eigen::VectorXd::Zero(n);
+  working_.clear();
+  if (warm && warm->primal.size() == n) {
+    // The constraints do not depend on the load, so the previous iterate is feasible;
+    // its working set is kept where the rows are still active.
+    x_ = warm->primal;
+    for (int k = 0; k < static_cast<int>(warm->in_working_set.size()); ++k)
+      if (warm->in_working_set[k] && std::abs(slack(k)) <= 1e-9 * std::max(1.0, problem_.gaps()(k)))
+        working_.push_back(k);
+  }
+  const Eigen::VectorXd f = load_factor * problem_.load();
+  Eigen::VectorXd u0;
+  problem_.apply_pseudo_inverse(f, u0);
+  const double largest_gap = problem_.gaps().size() ? problem_.gaps().maxCoeff() : 0.0;
+  u_scale_ = std::max({u0.lpNorm<Eigen::Infinity>(), largest_gap, x_.lpNorm<Eigen::Infinity>()});
+  f_scale_ = f.lpNorm<1>();
+  if (!(u_scale_ > 0.0)) u_scale_ = 1.0;
+  if (!(f_scale_ > 0.0)) f_scale_ = 1.0;
+  g_ = problem_.stiffness() * x_ - f;
+  solve_subproblem();
+  record_move();
+}
+
+void ActiveSet::solve_subproblem() {
+  const RowSparseMatrix& A = problem_.contact_rows();
+  const SparseMatrix& R = problem_.kernel();
+  const int w = static_cast<int>(working_.size());
+  const int modes = static_cast<int>(R.cols());
+  std::vector<int> position(A.rows(), -1);
+  for (int i = 0; i < w; ++i)
+    position[working_[i]] = i;
+
+  // Rigid-body modes the working set does not hold: the null space of C = A_W R.
+  Eigen::MatrixXd held_basis(modes, 0);
+  Eigen::MatrixXd C = Eigen::MatrixXd::Zero(w, modes);
+  if (modes > 0) {
+    for (int col = 0; col < AR_.outerSize(); ++col)
+      for (SparseMatrix::InnerIterator it(AR_, col); it; ++it)
+        if (position[it.row()] >= 0) C(position[it.row()], col) = it.value();
+    Eigen::MatrixXd free_basis;
+    if (w == 0) {
+      free_basis = Eigen::MatrixXd::Identity(modes, modes);
+    } else {
+      Eigen::JacobiSVD<Eigen::MatrixXd> svd(C, Eigen::ComputeFullV);
+      const Eigen::VectorXd& sigma = svd.singularValues();
+      const double threshold = 1e-10 * (sigma.size() ? sigma(0) : 0.0);
+      int rank = 0;
+      while (rank < sigma.size() && sigma(rank) > threshold)
+        ++rank;
+      free_basis = svd.matrixV().rightCols(modes - rank);
+      held_basis = svd.matrixV().leftCols(rank);
+    }
+    if (free_basis.cols() > 0) {
+      const Eigen::VectorXd h = free_basis.transpose() * (R.transpose() * g_);
+      if (h.lpNorm<Eigen::Infinity>() > options_.tolerance * f_scale_) {
+        // Unheld and pushed: move as a rigid body down the load (zero curvature).
+        const Eigen::VectorXd amplitudes = -(free_basis * h);
+        p_ = R * amplitudes;
+        moving_struts_.clear();
+        for (int j = 0; j < modes; ++j)
+          if (std::abs(amplitudes(j)) > 1e-12 * amplitudes.lpNorm<Eigen::Infinity>())
+            moving_struts_.push_back(problem_.kernel_struts()[j]);
+        multiplier_.assign(w, 0.0);
+        move_ = Move::RigidMotion;
+        return;
+      }
+    }
+  }
+
+  // Saddle system [S_W -C~; -C~' 0][mu; beta] = [-A_W K^+ g; R~'g], C~ = A_W R~.
+  const int r = static_cast<int>(held_basis.cols());
+  Eigen::VectorXd v;
+  problem_.apply_pseudo_inverse(g_, v);
+  Eigen::MatrixXd M = Eigen::MatrixXd::Zero(w + r, w + r);
+  Eigen::VectorXd rhs(w + r);
+  for (int j = 0; j < w; ++j) {
+    for (SparseMatrix::InnerIterator it(S_, working_[j]); it; ++it)
+      if (position[it.row()] >= 0) M(position[it.row()], j) = it.value();
+    rhs(j) = -A.row(working_[j]).dot(v);
+  }
+  if (r > 0) {
+    const Eigen::MatrixXd Ct = C * held_basis;
+    M.topRightCorner(w, r) = -Ct;
+    M.bottomLeftCorner(r, w) = -Ct.transpose();
+    rhs.tail(r) = held_basis.transpose() * (R.transpose() * g_);
+  }
+  Eigen::VectorXd solution =
+      w + r > 0 ? Eigen::VectorXd(M.partialPivLu().solve(rhs)) : Eigen::VectorXd(0);
+  multiplier_.assign(solution.data(), solution.data() + w);
+  Eigen::VectorXd load_on_free = g_;
+  for (int j = 0; j < w; ++j)
+    load_on_free += solution(j) * A.row(working_[j]).transpose();
+  problem_.apply_pseudo_inverse(load_on_free, p_);
+  p_ = -p_;
+  if (r > 0) p_ += R * (held_basis * solution.tail(r));
+
+  if (p_.lpNorm<Eigen::Infinity>() > options_.tolerance * u_scale_) {
+    move_ = Move::Step;
+    return;
+  }
+  drop_ = -1;
+  double most_negative = -options_.tolerance * f_scale_;
+  for (int j = 0; j < w; ++j)
+    if (multiplier_[j] < most_negative) {
+      most_negative = multiplier_[j];
+      drop_ = j;
+    }
+  move_ = drop_ >= 0 ? Move::Drop : Move::Done;
+}
+
+double ActiveSet::ratio_test(double limit) {
+  const RowSparseMatrix& A = problem_.contact_rows();
+  std::vector<char> in_working(A.rows(), 0);
+  for (int k : working_)
+    in_working[k] = 1;
+  const double p_size = p_.lpNorm<Eigen::Infinity>();
+  double step = limit;
+  blocking_ = -1;
+  for (int k = 0; k < A.rows(); ++k) {
+    if (in_working[k]) continue;
+    const double ap = A.row(k).dot(p_);
+    if (ap <= 1e-12 * p_size) continue;
+    const double ratio = std::max(0.0, slack(k)) / ap;
+    if (ratio < step) {  // ties keep the lowest row (Bland's rule against cycling)
+      step = ratio;
+      blocking_ = k;
+    }
+  }
+  return step;
+}
+
+void ActiveSet::record_move() {
+  double residual = 0.0;
+  switch (move_) {
+    case Move::Step:
+      residual = p_.lpNorm<Eigen::Infinity>() / u_scale_;
+      break;
+    case Move::RigidMotion:
+      residual = (problem_.kernel().transpose() * g_).lpNorm<Eigen::Infinity>() / f_scale_;
+      break;
+    case Move::Drop:
+      residual = -multiplier_[drop_] / f_scale_;
+      break;
+    case Move::Done:
+      residual = p_.lpNorm<Eigen::Infinity>() / u_scale_;
+      converge();
+      break;
+  }
+  record(residual, static_cast<int>(working_.size()));
+}
+
+void ActiveSet::advance() {
+  switch (move_) {
+    case Move::Step: {
+      const double step = ratio_test(1.0);
+      x_ += step * p_;
+      if (blocking_ >= 0) working_.push_back(blocking_);
+      break;
+    }
+    case Move::RigidMotion: {
+      const double step = ratio_test(std::numeric_limits<double>::infinity());
+      if (blocking_ < 0) {
+        std::string names;
+        for (int s : moving_struts_)
+          names += (names.empty() ? "'" : ", '") + model_.strut_names[s] + "'";
+        ++iteration_;
+        fail("the scene is unbounded at load factor " + std::to_string(load_factor_) +
+             ": strut(s) " + names + " held by no support would be pushed away from every contact");
+        return;
+      }
+      x_ += step * p_;
+      working_.push_back(blocking_);
+      break;
+    }
+    case Move::Drop:
+      working_.erase(working_.begin() + drop_);
+      break;
+    case Move::Done:
+      return;
+  }
+  g_ = problem_.stiffness() * x_ - load_factor_ * problem_.load();
+  ++iteration_;
+  solve_subproblem();
+  record_move();
+}
+
+Snapshot ActiveSet::snapshot() const {
+  Snapshot s;
+  s.method = MethodKind::ActiveSet;
+  s.iteration = iteration_;
+  s.status = status();
+  s.message = message();
+  s.load_factor = load_factor_;
+  s.residual = history().empty() ? 0.0 : history().back().residual;
+  const int m = static_cast<int>(model_.pairs.size());
+  s.in_working_set.assign(m, 0);
+  s.force.assign(m, 0.0);
+  for (size_t j = 0; j < working_.size(); ++j) {
+    s.in_working_set[working_[j]] = 1;
+    if (j < multiplier_.size()) s.force[working_[j]] = std::max(0.0, multiplier_[j]);
+  }
+  s.pieces = problem_.pieces(x_);
+  s.primal = x_;
+  return s;
+}
+
+}  // namespace fetic::solver

@@ -1,0 +1,103 @@
+#include "solver/cholmod_factor.hpp"
+
+#include <cstring>
+#include <stdexcept>
+
+#include <cholmod.h>
+
+namespace fetic::solver {
+
+struct CholmodFactor::Impl {
+  cholmod_common common{};
+  cholmod_factor* factor = nullptr;
+  // Workspaces reused by cholmod_solve2 so that a solve does not allocate.
+  cholmod_dense* x = nullptr;
+  cholmod_dense* y = nullptr;
+  cholmod_dense* e = nullptr;
+
+  Impl() {
+    cholmod_start(&common);
+    common.print = 0;
+    common.error_handler = nullptr;
+  }
+  ~Impl() {
+    cholmod_free_dense(&x, &common);
+    cholmod_free_dense(&y, &common);
+    cholmod_free_dense(&e, &common);
+    cholmod_free_factor(&factor, &common);
+    cholmod_finish(&common);
+  }
+};
+
+CholmodFactor::CholmodFactor() : impl_(std::make_unique<Impl>()) {}
+CholmodFactor::~CholmodFactor() = default;
+CholmodFactor::CholmodFactor(CholmodFactor&&) noexcept = default;
+CholmodFactor& CholmodFactor::operator=(CholmodFactor&&) noexcept = default;
+
+CholmodFactor::Result CholmodFactor::factorize(const SparseMatrix& A) {
+  if (!A.isCompressed()) throw std::logic_error("CholmodFactor: matrix must be compressed");
+  cholmod_free_factor(&impl_->factor, &impl_->common);
+  size_ = static_cast<int>(A.rows());
+  failed_column_ = -1;
+  if (size_ == 0) return Result::Ok;
+  // A view of the Eigen matrix: CHOLMOD reads it, never writes it.
+  cholmod_sparse view{};
+  view.nrow = static_cast<size_t>(A.rows());
+  view.ncol = static_cast<size_t>(A.cols());
+  view.nzmax = static_cast<size_t>(A.nonZeros());
+  view.p = const_cast<int*>(A.outerIndexPtr());
+  view.i = const_cast<int*>(A.innerIndexPtr());
+  view.x = const_cast<double*>(A.valuePtr());
+  view.stype = -1;
+  view.itype = CHOLMOD_INT;
+  view.xtype = CHOLMOD_REAL;
+  view.dtype = CHOLMOD_DOUBLE;
+  view.sorted = 1;
+  view.packed = 1;
+  cholmod_common& c = impl_->common;
+  impl_->factor = cholmod_analyze(&view, &c);
+  if (!impl_->factor)
+    return c.status == CHOLMOD_OUT_OF_MEMORY ? Result::OutOfMemory : Result::Failed;
+  cholmod_factorize(&view, impl_->factor, &c);
+  if (c.status == CHOLMOD_NOT_POSDEF || impl_->factor->minor < impl_->factor->n) {
+    failed_column_ = static_cast<int>(impl_->factor->minor);
+    return Result::NotPositiveDefinite;
+  }
+  if (c.status == CHOLMOD_OUT_OF_MEMORY) return Result::OutOfMemory;
+  if (c.status < CHOLMOD_OK) return Result::Failed;
+  return Result::Ok;
+}
+
+double CholmodFactor::rcond() const {
+  if (!impl_->factor || size_ == 0) return 1.0;
+  return cholmod_rcond(impl_->factor, &impl_->common);
+}
+
+std::size_t CholmodFactor::factor_nonzeros() const {
+  if (!impl_->factor) return 0;
+  const cholmod_factor* L = impl_->factor;
+  if (L->is_super) return L->xsize;
+  return L->nzmax;
+}
+
+std::size_t CholmodFactor::peak_memory() const {
+  return impl_->common.memory_usage;
+}
+
+void CholmodFactor::solve(const double* b, double* x, int columns) const {
+  if (size_ == 0) return;
+  cholmod_dense rhs{};
+  rhs.nrow = static_cast<size_t>(size_);
+  rhs.ncol = static_cast<size_t>(columns);
+  rhs.nzmax = rhs.nrow * rhs.ncol;
+  rhs.d = rhs.nrow;
+  rhs.x = const_cast<double*>(b);
+  rhs.xtype = CHOLMOD_REAL;
+  rhs.dtype = CHOLMOD_DOUBLE;
+  if (!cholmod_solve2(CHOLMOD_A, impl_->factor, &rhs, nullptr, &impl_->x, nullptr, &impl_->y,
+                      &impl_->e, &impl_->common))
+    throw std::runtime_error("CHOLMOD solve failed");
+  std::memcpy(x, impl_->x->x, sizeof(double) * rhs.nzmax);
+}
+
+}  // namespace fetic::solver

@@ -1,0 +1,46 @@
+#pragma once
+// A sparse Cholesky factor through CHOLMOD (SuiteSparse), with its own cholmod_common so
+// that different factors may be used from different threads at the same time. CHOLMOD
+// prints nothing: problems come back as results for the caller to report.
+
+#include <cstddef>
+#include <memory>
+
+#include "solver/stiffness.hpp"
+
+namespace fetic::solver {
+
+class CholmodFactor {
+ public:
+  enum class Result { Ok, NotPositiveDefinite, OutOfMemory, Failed };
+
+  CholmodFactor();
+  ~CholmodFactor();
+  CholmodFactor(const CholmodFactor&) = delete;
+  CholmodFactor& operator=(const CholmodFactor&) = delete;
+  CholmodFactor(CholmodFactor&&) noexcept;
+  CholmodFactor& operator=(CholmodFactor&&) noexcept;
+
+  // Factorizes the symmetric matrix A (only its lower triangle is read).
+  Result factorize(const SparseMatrix& A);
+  // Column where factorization broke down (valid after NotPositiveDefinite).
+  int failed_column() const { return failed_column_; }
+  // CHOLMOD's cheap estimate min(diag L) / max(diag L), squared for an LL' factor.
+  double rcond() const;
+  int size() const { return size_; }
+  std::size_t factor_nonzeros() const;
+  // Peak bytes CHOLMOD allocated for this factor.
+  std::size_t peak_memory() const;
+
+  // x = A^-1 b for `columns` right-hand sides stored column-major (size() rows each).
+  // Not reentrant: one call at a time per factor.
+  void solve(const double* b, double* x, int columns = 1) const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+  int size_ = 0;
+  int failed_column_ = -1;
+};
+
+}  // namespace fetic::solver

@@ -1,0 +1,147 @@
+#include "solver/method.hpp"
+
+#include <cmath>
+
+namespace fetic::solver {
+
+const char* to_string(MethodKind method) {
+  switch (method) {
+    case MethodKind::SteepestDescent:
+      return "sd";
+    case MethodKind::ConjugateGradient:
+      return "cg";
+    case MethodKind::ActiveSet:
+      return "active-set";
+    case MethodKind::Feti:
+      return "feti";
+    case MethodKind::FetiC:
+      return "feti-c";
+  }
+  return "?";
+}
+
+const char* to_string(Preconditioner preconditioner) {
+  switch (preconditioner) {
+    case Preconditioner::None:
+      return "none";
+    case Preconditioner::Lumped:
+      return "lumped";
+    case Preconditioner::Dirichlet:
+      return "dirichlet";
+  }
+  return "?";
+}
+
+const char* to_string(Status status) {
+  switch (status) {
+    case Status::Running:
+      return "running";
+    case Status::Converged:
+      return "converged";
+    case Status::Failed:
+      return "failed";
+  }
+  return "?";
+}
+
+std::optional<MethodKind> parse_method(const std::string& name) {
+  for (MethodKind kind : {MethodKind::SteepestDescent, MethodKind::ConjugateGradient,
+                          MethodKind::ActiveSet, MethodKind::Feti, MethodKind::FetiC})
+    if (name == to_string(kind)) return kind;
+  return std::nullopt;
+}
+
+std::optional<Preconditioner> parse_preconditioner(const std::string& name) {
+  for (Preconditioner p : {Preconditioner::None, Preconditioner::Lumped, Preconditioner::Dirichlet})
+    if (name == to_string(p)) return p;
+  return std::nullopt;
+}
+
+bool handles_contact(MethodKind method) {
+  return method == MethodKind::ActiveSet || method == MethodKind::FetiC;
+}
+
+int Snapshot::active_set_size() const {
+  int count = 0;
+  for (char in : in_working_set)
+    count += in ? 1 : 0;
+  return count;
+}
+
+Method::Method(const Model& model, const SolveOptions& options, int default_max_iterations)
+    : model_(model), options_(options) {
+  max_iterations_ = options.max_iterations > 0 ? options.max_iterations : default_max_iterations;
+}
+
+void Method::start(double load_factor, const Snapshot* warm) {
+  load_factor_ = load_factor;
+  iteration_ = 0;
+  status_ = Status::Running;
+  message_.clear();
+  history_.clear();
+  if (warm && warm->method != kind()) warm = nullptr;
+  begin(warm);
+}
+
+void Method::step() {
+  if (status_ == Status::Running) advance();
+}
+
+void Method::record(double residual, int active_set) {
+  HistoryEntry entry{iteration_, residual, active_set};
+  if (!reference_.empty())
+    entry.error = relative_error(strut_displacements(model_, snapshot()), reference_);
+  history_.push_back(entry);
+  if (!std::isfinite(residual)) {
+    fail("the residual became " + std::string(std::isnan(residual) ? "NaN" : "infinite") +
+         " at iteration " + std::to_string(iteration_));
+  } else if (status_ == Status::Running && iteration_ >= max_iterations_) {
+    fail("no convergence within " + std::to_string(max_iterations_) +
+         " iterations (relative residual " + std::to_string(residual) + ", tolerance " +
+         std::to_string(options_.tolerance) + ")");
+  }
+}
+
+void Method::fail(std::string why) {
+  status_ = Status::Failed;
+  message_ = std::move(why);
+}
+
+void run_to_end(Method& method) {
+  while (method.status() == Status::Running)
+    method.step();
+}
+
+std::vector<std::vector<Vec2>> strut_displacements(const Model& model, const Snapshot& snapshot) {
+  std::vector<std::vector<Vec2>> sum(model.struts.size());
+  std::vector<std::vector<int>> count(model.struts.size());
+  for (size_t s = 0; s < model.struts.size(); ++s) {
+    sum[s].assign(model.struts[s].node_count(), Vec2::Zero());
+    count[s].assign(model.struts[s].node_count(), 0);
+  }
+  for (const Piece& piece : snapshot.pieces) {
+    const StrutMesh& mesh = model.struts[piece.strut];
+    for (int i = piece.box.i0; i <= piece.box.i1; ++i)
+      for (int k = piece.box.k0; k <= piece.box.k1; ++k) {
+        sum[piece.strut][mesh.node(i, k)] += piece.displacement[piece.box.local(i, k)];
+        count[piece.strut][mesh.node(i, k)] += 1;
+      }
+  }
+  for (size_t s = 0; s < sum.size(); ++s)
+    for (size_t n = 0; n < sum[s].size(); ++n)
+      if (count[s][n] > 1) sum[s][n] /= count[s][n];
+  return sum;
+}
+
+double relative_error(const std::vector<std::vector<Vec2>>& u,
+                      const std::vector<std::vector<Vec2>>& reference) {
+  double difference = 0.0, size = 0.0;
+  for (size_t s = 0; s < u.size() && s < reference.size(); ++s)
+    for (size_t n = 0; n < u[s].size() && n < reference[s].size(); ++n) {
+      difference += (u[s][n] - reference[s][n]).squaredNorm();
+      size += reference[s][n].squaredNorm();
+    }
+  return size > 0.0 ? std::sqrt(difference / size) : std::sqrt(difference);
+}
+
+}  // namespace fetic::solver

@@ -1,0 +1,137 @@
+#pragma once
+// The stepper every method implements: start (cold, or warm from an earlier snapshot of
+// the same method), step (one iteration), snapshot (the state the app, the renderer and
+// the tests all read), status. Expensive set-up (factorizations) happens once, when the
+// method is made for a model; start() only resets the iteration, so re-solving at a new
+// load factor is cheap.
+
+#include <limits>
+#include <memory>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "solver/model.hpp"
+#include "solver/stiffness.hpp"
+
+namespace fetic::solver {
+
+enum class MethodKind { SteepestDescent, ConjugateGradient, ActiveSet, Feti, FetiC };
+enum class Preconditioner { None, Lumped, Dirichlet };
+enum class Status { Running, Converged, Failed };
+
+// Command-line names: "sd", "cg", "active-set", "feti", "feti-c"; "none", "lumped", "dirichlet".
+const char* to_string(MethodKind method);
+const char* to_string(Preconditioner preconditioner);
+const char* to_string(Status status);
+std::optional<MethodKind> parse_method(const std::string& name);
+std::optional<Preconditioner> parse_preconditioner(const std::string& name);
+bool handles_contact(MethodKind method);
+
+struct SolveOptions {
+  double tolerance = 1e-10;  // relative, see each method
+  int max_iterations = 0;    // 0: the method's default cap
+  Preconditioner preconditioner = Preconditioner::Dirichlet;
+};
+
+// A problem found while setting a method up (singular strut, unsupported scene, ...).
+class SolverError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+struct HistoryEntry {
+  int iteration = 0;
+  double residual = 0.0;                                    // relative, as the method defines it
+  int active_set = 0;                                       // contact pairs in the working set
+  double error = std::numeric_limits<double>::quiet_NaN();  // vs a reference, when set
+};
+
+// Displacements of one piece of a strut: one FETI subdomain, or a whole strut for the
+// primal methods. Pieces of a strut agree on shared nodes only once FETI has converged.
+struct Piece {
+  int strut = 0;
+  NodeBox box;
+  std::vector<Vec2> displacement;  // per box node, box-local order
+};
+
+struct Snapshot {
+  MethodKind method = MethodKind::ActiveSet;
+  int iteration = 0;
+  Status status = Status::Running;
+  std::string message;  // why it failed, or a note
+  double load_factor = 1.0;
+  double residual = 0.0;
+  std::vector<char> in_working_set;  // per contact pair
+  std::vector<double> force;         // per contact pair: contact pressure lambda (>= 0)
+  std::vector<Piece> pieces;
+  // What a warm start of the same method needs: the primal iterate (assembled, free
+  // DOFs) or the dual one (all multipliers).
+  Eigen::VectorXd primal;
+  Eigen::VectorXd dual;
+
+  int active_set_size() const;
+};
+
+class Method {
+ public:
+  virtual ~Method() = default;
+  virtual MethodKind kind() const = 0;
+  // Starts a solve at `load_factor`, warm from `warm` (a snapshot of the same method on
+  // the same model) when given.
+  void start(double load_factor, const Snapshot* warm = nullptr);
+  // One iteration; does nothing unless the status is Running.
+  void step();
+  virtual Snapshot snapshot() const = 0;
+
+  Status status() const { return status_; }
+  const std::string& message() const { return message_; }
+  int iteration() const { return iteration_; }
+  int max_iterations() const { return max_iterations_; }
+  const std::vector<HistoryEntry>& history() const { return history_; }
+  // Records, per iteration from now on, the relative displacement error against it.
+  void set_reference(std::vector<std::vector<Vec2>> reference) {
+    reference_ = std::move(reference);
+  }
+
+ protected:
+  Method(const Model& model, const SolveOptions& options, int default_max_iterations);
+  // Sets up the initial iterate and records it (history entry 0).
+  virtual void begin(const Snapshot* warm) = 0;
+  // Performs one iteration and records it.
+  virtual void advance() = 0;
+  // Appends the history entry of the current iteration; fails past the iteration cap.
+  void record(double residual, int active_set);
+  void converge() { status_ = Status::Converged; }
+  void fail(std::string why);
+
+  const Model& model_;
+  SolveOptions options_;
+  double load_factor_ = 1.0;
+  int iteration_ = 0;
+  int max_iterations_ = 0;
+
+ private:
+  Status status_ = Status::Running;
+  std::string message_;
+  std::vector<HistoryEntry> history_;
+  std::vector<std::vector<Vec2>> reference_;
+};
+
+std::unique_ptr<Method> make_method(MethodKind kind, const Model& model,
+                                    const SolveOptions& options);
+
+// Steps a started method until it stops.
+void run_to_end(Method& method);
+
+// Node displacements per strut (average of the pieces that hold a node).
+std::vector<std::vector<Vec2>> strut_displacements(const Model& model, const Snapshot& snapshot);
+
+// ||u - reference|| / ||reference|| over all strut nodes (absolute when the reference is 0).
+double relative_error(const std::vector<std::vector<Vec2>>& u,
+                      const std::vector<std::vector<Vec2>>& reference);
+
+}  // namespace fetic::solver

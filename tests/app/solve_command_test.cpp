@@ -1,0 +1,109 @@
+// End to end: `fetic solve` on bundled scenes writes the result file of SCENES.md and
+// exits with the documented statuses.
+
+#include <catch2/catch.hpp>
+
+#include <sys/wait.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+
+#include <nlohmann/json.hpp>
+
+namespace {
+
+struct Run {
+  int status = -1;
+  std::string output;
+};
+
+Run run(const std::string& arguments) {
+  const std::string log =
+      (std::filesystem::temp_directory_path() / "fetic_test_output.txt").string();
+  const std::string command =
+      std::string(FETIC_EXECUTABLE) + " " + arguments + " > " + log + " 2>&1";
+  const int raw = std::system(command.c_str());
+  Run result;
+  result.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+  std::ifstream in(log);
+  result.output.assign(std::istreambuf_iterator<char>(in), {});
+  return result;
+}
+
+std::string scene(const std::string& name) {
+  return std::string(FETIC_BUNDLED_SCENES_DIR) + "/" + name;
+}
+
+std::string temporary(const std::string& name) {
+  return (std::filesystem::temp_directory_path() / name).string();
+}
+
+}  // namespace
+
+TEST_CASE("fetic solve writes the result file of the contract") {
+  const std::string json_path = temporary("fetic_thesis.json");
+  std::filesystem::remove(json_path);
+  const Run r = run("solve " + scene("thesis.toml") + " --method active-set --json " + json_path);
+  INFO(r.output);
+  REQUIRE(r.status == 0);
+  CHECK_THAT(r.output, Catch::Contains("converged    yes"));
+  std::ifstream in(json_path);
+  const nlohmann::json result = nlohmann::json::parse(in);
+  CHECK(result["model"] == "bar");
+  CHECK(result["method"] == "active-set");
+  CHECK(result["converged"] == true);
+  CHECK(result["load_factor"] == 1.0);
+  CHECK(result["struts"].size() == 100);
+  CHECK(result["struts"][0]["name"] == "L01");
+  CHECK(result["struts"][0]["nodes"].size() == 5);
+  CHECK(result["struts"][0]["displacements"][0][0] == 0.0);  // clamped end
+  CHECK(result["contacts"].size() == 50);
+  CHECK(result["contacts"][0]["a"] == "L01.to");
+  CHECK(result["contacts"][0]["pairs"].size() == 1);
+  int active = 0;
+  for (const auto& contact : result["contacts"]) {
+    const auto& pair = contact["pairs"][0];
+    CHECK(pair["force"].get<double>() >= 0.0);
+    active += pair["active"].get<bool>() ? 1 : 0;
+  }
+  CHECK(active > 0);
+  const auto& history = result["history"];
+  REQUIRE(history.size() == result["iterations"].get<size_t>() + 1);
+  CHECK(history[0]["iteration"] == 0);
+  CHECK(history.back()["active_set"] == active);
+}
+
+TEST_CASE("fetic solve exit statuses: invalid scene 2, unsupported method 3, no convergence 4") {
+  const Run invalid = run("solve " + std::string(FETIC_BUNDLED_SCENES_DIR) +
+                          "/../tests/scenes/invalid/strut_negative_E.toml");
+  CHECK(invalid.status == 2);
+  CHECK_THAT(invalid.output,
+             Catch::Contains("strut_negative_E.toml:8: strut 'A': 'E' must be greater than 0"));
+
+  const Run missing = run("solve no_such_scene.toml");
+  CHECK(missing.status == 2);
+  CHECK_THAT(missing.output, Catch::Contains("no_such_scene.toml: cannot open the scene file"));
+
+  const Run refused = run("solve " + scene("two_bars.toml") + " --method cg");
+  CHECK(refused.status == 3);
+  CHECK_THAT(refused.output, Catch::Contains("two_bars.toml: conjugate gradients"));
+
+  const std::string json_path = temporary("fetic_unconverged.json");
+  std::filesystem::remove(json_path);
+  const Run capped = run("solve " + scene("cantilevers.toml") +
+                         " --method sd --max-iterations 5 --json " + json_path);
+  CHECK(capped.status == 4);
+  CHECK_THAT(capped.output, Catch::Contains("no convergence within 5 iterations"));
+  std::ifstream in(json_path);
+  REQUIRE(in.good());  // the result file is still written
+  const nlohmann::json result = nlohmann::json::parse(in);
+  CHECK(result["converged"] == false);
+  CHECK(result["history"].size() == 6);
+}
+
+TEST_CASE("fetic solve rejects bad command lines with status 1") {
+  CHECK(run("solve " + scene("two_bars.toml") + " --method newton").status == 1);
+  CHECK(run("solve " + scene("two_bars.toml") + " --load-factor nan").status == 1);
+  CHECK(run("frobnicate").status == 1);
+}

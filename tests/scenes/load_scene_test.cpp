@@ -1,0 +1,125 @@
+// Valid scenes load as SCENES.md defines them: defaults, optional keys, numbers given as
+// integers, geometry of contacts.
+
+#include <catch2/catch.hpp>
+
+#include <filesystem>
+
+#include "scenes/load_scene.hpp"
+#include "scenes/scene_geometry.hpp"
+
+using namespace fetic::scenes;
+
+TEST_CASE("defaults apply where a strut omits a key, and a strut's own value wins") {
+  const char* text = R"(
+title = "t"
+model = "bar"
+[defaults]
+E = 2.1e11
+area = 1
+elements = 3
+subdomains = 3
+fixed = ["from"]
+[[strut]]
+name = "A"
+from = [0, 0]
+to = [2, 0]
+[[strut]]
+name = "B_2-x"
+from = [0.0, 1.0]
+to = [2.0, 1.0]
+E = 7e10
+fixed = ["to"]
+subdomains = 1
+)";
+  const Scene scene = parse_scene(text, "d.toml");
+  REQUIRE(scene.struts.size() == 2);
+  CHECK(scene.title == "t");
+  CHECK(scene.struts[0].E == 2.1e11);
+  CHECK(scene.struts[0].area == 1.0);  // integer accepted as a number
+  CHECK(scene.struts[0].to[0] == 2.0);
+  CHECK(scene.struts[0].subdomains == 3);
+  CHECK(scene.struts[0].fixed_from);
+  CHECK_FALSE(scene.struts[0].fixed_to);
+  CHECK(scene.struts[1].E == 7e10);
+  CHECK_FALSE(scene.struts[1].fixed_from);
+  CHECK(scene.struts[1].fixed_to);
+  CHECK(scene.struts[1].subdomains == 1);
+  CHECK(scene.struts[0].line == 10);  // the [[strut]] header
+}
+
+TEST_CASE("loads and contacts may come before the struts they name") {
+  const char* text = R"(
+model = "bar"
+[[load]]
+strut = "B"
+per_length = [-3.0, 0.0]
+[[contact]]
+a = "A.to"
+b = "B.from"
+[[strut]]
+name = "A"
+from = [0.0, 0.0]
+to = [1.0, 0.0]
+E = 1e9
+area = 1e-4
+elements = 1
+fixed = ["from"]
+[[strut]]
+name = "B"
+from = [1.0, 0.0]
+to = [2.0, 0.0]
+E = 1e9
+area = 1e-4
+elements = 1
+fixed = ["to"]
+)";
+  const Scene scene = parse_scene(text, "order.toml");
+  REQUIRE(scene.loads.size() == 1);
+  CHECK(scene.loads[0].strut == 1);
+  CHECK(scene.loads[0].per_length);
+  REQUIRE(scene.contacts.size() == 1);
+  const ContactGeometry g = contact_geometry(scene, scene.contacts[0]);
+  CHECK(g.gap == 0.0);  // a zero gap is allowed
+  CHECK(g.normal[0] == 1.0);
+}
+
+TEST_CASE("contact normal and gap follow a's axis for any direction and orientation") {
+  // A runs from (1,1) toward (0,0); B lies beyond A.from, reversed.
+  const char* text = R"(
+model = "bar"
+[defaults]
+E = 1e9
+area = 1e-4
+elements = 2
+[[strut]]
+name = "A"
+from = [0.0, 0.0]
+to = [1.0, 1.0]
+fixed = ["to"]
+[[strut]]
+name = "B"
+from = [-2.0, -2.0]
+to = [-0.5, -0.5]
+fixed = ["from"]
+[[contact]]
+a = "A.from"
+b = "B.to"
+)";
+  const Scene scene = parse_scene(text, "diag.toml");
+  const ContactGeometry g = contact_geometry(scene, scene.contacts[0]);
+  CHECK(g.normal[0] == Approx(-std::sqrt(0.5)));
+  CHECK(g.normal[1] == Approx(-std::sqrt(0.5)));
+  CHECK(g.gap == Approx(std::sqrt(0.5)));
+}
+
+TEST_CASE("every bundled scene loads") {
+  int count = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(FETIC_BUNDLED_SCENES_DIR)) {
+    if (entry.path().extension() != ".toml") continue;
+    INFO(entry.path());
+    CHECK_NOTHROW(load_scene_file(entry.path().string()));
+    ++count;
+  }
+  CHECK(count >= 4);
+}

@@ -1,0 +1,112 @@
+// Closed-form solutions: two opposing bars in contact, and bars under distributed loads
+// (linear bar elements are nodally exact in 1D).
+
+#include <catch2/catch.hpp>
+
+#include <cstdio>
+
+#include "tests/support/solve_helpers.hpp"
+
+using namespace fetic;
+using fetic::solver::MethodKind;
+
+namespace {
+
+std::string two_bars(double L1, double EA1, double L2, double EA2, double gap, double P,
+                     int elements, int subdomains, double angle) {
+  const double dx = std::cos(angle), dy = std::sin(angle);
+  auto pt = [&](double s) {
+    char b[96];
+    std::snprintf(b, sizeof b, "[%.17g, %.17g]", s * dx, s * dy);
+    return std::string(b);
+  };
+  char text[2048];
+  std::snprintf(text, sizeof text, R"(
+model = "bar"
+[[strut]]
+name = "A"
+from = %s
+to = %s
+E = %.17g
+area = 1.0
+elements = %d
+subdomains = %d
+fixed = ["from"]
+[[strut]]
+name = "B"
+from = %s
+to = %s
+E = %.17g
+area = 1.0
+elements = %d
+subdomains = %d
+fixed = ["to"]
+[[load]]
+strut = "B"
+at = "from"
+force = [%.17g, %.17g]
+[[contact]]
+a = "A.to"
+b = "B.from"
+)",
+                pt(0).c_str(), pt(L1).c_str(), EA1, elements, subdomains, pt(L1 + gap).c_str(),
+                pt(L1 + gap + L2).c_str(), EA2, elements, subdomains, -P * dx, -P * dy);
+  return text;
+}
+
+}  // namespace
+
+TEST_CASE("two opposing bars: contact force max(0, (P L2/EA2 - g) / (L1/EA1 + L2/EA2))") {
+  const double L1 = 0.8, L2 = 1.3, EA1 = 3.0e7, EA2 = 1.2e7;
+  int checked = 0;
+  for (double gap : {0.0, 1e-4, 1e-3, 5e-3}) {
+    for (double P : {-20000.0, 0.0, 5000.0, 20000.0, 80000.0}) {
+      for (int elements : {1, 3}) {
+        const double angle = 0.7 * checked;
+        const auto solved = testing::solve_text(
+            two_bars(L1, EA1, L2, EA2, gap, P, elements, elements, angle), MethodKind::ActiveSet);
+        REQUIRE(solved->state.status == solver::Status::Converged);
+        const double expected = std::max(0.0, (P * L2 / EA2 - gap) / (L1 / EA1 + L2 / EA2));
+        CHECK(solved->state.force[0] == Approx(expected).margin(1e-9 * std::abs(P)));
+        CHECK(static_cast<bool>(solved->state.in_working_set[0]) == (expected > 0.0));
+        // Tip of B moves by -(P - lambda) L2 / EA2 along the axis; tip of A by lambda L1/EA1.
+        const auto u = solver::strut_displacements(solved->model, solved->state);
+        const double tip_b = -(P - expected) * L2 / EA2;
+        const double tip_a = -expected * L1 / EA1;
+        CHECK(u[1][0].norm() == Approx(std::abs(tip_b)).margin(1e-12));
+        CHECK(u[0].back().norm() == Approx(std::abs(tip_a)).margin(1e-12));
+        ++checked;
+      }
+    }
+  }
+  CHECK(checked == 40);
+}
+
+TEST_CASE("bar under a distributed load: nodal displacements are exact") {
+  // Clamped at x = 0, free at x = L, load q per length: u(x) = q/(EA) (L x - x^2 / 2).
+  const double L = 2.0, EA = 5.0e6, q = 300.0;
+  const std::string text = R"(
+model = "bar"
+[[strut]]
+name = "B"
+from = [0.0, 0.0]
+to = [2.0, 0.0]
+E = 5.0e6
+area = 1.0
+elements = 7
+fixed = ["from"]
+[[load]]
+strut = "B"
+per_length = [300.0, 0.0]
+)";
+  for (MethodKind kind : {MethodKind::ActiveSet, MethodKind::ConjugateGradient}) {
+    const auto solved = testing::solve_text(text, kind);
+    REQUIRE(solved->state.status == solver::Status::Converged);
+    const auto u = solver::strut_displacements(solved->model, solved->state);
+    for (int i = 0; i <= 7; ++i) {
+      const double x = L * i / 7;
+      CHECK(u[0][i].x() == Approx(q / EA * (L * x - 0.5 * x * x)).margin(1e-14));
+      CHECK(u[0][i].y() == 0.0);
+    }
+  }
+}

@@ -1,0 +1,78 @@
+#pragma once
+// Small helpers shared by the solver tests: load a scene from text, run a method to the
+// end, compare displacements and forces with a reference.
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "scenes/load_scene.hpp"
+#include "solver/method.hpp"
+#include "solver/model.hpp"
+#include "tests/support/reference_qp.hpp"
+
+namespace fetic::testing {
+
+struct Solved {
+  solver::Model model;
+  std::unique_ptr<solver::Method> method;
+  solver::Snapshot state;
+};
+
+inline std::unique_ptr<Solved> solve(const scenes::Scene& scene, solver::MethodKind kind,
+                                     double load_factor = 1.0, solver::SolveOptions options = {}) {
+  auto result = std::make_unique<Solved>();
+  result->model = solver::build_model(scene);
+  result->method = solver::make_method(kind, result->model, options);
+  result->method->start(load_factor);
+  solver::run_to_end(*result->method);
+  result->state = result->method->snapshot();
+  return result;
+}
+
+inline std::unique_ptr<Solved> solve_text(const std::string& text, solver::MethodKind kind,
+                                          double load_factor = 1.0,
+                                          solver::SolveOptions options = {}) {
+  return solve(scenes::parse_scene(text, "test.toml"), kind, load_factor, options);
+}
+
+inline scenes::Scene bundled_scene(const std::string& name) {
+  return scenes::load_scene_file(std::string(FETIC_BUNDLED_SCENES_DIR) + "/" + name);
+}
+
+// ||u - u_ref|| / ||u_ref|| over every node of every strut.
+inline double displacement_error(const Solved& solved, const ReferenceSolution& reference) {
+  const auto u = solver::strut_displacements(solved.model, solved.state);
+  double difference = 0.0, size = 0.0;
+  for (size_t s = 0; s < u.size(); ++s)
+    for (size_t n = 0; n < u[s].size(); ++n) {
+      const auto& r = reference.displacement.at(s).at(n);
+      difference += std::pow(u[s][n].x() - r[0], 2) + std::pow(u[s][n].y() - r[1], 2);
+      size += r[0] * r[0] + r[1] * r[1];
+    }
+  return size > 0.0 ? std::sqrt(difference / size) : std::sqrt(difference);
+}
+
+// ||force - force_ref|| / max(||force_ref||, force_scale) over every contact pair.
+inline double force_error(const Solved& solved, const ReferenceSolution& reference,
+                          double force_scale) {
+  double difference = 0.0, size = 0.0;
+  for (size_t k = 0; k < reference.force.size(); ++k) {
+    difference += std::pow(solved.state.force.at(k) - reference.force[k], 2);
+    size += reference.force[k] * reference.force[k];
+  }
+  return std::sqrt(difference) / std::max(std::sqrt(size), force_scale);
+}
+
+// Sum of the magnitudes of all nodal loads at load factor 1: the scale of contact forces.
+inline double load_scale(const solver::Model& model) {
+  double total = 0.0;
+  for (const auto& load : model.loads)
+    total += load.lpNorm<1>();
+  return std::max(total, 1e-300);
+}
+
+}  // namespace fetic::testing
