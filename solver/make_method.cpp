@@ -1,6 +1,8 @@
 #include "solver/active_set.hpp"
+#include "solver/feti_c.hpp"
 #include "solver/gradient_methods.hpp"
 #include "solver/method.hpp"
+#include "solver/pcpg.hpp"
 
 namespace fetic::solver {
 
@@ -14,10 +16,11 @@ std::unique_ptr<Method> make_method(MethodKind kind, const Model& model,
     case MethodKind::ActiveSet:
       return std::make_unique<ActiveSet>(model, options);
     case MethodKind::Feti:
+      return std::make_unique<Pcpg>(model, options);
     case MethodKind::FetiC:
-      break;
+      return std::make_unique<FetiC>(model, options);
   }
-  throw SolverError(std::string("method '") + to_string(kind) + "' is not available yet");
+  throw SolverError(std::string("unknown method '") + to_string(kind) + "'");
 }
 
 }  // namespace fetic::solver

@@ -30,6 +30,8 @@ StrutMesh build_strut_mesh(const scenes::Scene& scene, int strut_index) {
   mesh.area = strut.area;
   mesh.thickness = strut.thickness;
   mesh.nu = strut.nu;
+  mesh.subdomains_along = strut.subdomains;
+  mesh.subdomains_across = plane ? strut.subdomains_across : 1;
   mesh.nodes.reserve(static_cast<size_t>(mesh.nx + 1) * (mesh.ny + 1));
   const Vec2 to(strut.to[0], strut.to[1]);
   for (int i = 0; i <= mesh.nx; ++i) {

@@ -26,10 +26,12 @@ struct StrutMesh {
   double length = 0.0;
   double height = 0.0;  // plane model
   double E = 0.0;
-  double area = 0.0;        // bar model
-  double thickness = 0.0;   // plane model
-  double nu = 0.0;          // plane model
-  std::vector<Vec2> nodes;  // reference positions
+  double area = 0.0;       // bar model
+  double thickness = 0.0;  // plane model
+  double nu = 0.0;         // plane model
+  int subdomains_along = 1;
+  int subdomains_across = 1;  // plane model
+  std::vector<Vec2> nodes;    // reference positions
 
   int nodes_across() const { return ny + 1; }
   int node(int i, int k) const { return i * (ny + 1) + k; }

@@ -35,6 +35,7 @@ struct SolveOptions {
   double tolerance = 1e-10;  // relative, see each method
   int max_iterations = 0;    // 0: the method's default cap
   Preconditioner preconditioner = Preconditioner::Dirichlet;
+  bool scaling = true;  // stiffness scaling of the FETI preconditioners
 };
 
 // A problem found while setting a method up (singular strut, unsupported scene, ...).

@@ -1,0 +1,129 @@
+#include "solver/decomposition.hpp"
+
+#include <algorithm>
+
+namespace fetic::solver {
+
+std::vector<std::pair<int, int>> split_nodes(int elements, int parts) {
+  std::vector<std::pair<int, int>> ranges;
+  int first = 0;
+  for (int p = 0; p < parts; ++p) {
+    // The first (elements % parts) parts get one element more.
+    const int size = elements / parts + (p < elements % parts ? 1 : 0);
+    ranges.emplace_back(first, first + size);
+    first += size;
+  }
+  return ranges;
+}
+
+namespace {
+
+// A node's copies: (subdomain, subdomain-local node), in increasing subdomain order.
+using Copies = std::vector<std::pair<int, int>>;
+
+struct StrutCopies {
+  std::vector<Copies> of_node;  // per strut node
+};
+
+}  // namespace
+
+Decomposition decompose(const Model& model) {
+  Decomposition d;
+  std::vector<StrutCopies> copies(model.struts.size());
+  for (size_t s = 0; s < model.struts.size(); ++s) {
+    const StrutMesh& mesh = model.struts[s];
+    copies[s].of_node.resize(mesh.node_count());
+    const auto along = split_nodes(mesh.nx, mesh.subdomains_along);
+    const auto across = mesh.ny > 0 ? split_nodes(mesh.ny, mesh.subdomains_across)
+                                    : std::vector<std::pair<int, int>>{{0, 0}};
+    for (const auto& [i0, i1] : along) {
+      for (const auto& [k0, k1] : across) {
+        Subdomain sub;
+        sub.strut = static_cast<int>(s);
+        sub.box = NodeBox{i0, i1, k0, k1};
+        sub.dof_count = sub.box.node_count() * mesh.dofs_per_node;
+        sub.dof_offset = d.total_dofs;
+        sub.mode_count = mesh.dofs_per_node == 1 ? 1 : 3;
+        sub.mode_offset = d.total_modes;
+        d.total_dofs += sub.dof_count;
+        d.total_modes += sub.mode_count;
+        sub.load = Eigen::VectorXd::Zero(sub.dof_count);
+        const int index = static_cast<int>(d.subdomains.size());
+        for (int i = i0; i <= i1; ++i)
+          for (int k = k0; k <= k1; ++k)
+            copies[s].of_node[mesh.node(i, k)].emplace_back(index, sub.box.local(i, k));
+        d.subdomains.push_back(std::move(sub));
+      }
+    }
+    // Each node's load goes to its first copy only.
+    for (int node = 0; node < mesh.node_count(); ++node) {
+      const auto [sub, local] = copies[s].of_node[node].front();
+      for (int c = 0; c < mesh.dofs_per_node; ++c)
+        d.subdomains[sub].load(local * mesh.dofs_per_node + c) =
+            model.loads[s](node * mesh.dofs_per_node + c);
+    }
+  }
+
+  // Gluing rows, then Dirichlet rows.
+  for (size_t s = 0; s < model.struts.size(); ++s) {
+    const StrutMesh& mesh = model.struts[s];
+    std::vector<char> clamped(mesh.node_count(), 0);
+    for (int node : model.clamped_nodes[s])
+      clamped[node] = 1;
+    for (int node = 0; node < mesh.node_count(); ++node) {
+      const Copies& c = copies[s].of_node[node];
+      if (clamped[node]) continue;
+      for (size_t j = 1; j < c.size(); ++j)
+        for (int comp = 0; comp < mesh.dofs_per_node; ++comp) {
+          Row row;
+          row.kind = RowKind::Gluing;
+          row.entries = {{c[j - 1].first, c[j - 1].second * mesh.dofs_per_node + comp, 1.0},
+                         {c[j].first, c[j].second * mesh.dofs_per_node + comp, -1.0}};
+          d.rows.push_back(std::move(row));
+        }
+    }
+  }
+  for (size_t s = 0; s < model.struts.size(); ++s) {
+    const StrutMesh& mesh = model.struts[s];
+    for (int node : model.clamped_nodes[s])
+      for (const auto& [sub, local] : copies[s].of_node[node])
+        for (int comp = 0; comp < mesh.dofs_per_node; ++comp) {
+          Row row;
+          row.kind = RowKind::Dirichlet;
+          row.entries = {{sub, local * mesh.dofs_per_node + comp, 1.0}};
+          d.rows.push_back(std::move(row));
+        }
+  }
+  d.equality_rows = static_cast<int>(d.rows.size());
+
+  // Contact rows.
+  d.pair_row.assign(model.pairs.size(), -1);
+  for (size_t k = 0; k < model.pairs.size(); ++k) {
+    const ContactPair& pair = model.pairs[k];
+    auto is_clamped = [&](int strut, int node) {
+      const auto& nodes = model.clamped_nodes[strut];
+      return std::binary_search(nodes.begin(), nodes.end(), node);
+    };
+    if (is_clamped(pair.strut_a, pair.node_a) && is_clamped(pair.strut_b, pair.node_b)) continue;
+    Row row;
+    row.kind = RowKind::Contact;
+    row.pair = static_cast<int>(k);
+    row.rhs = pair.gap;
+    for (int side = 0; side < 2; ++side) {
+      const int strut = side == 0 ? pair.strut_a : pair.strut_b;
+      const int node = side == 0 ? pair.node_a : pair.node_b;
+      const StrutMesh& mesh = model.struts[strut];
+      const Eigen::VectorXd coefficients =
+          component_coefficients(mesh, side == 0 ? pair.normal : Vec2(-pair.normal));
+      const auto [sub, local] = copies[strut].of_node[node].front();
+      for (int comp = 0; comp < mesh.dofs_per_node; ++comp)
+        if (coefficients(comp) != 0.0)
+          row.entries.push_back({sub, local * mesh.dofs_per_node + comp, coefficients(comp)});
+    }
+    d.pair_row[k] = static_cast<int>(d.rows.size());
+    d.rows.push_back(std::move(row));
+  }
+  return d;
+}
+
+}  // namespace fetic::solver

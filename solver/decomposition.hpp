@@ -1,0 +1,69 @@
+#pragma once
+// Tearing the model into FETI subdomains (ALGORITHMS.md sections 1-2).
+//
+// Each strut is split into `subdomains` boxes along its axis and `subdomains_across`
+// across it (plane model); neighbouring boxes share their interface nodes. We use
+// *total* FETI: clamped DOFs stay in K_j and become Dirichlet rows of B, so every
+// subdomain floats and its kernel is known exactly (its rigid-body modes). K_j^+ then
+// always comes from fixing the DOFs that pin those modes, with no numerical rank
+// decision, and a breakdown of the factorization can only mean a singularity the
+// rigid-body modes do not explain - which is reported.
+//
+// Rows of B, in this order: gluing rows u_a - u_b = 0 (one per DOF of every interface
+// node, chained over the subdomains that share it), Dirichlet rows u = 0 (every copy of
+// every clamped DOF; a clamped node gets no gluing row, which would be redundant), then
+// one contact row (u_a - u_b) . n <= gap per contact pair. A pair whose two nodes are
+// both clamped can never move and gets no row (its force is zero).
+
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "solver/model.hpp"
+#include "solver/stiffness.hpp"
+
+namespace fetic::solver {
+
+struct Subdomain {
+  int strut = 0;
+  NodeBox box;
+  int dof_count = 0;    // box nodes x DOFs per node
+  int dof_offset = 0;   // first DOF in the concatenation of all subdomain vectors
+  int mode_offset = 0;  // first rigid-body mode in the coarse space
+  int mode_count = 0;
+  Eigen::VectorXd load;  // this subdomain's share of the strut's nodal loads (t = 1)
+};
+
+enum class RowKind { Gluing, Dirichlet, Contact };
+
+struct RowEntry {
+  int subdomain = 0;
+  int dof = 0;  // subdomain-local DOF
+  double value = 0.0;
+};
+
+struct Row {
+  RowKind kind = RowKind::Gluing;
+  int pair = -1;     // contact pair (Contact rows)
+  double rhs = 0.0;  // c: 0 for gluing and Dirichlet rows, the gap for contact rows
+  std::vector<RowEntry> entries;
+};
+
+struct Decomposition {
+  std::vector<Subdomain> subdomains;
+  std::vector<Row> rows;  // equality rows first, then contact rows
+  int equality_rows = 0;
+  std::vector<int> pair_row;  // per contact pair: its row, or -1 (both nodes clamped)
+  int total_dofs = 0;
+  int total_modes = 0;
+
+  int row_count() const { return static_cast<int>(rows.size()); }
+  int contact_rows() const { return row_count() - equality_rows; }
+};
+
+// Element ranges [first node, last node] of `parts` nearly equal parts of `elements`.
+std::vector<std::pair<int, int>> split_nodes(int elements, int parts);
+
+Decomposition decompose(const Model& model);
+
+}  // namespace fetic::solver

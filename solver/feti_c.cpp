@@ -1,0 +1,174 @@
+#include "solver/feti_c.hpp"
+
+#include <cmath>
+
+#include "solver/boundedness.hpp"
+
+namespace fetic::solver {
+
+FetiC::FetiC(const Model& model, const SolveOptions& options) : FetiMethod(model, options, 0) {
+  if (options.max_iterations <= 0) max_iterations_ = 10 * system_.rows() + 1000;
+  G_abs_ = system_.G().cwiseAbs();
+}
+
+void FetiC::set_working_set(const std::vector<char>& active) {
+  active_ = active;
+  if (coarse_.active_rows() != active_) coarse_.set_active_rows(active_);
+}
+
+bool FetiC::balanced(const Eigen::VectorXd& lambda) const {
+  const Eigen::VectorXd imbalance = coarse_.apply_G(lambda) - e_;
+  const double scale =
+      e_.lpNorm<Eigen::Infinity>() + (G_abs_ * lambda.cwiseAbs()).lpNorm<Eigen::Infinity>();
+  return imbalance.lpNorm<Eigen::Infinity>() <= 1e-12 * scale;
+}
+
+bool FetiC::plan(Eigen::VectorXd& lambda) {
+  const int first_contact = system_.decomposition().equality_rows;
+  const int rows = system_.rows();
+  bool changed = false;
+  for (int pass = 0; pass <= rows; ++pass) {
+    std::vector<char> active = active_;
+    for (int k = first_contact; k < rows; ++k) {
+      if (lambda(k) <= 0.0) lambda(k) = 0.0;
+      active[k] = lambda(k) > 0.0;
+    }
+    if (active != active_) changed = true;
+    set_working_set(active);
+    if (hold_loaded_groups()) changed = true;
+    if (balanced(lambda)) return changed;
+    // Restore equilibrium on the new working set (8.25).
+    coarse_.project(lambda);
+    lambda += coarse_.particular(e_);
+    bool nonnegative = true;
+    for (int k = first_contact; k < rows; ++k)
+      if (active_[k] && lambda(k) < 0.0) nonnegative = false;
+    if (nonnegative) return changed;
+  }
+  return changed;
+}
+
+// Clipping may leave a group of floating struts with no active row although a load
+// pushes it: G^ lambda = e has no solution then. The rows in front of the push (those
+// whose force opposes it) re-enter W with lambda = 0; the projection gives them the force.
+bool FetiC::hold_loaded_groups() {
+  const int first_contact = system_.decomposition().equality_rows;
+  bool added = false;
+  for (int round = 0; round < system_.rows() && !coarse_.unheld().empty(); ++round) {
+    std::vector<char> active = active_;
+    bool any = false;
+    for (const UnheldGroup& group : coarse_.unheld()) {
+      const double push = group.direction.dot(e_);
+      if (std::abs(push) <= 1e-12 * (e_.lpNorm<1>() + 1e-300)) continue;
+      const Eigen::VectorXd along = system_.G().transpose() * group.direction;
+      for (int k = first_contact; k < system_.rows(); ++k)
+        if (!active[k] && along(k) * push > 0.0) {
+          active[k] = 1;
+          any = true;
+        }
+    }
+    if (!any) break;
+    added = true;
+    set_working_set(active);
+  }
+  return added;
+}
+
+void FetiC::compute_search_residual() {
+  const int first_contact = system_.decomposition().equality_rows;
+  const int rows = system_.rows();
+  w_hat_ = r_;
+  coarse_.project(w_hat_);
+  // Gaps of the rows outside W from the true rigid-body amplitudes.
+  const Eigen::VectorXd rigid = system_.G().transpose() * rigid_amplitudes();
+  face_.assign(rows, 0);
+  for (int k = 0; k < rows; ++k) {
+    if (k >= first_contact && !active_[k]) {
+      const double gap = -r_(k) - rigid(k);
+      w_hat_(k) = gap < 0.0 ? -gap : 0.0;
+    }
+    face_[k] = active_[k] || w_hat_(k) != 0.0;
+  }
+}
+
+void FetiC::record_state() {
+  compute_search_residual();
+  const double residual = relative(w_hat_.norm());
+  if (residual <= options_.tolerance || w_hat_.norm() == 0.0) converge();
+  int working = 0;
+  for (int k = system_.decomposition().equality_rows; k < system_.rows(); ++k)
+    working += active_[k];
+  record(residual, working);
+}
+
+void FetiC::begin(const Snapshot* warm) {
+  d_ = system_.d(load_factor_);
+  e_ = system_.e(load_factor_);
+  d_norm_ = d_.norm();
+  const int rows = system_.rows();
+  const int first_contact = system_.decomposition().equality_rows;
+  std::vector<char> active(rows, 1);
+  const bool use_warm = warm && warm->dual.size() == rows;
+  if (use_warm)
+    for (int k = first_contact; k < rows; ++k)
+      active[k] = warm->dual(k) > 0.0;
+  active_.clear();
+  set_working_set(active);
+  lambda_ = use_warm ? warm->dual : coarse_.particular(e_);
+  restart_ = true;
+  yw_previous_ = 0.0;
+  previous_face_.clear();
+
+  const std::string unbounded = unbounded_struts(model_, load_factor_);
+  if (!unbounded.empty()) {
+    lambda_.setZero();
+    system_.residual(lambda_, load_factor_, r_);
+    w_hat_ = r_;
+    record(relative(r_.norm()), 0);
+    fail(unbounded);
+    return;
+  }
+  plan(lambda_);
+  system_.residual(lambda_, load_factor_, r_);
+  record_state();
+}
+
+void FetiC::advance() {
+  // A PCPG step on the face A = E + W + penetrating rows.
+  if (coarse_.active_rows() != face_) coarse_.set_active_rows(face_);
+  if (face_ != previous_face_) restart_ = true;
+  previous_face_ = face_;
+  Eigen::VectorXd w = r_;
+  coarse_.project(w);
+  for (int k = 0; k < system_.rows(); ++k)
+    if (!face_[k]) w(k) = 0.0;
+  Eigen::VectorXd y;
+  preconditioner_.apply(w, &face_, y);
+  coarse_.project(y);
+  const double yw = y.dot(w);
+  const double beta = restart_ || !(yw_previous_ > 0.0) ? 0.0 : yw / yw_previous_;
+  p_ = restart_ ? y : Eigen::VectorXd(y + beta * p_);
+  system_.apply_F(p_, q_);
+  const double pq = p_.dot(q_);
+  ++iteration_;
+  if (!(pq > 0.0) || !(yw > 0.0)) {
+    fail("FETI-C broke down at iteration " + std::to_string(iteration_) +
+         " (y'w = " + std::to_string(yw) + ", p'F p = " + std::to_string(pq) + ")");
+    return;
+  }
+  const double a = yw / pq;
+  const Eigen::VectorXd trial = lambda_ + a * p_;
+  Eigen::VectorXd planned = trial;
+  const bool changed = plan(planned);
+  const bool modified = changed || planned != trial;
+  lambda_ = planned;
+  if (modified)
+    system_.residual(lambda_, load_factor_, r_);
+  else
+    r_ -= a * q_;
+  restart_ = modified;
+  yw_previous_ = yw;
+  record_state();
+}
+
+}  // namespace fetic::solver

@@ -1,0 +1,45 @@
+#pragma once
+// What FETI-1 (PCPG) and FETI-C share: the interface system, the preconditioner, the
+// coarse problem, the dual iterate lambda with its residual r = d - F lambda, and the
+// reconstruction of the primal displacements from the current lambda - torn across
+// subdomain interfaces until lambda has converged.
+
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "solver/coarse_problem.hpp"
+#include "solver/feti_preconditioner.hpp"
+#include "solver/feti_system.hpp"
+#include "solver/method.hpp"
+
+namespace fetic::solver {
+
+class FetiMethod : public Method {
+ public:
+  Snapshot snapshot() const override;
+  const FetiSystem& system() const { return system_; }
+
+ protected:
+  FetiMethod(const Model& model, const SolveOptions& options, int default_max_iterations);
+
+  // Rigid-body amplitudes alpha = (G^ G^')^+ G^ (F lambda - d) for the current rows,
+  // with groups of floating struts the active rows leave free placed as close to where
+  // they started as the gaps allow.
+  Eigen::VectorXd rigid_amplitudes() const;
+  // ||w|| / ||d||, the relative criterion of ALGORITHMS.md 4.3/4.5.
+  double relative(double norm) const { return d_norm_ > 0.0 ? norm / d_norm_ : norm; }
+  // Force and working-set flags per contact pair from lambda and the active rows.
+  void fill_contacts(Snapshot& s) const;
+
+  FetiSystem system_;
+  FetiPreconditioner preconditioner_;
+  CoarseProblem coarse_;
+  Eigen::VectorXd d_;
+  Eigen::VectorXd e_;
+  double d_norm_ = 0.0;
+  Eigen::VectorXd lambda_;
+  Eigen::VectorXd r_;  // d - F lambda
+};
+
+}  // namespace fetic::solver

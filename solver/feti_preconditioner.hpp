@@ -1,0 +1,51 @@
+#pragma once
+// Preconditioners M^-1 ~ F^-1 of the FETI interface problem (ALGORITHMS.md section 3),
+// applied subdomain by subdomain like F:
+//   lumped:    M^-1 = sum_j B_j K_j B_j'
+//   Dirichlet: M^-1 = sum_j B_j [0 0; 0 S_j] B_j',  S_j = K_bb - K_bi K_ii^-1 K_ib
+//   none:      M^-1 = I
+// b: the DOFs of subdomain j that rows of B touch; i: the others. S_j is applied
+// implicitly (K_ii factorized once by CHOLMOD, one interior solve per application),
+// which is cheaper than forming it densely unless a solve needs more iterations than a
+// subdomain has boundary DOFs.
+// Stiffness scaling (optional): in a row shared by subdomains a and b, B_j's entry is
+// weighted by k_other / (k_a + k_b), k the diagonal stiffness at the DOF; this is the
+// multiplicity scaling 1/2 for equal neighbours and follows jumps in stiffness.
+// An optional row mask restricts input and output to the rows FETI-C works on.
+
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "solver/cholmod_factor.hpp"
+#include "solver/feti_system.hpp"
+
+namespace fetic::solver {
+
+class FetiPreconditioner {
+ public:
+  FetiPreconditioner(const FetiSystem& system, Preconditioner kind, bool scaled);
+
+  Preconditioner kind() const { return kind_; }
+  // z = M^-1 w, using and producing only rows with mask[r] != 0 (all rows without a mask).
+  void apply(const Eigen::VectorXd& w, const std::vector<char>* mask, Eigen::VectorXd& z) const;
+
+ private:
+  struct Local {
+    std::vector<int> boundary;         // subdomain DOFs touched by B
+    std::vector<Incidence> incidence;  // B's entries, dof = position in `boundary`,
+                                       // value already scaled
+    SparseMatrix K_bb, K_ib;
+    CholmodFactor K_ii;
+    int offset = 0;  // into the workspaces
+  };
+
+  const FetiSystem& system_;
+  Preconditioner kind_;
+  std::vector<Local> local_;
+  std::vector<std::vector<std::pair<int, int>>>
+      row_entries_;  // per row: (subdomain, incidence index)
+  mutable Eigen::VectorXd x_, y_;
+};
+
+}  // namespace fetic::solver

@@ -1,0 +1,68 @@
+#include "solver/pcpg.hpp"
+
+namespace fetic::solver {
+namespace {
+
+const Model& refuse_contacts(const Model& model) {
+  if (!model.pairs.empty())
+    throw SolverError("FETI-1 (--method feti) solves scenes without contacts; this scene has " +
+                      std::to_string(model.contact_labels.size()) +
+                      " contact(s): use --method feti-c");
+  return model;
+}
+
+}  // namespace
+
+Pcpg::Pcpg(const Model& model, const SolveOptions& options)
+    : FetiMethod(refuse_contacts(model), options, 0) {
+  if (options.max_iterations <= 0) max_iterations_ = 10 * system_.rows() + 100;
+  coarse_.set_active_rows(std::vector<char>(system_.rows(), 1));
+}
+
+void Pcpg::begin(const Snapshot* warm) {
+  d_ = system_.d(load_factor_);
+  e_ = system_.e(load_factor_);
+  d_norm_ = d_.norm();
+  lambda_ = coarse_.particular(e_);
+  if (warm && warm->dual.size() == lambda_.size()) {
+    // Keep the previous multipliers' part in ker G; restore G lambda = e for the new load.
+    Eigen::VectorXd previous = warm->dual;
+    coarse_.project(previous);
+    lambda_ += previous;
+  }
+  system_.residual(lambda_, load_factor_, r_);
+  yw_previous_ = 0.0;
+  record_residual();
+}
+
+void Pcpg::record_residual() {
+  w_ = r_;
+  coarse_.project(w_);
+  const double residual = relative(w_.norm());
+  if (residual <= options_.tolerance || w_.norm() == 0.0) converge();
+  record(residual, 0);
+}
+
+void Pcpg::advance() {
+  Eigen::VectorXd z;
+  preconditioner_.apply(w_, nullptr, z);
+  coarse_.project(z);  // y = P z
+  const double yw = z.dot(w_);
+  const double beta = yw_previous_ > 0.0 ? yw / yw_previous_ : 0.0;
+  p_ = iteration_ == 0 ? z : Eigen::VectorXd(z + beta * p_);
+  system_.apply_F(p_, q_);
+  const double pq = p_.dot(q_);
+  ++iteration_;
+  if (!(pq > 0.0) || !(yw > 0.0)) {
+    fail("PCPG broke down at iteration " + std::to_string(iteration_) +
+         " (p'F p = " + std::to_string(pq) + "): the interface problem is not positive definite");
+    return;
+  }
+  const double a = yw / pq;
+  lambda_ += a * p_;
+  r_ -= a * q_;
+  yw_previous_ = yw;
+  record_residual();
+}
+
+}  // namespace fetic::solver

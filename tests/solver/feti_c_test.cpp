@@ -1,0 +1,187 @@
+// FETI-C against the independent QP solver and the active-set method, and the behaviour
+// the thesis reports: few iterations on its test problem, far fewer than the active-set
+// method; floating struts; unboundedness; warm starts.
+
+#include <catch2/catch.hpp>
+
+#include <random>
+
+#include "solver/feti_c.hpp"
+#include "tests/support/random_scenes.hpp"
+#include "tests/support/solve_helpers.hpp"
+
+using namespace fetic;
+using fetic::solver::MethodKind;
+using fetic::solver::Preconditioner;
+
+namespace {
+
+solver::SolveOptions with(Preconditioner preconditioner, bool scaling = true) {
+  solver::SolveOptions options;
+  options.preconditioner = preconditioner;
+  options.scaling = scaling;
+  return options;
+}
+
+}  // namespace
+
+TEST_CASE(
+    "FETI-C agrees with CGAL's exact QP solver and the active-set method on 250 random scenes") {
+  std::mt19937 rng(97);
+  int checked = 0, active = 0, floating = 0;
+  for (int trial = 0; trial < 250; ++trial) {
+    const std::string text = testing::random_bar_scene(rng);
+    const double load_factor = std::uniform_real_distribution<double>(0.2, 1.5)(rng);
+    const Preconditioner preconditioner = std::array{
+        Preconditioner::Dirichlet, Preconditioner::Lumped, Preconditioner::None}[trial % 3];
+    const scenes::Scene scene = scenes::parse_scene(text, "random.toml");
+    INFO(text);
+    INFO("load factor " << load_factor << ", preconditioner " << solver::to_string(preconditioner));
+    const auto feti_c = testing::solve(scene, MethodKind::FetiC, load_factor, with(preconditioner));
+    INFO("message: " << feti_c->state.message);
+    REQUIRE(feti_c->state.status == solver::Status::Converged);
+    const auto reference = testing::solve_reference_qp(scene, load_factor);
+    REQUIRE(reference.optimal);
+    const double force_scale = 1e-12 * testing::load_scale(feti_c->model);
+    CHECK(testing::displacement_error(*feti_c, reference) <= 1e-8);
+    CHECK(testing::force_error(*feti_c, reference, force_scale) <= 1e-8);
+
+    const auto active_set = testing::solve(scene, MethodKind::ActiveSet, load_factor);
+    REQUIRE(active_set->state.status == solver::Status::Converged);
+    const auto u = solver::strut_displacements(feti_c->model, feti_c->state);
+    const auto v = solver::strut_displacements(active_set->model, active_set->state);
+    CHECK(solver::relative_error(u, v) <= 1e-8);
+    CHECK(feti_c->state.in_working_set == active_set->state.in_working_set);
+    active += feti_c->state.active_set_size();
+    for (size_t s = 0; s < feti_c->model.struts.size(); ++s)
+      floating += feti_c->model.floating(s);
+    ++checked;
+  }
+  CHECK(checked == 250);
+  CHECK(active > 150);
+  CHECK(floating > 100);
+}
+
+TEST_CASE("FETI-C on the thesis scene: the reference to 1e-6 within 10 iterations") {
+  const scenes::Scene scene = testing::bundled_scene("thesis.toml");
+  const auto reference_solve = testing::solve(scene, MethodKind::ActiveSet);
+  const auto reference =
+      solver::strut_displacements(reference_solve->model, reference_solve->state);
+  for (Preconditioner p :
+       {Preconditioner::Dirichlet, Preconditioner::Lumped, Preconditioner::None}) {
+    INFO(solver::to_string(p));
+    const auto model = solver::build_model(scene);
+    solver::FetiC method(model, with(p));
+    method.set_reference(reference);
+    method.start(1.0);
+    solver::run_to_end(method);
+    REQUIRE(method.status() == solver::Status::Converged);
+    int reached = -1;
+    for (const auto& entry : method.history())
+      if (reached < 0 && entry.error <= 1e-6) reached = entry.iteration;
+    CHECK(reached >= 0);
+    CHECK(reached <= 10);
+    // The primal active-set method changes W one contact at a time and needs more.
+    CHECK(reference_solve->state.iteration > method.iteration());
+  }
+}
+
+TEST_CASE("FETI-C: a floating tip pushed away from every contact is reported as unbounded") {
+  const std::string chain = R"(
+model = "bar"
+[defaults]
+E = 2e11
+area = 1e-4
+elements = 3
+subdomains = 2
+[[strut]]
+name = "base"
+from = [0.0, 0.0]
+to = [1.0, 0.0]
+fixed = ["from"]
+[[strut]]
+name = "middle"
+from = [1.001, 0.0]
+to = [2.0, 0.0]
+[[strut]]
+name = "tip"
+from = [2.0, 0.0]
+to = [3.0, 0.0]
+[[contact]]
+a = "base.to"
+b = "middle.from"
+[[contact]]
+a = "middle.to"
+b = "tip.from"
+[[load]]
+strut = "middle"
+at = "from"
+force = [-800.0, 0.0]
+)";
+  // The middle strut is pushed onto the base, the tip is pulled away from the middle.
+  const auto escaping = testing::solve_text(
+      chain + "[[load]]\nstrut = \"tip\"\nat = \"to\"\nforce = [500.0, 0.0]\n", MethodKind::FetiC);
+  CHECK(escaping->state.status == solver::Status::Failed);
+  CHECK_THAT(escaping->state.message, Catch::Contains("unbounded") && Catch::Contains("'tip'") &&
+                                          !Catch::Contains("'middle'"));
+  // Reversed, the two together are pushed away (net 300 N outward).
+  const auto both =
+      testing::solve_text(chain + "[[load]]\nstrut = \"tip\"\nat = \"to\"\nforce = [500.0, 0.0]\n",
+                          MethodKind::FetiC, -1.0);
+  CHECK(both->state.status == solver::Status::Failed);
+  CHECK_THAT(both->state.message, Catch::Contains("'middle', 'tip'"));
+  // Pushed back, the tip rests on the middle strut, which rests on the base.
+  const auto held = testing::solve_text(
+      chain + "[[load]]\nstrut = \"tip\"\nat = \"to\"\nforce = [-500.0, 0.0]\n", MethodKind::FetiC);
+  INFO(held->state.message);
+  REQUIRE(held->state.status == solver::Status::Converged);
+  CHECK(held->state.force[0] == Approx(1300.0));
+  CHECK(held->state.force[1] == Approx(500.0));
+}
+
+TEST_CASE("FETI-C: a warm start after a 5% load change needs fewer iterations than a cold one") {
+  const auto model = solver::build_model(testing::bundled_scene("thesis.toml"));
+  solver::FetiC method(model, {});
+  method.start(1.0);
+  solver::run_to_end(method);
+  REQUIRE(method.status() == solver::Status::Converged);
+  const solver::Snapshot previous = method.snapshot();
+
+  method.start(1.05, &previous);
+  solver::run_to_end(method);
+  REQUIRE(method.status() == solver::Status::Converged);
+  const int warm = method.iteration();
+  const auto warm_u = solver::strut_displacements(model, method.snapshot());
+
+  method.start(1.05);
+  solver::run_to_end(method);
+  REQUIRE(method.status() == solver::Status::Converged);
+  const int cold = method.iteration();
+  const auto cold_u = solver::strut_displacements(model, method.snapshot());
+  CHECK(warm < cold);
+  CHECK(solver::relative_error(warm_u, cold_u) <= 1e-8);
+}
+
+TEST_CASE("FETI-C: the displacements are torn across subdomains until lambda converges") {
+  const auto model = solver::build_model(testing::bundled_scene("thesis.toml"));
+  solver::FetiC method(model, {});
+  method.start(1.0);
+  auto jump = [&](const solver::Snapshot& s) {
+    // Largest difference between two pieces of the same strut at a shared node.
+    double largest = 0.0;
+    for (size_t a = 0; a < s.pieces.size(); ++a)
+      for (size_t b = a + 1; b < s.pieces.size(); ++b) {
+        const auto& p = s.pieces[a];
+        const auto& q = s.pieces[b];
+        if (p.strut != q.strut || p.box.i1 != q.box.i0) continue;
+        largest = std::max(largest, (p.displacement.back() - q.displacement.front()).norm());
+      }
+    return largest;
+  };
+  const solver::Snapshot first = method.snapshot();
+  REQUIRE(first.pieces.size() == 200);  // 2 subdomains per bar
+  solver::run_to_end(method);
+  const solver::Snapshot last = method.snapshot();
+  CHECK(jump(first) > 1e-6);
+  CHECK(jump(last) < 1e-12);
+}

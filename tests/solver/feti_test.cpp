@@ -1,0 +1,50 @@
+// FETI-1 (PCPG) on scenes without contact agrees with a direct solve, for every
+// preconditioner, and refuses contact scenes.
+
+#include <catch2/catch.hpp>
+
+#include "solver/cholmod_factor.hpp"
+#include "solver/primal_problem.hpp"
+#include "tests/support/solve_helpers.hpp"
+
+using namespace fetic;
+using fetic::solver::MethodKind;
+using fetic::solver::Preconditioner;
+
+namespace {
+
+std::vector<std::vector<solver::Vec2>> direct(const solver::Model& model) {
+  solver::PrimalProblem problem(model);
+  solver::CholmodFactor factor;
+  REQUIRE(factor.factorize(problem.stiffness()) == solver::CholmodFactor::Result::Ok);
+  Eigen::VectorXd f = problem.load(), u(problem.size());
+  factor.solve(f.data(), u.data());
+  solver::Snapshot s;
+  s.pieces = problem.pieces(u);
+  return solver::strut_displacements(model, s);
+}
+
+}  // namespace
+
+TEST_CASE("FETI-1 agrees with a direct solve on the contact-free scene, every preconditioner") {
+  const auto scene = testing::bundled_scene("cantilevers.toml");
+  for (Preconditioner p :
+       {Preconditioner::None, Preconditioner::Lumped, Preconditioner::Dirichlet}) {
+    for (bool scaling : {false, true}) {
+      solver::SolveOptions options;
+      options.preconditioner = p;
+      options.scaling = scaling;
+      options.tolerance = 1e-12;
+      const auto solved = testing::solve(scene, MethodKind::Feti, 1.0, options);
+      REQUIRE(solved->state.status == solver::Status::Converged);
+      const auto u = solver::strut_displacements(solved->model, solved->state);
+      CHECK(solver::relative_error(u, direct(solved->model)) <= 1e-9);
+    }
+  }
+}
+
+TEST_CASE("FETI-1 refuses scenes with contacts, pointing to FETI-C") {
+  const auto model = solver::build_model(testing::bundled_scene("two_bars.toml"));
+  CHECK_THROWS_WITH(solver::make_method(MethodKind::Feti, model, {}),
+                    Catch::Contains("--method feti-c"));
+}
