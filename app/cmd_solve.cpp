@@ -1,17 +1,21 @@
-// fetic solve SCENE: solve one scene with one method, print a summary, write the result file.
+// fetic solve SCENE: solve a scene with one method (at one load factor or over load
+// steps), print a summary, write the result file.
 
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
+#include <map>
 #include <memory>
 #include <string>
 
 #include "app/atomic_file.hpp"
 #include "app/commands.hpp"
 #include "app/exit_codes.hpp"
+#include "app/method_options.hpp"
 #include "app/result_json.hpp"
 #include "app/scene_input.hpp"
+#include "solver/load_sweep.hpp"
 #include "solver/method.hpp"
 
 namespace fetic::app {
@@ -19,26 +23,11 @@ namespace {
 
 struct SolveArgs {
   std::string scene;
-  std::string method = "active-set";
-  std::string preconditioner = "dirichlet";
-  double tolerance = 1e-10;
-  int max_iterations = 0;
-  double load_factor = 1.0;
+  MethodArgs method;
   std::string json;
+  bool reference = false;
   bool quiet = false;
 };
-
-CLI::Validator finite_number() {
-  return CLI::Validator(
-      [](std::string& text) -> std::string {
-        try {
-          if (std::isfinite(std::stod(text))) return {};
-        } catch (const std::exception&) {
-        }
-        return "must be a finite number, got " + text;
-      },
-      "FINITE");
-}
 
 double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -56,12 +45,11 @@ void print_summary(const solver::Model& model, const solver::Snapshot& state, co
   int largest_strut = -1, largest_node = -1;
   for (size_t s = 0; s < displacements.size(); ++s)
     for (size_t n = 0; n < displacements[s].size(); ++n)
-      if (displacements[s][n].norm() > largest || largest_strut < 0) {
+      if (largest_strut < 0 || displacements[s][n].norm() > largest) {
         largest = displacements[s][n].norm();
         largest_strut = static_cast<int>(s);
         largest_node = static_cast<int>(n);
       }
-  const int active = state.active_set_size();
   std::cout << "scene        " << info.scene_path << " (" << scenes::to_string(model.kind) << ", "
             << model.struts.size() << " struts, " << model.contact_labels.size() << " contacts, "
             << model.dof_count() << " unknowns)\n";
@@ -73,7 +61,8 @@ void print_summary(const solver::Model& model, const solver::Snapshot& state, co
             << " after " << state.iteration << " iterations, relative residual "
             << format("%.3e", state.residual) << "\n";
   if (!state.message.empty()) std::cout << "             " << state.message << "\n";
-  std::cout << "contacts     " << active << " of " << model.pairs.size() << " node pairs active\n";
+  std::cout << "contacts     " << state.active_set_size() << " of " << model.pairs.size()
+            << " node pairs active\n";
   if (largest_strut >= 0)
     std::cout << "largest displacement " << format("%.6e", largest) << " (strut '"
               << model.strut_names[largest_strut] << "', node " << largest_node << ")\n";
@@ -81,52 +70,94 @@ void print_summary(const solver::Model& model, const solver::Snapshot& state, co
             << format("%.3f", info.solve_seconds * 1e3) << " ms\n";
 }
 
+// Displacements of a direct (active-set) solve at every load factor, for error histories.
+std::map<double, std::vector<std::vector<solver::Vec2>>> reference_solutions(
+    const solver::Model& model, const MethodArgs& args) {
+  solver::SolveOptions options = args.options();
+  options.max_iterations = 0;
+  auto reference = solver::make_method(solver::MethodKind::ActiveSet, model, options);
+  std::map<double, std::vector<std::vector<solver::Vec2>>> result;
+  for (double t : args.load_factors()) {
+    reference->start(t);
+    solver::run_to_end(*reference);
+    if (reference->status() != solver::Status::Converged)
+      throw solver::SolverError("the reference solve (active set) failed at load factor " +
+                                std::to_string(t) + ": " + reference->message());
+    result[t] = solver::strut_displacements(model, reference->snapshot());
+  }
+  return result;
+}
+
 int run_solve(const SolveArgs& args) {
   const auto scene = load_scene_or_report(args.scene);
   if (!scene) return kExitInvalidScene;
   const solver::Model model = solver::build_model(*scene);
 
-  solver::SolveOptions options;
-  options.tolerance = args.tolerance;
-  options.max_iterations = args.max_iterations;
-  options.preconditioner = *solver::parse_preconditioner(args.preconditioner);
   RunInfo info;
   info.scene_path = args.scene;
-  info.method = *solver::parse_method(args.method);
-  info.preconditioner = options.preconditioner;
-  info.tolerance = args.tolerance;
+  info.method = args.method.kind();
+  info.preconditioner = args.method.options().preconditioner;
+  info.tolerance = args.method.tolerance;
 
   const auto setup_start = std::chrono::steady_clock::now();
   std::unique_ptr<solver::Method> method;
+  std::map<double, std::vector<std::vector<solver::Vec2>>> references;
   try {
-    method = solver::make_method(info.method, model, options);
+    method = solver::make_method(info.method, model, args.method.options());
+    info.setup_seconds = seconds_since(setup_start);
+    if (args.reference) references = reference_solutions(model, args.method);
   } catch (const solver::SolverError& error) {
     std::cerr << args.scene << ": " << error.what() << '\n';
     return kExitSolverSetup;
   }
-  info.setup_seconds = seconds_since(setup_start);
 
+  const std::vector<double> load_factors = args.method.load_factors();
+  const bool sweeping = !args.method.load_steps.empty();
+  if (sweeping && !args.quiet)
+    std::cout << "load steps   " << load_factors.size() << " from " << load_factors.front()
+              << " to " << load_factors.back() << ", each warm-started\n";
   const auto solve_start = std::chrono::steady_clock::now();
-  method->start(args.load_factor);
-  solver::run_to_end(*method);
+  const std::vector<solver::SweepStep> steps = solver::sweep(
+      *method, load_factors,
+      [&](const solver::SweepStep& step) {
+        if (!sweeping || args.quiet) return;
+        std::printf("  t = %-12.6g %-9s %4d iterations  %5d active  residual %.3e\n",
+                    step.load_factor, solver::to_string(step.state.status), step.state.iteration,
+                    step.state.active_set_size(), step.state.residual);
+      },
+      [&](double t) {
+        if (args.reference) method->set_reference(references.at(t));
+      });
   info.solve_seconds = seconds_since(solve_start);
-  const solver::Snapshot state = method->snapshot();
+  const solver::SweepStep& last = steps.back();
 
-  if (!args.quiet) print_summary(model, state, info);
+  if (!args.quiet) print_summary(model, last.state, info);
   if (!args.json.empty()) {
     try {
-      const nlohmann::json result = result_json(model, state, method->history(), info);
+      nlohmann::json result = result_json(model, last.state, last.history, info);
+      if (sweeping) {
+        nlohmann::json list = nlohmann::json::array();
+        for (const solver::SweepStep& step : steps)
+          list.push_back({{"load_factor", step.load_factor},
+                          {"converged", step.state.status == solver::Status::Converged},
+                          {"iterations", step.state.iteration},
+                          {"active_set", step.state.active_set_size()},
+                          {"residual", step.state.residual}});
+        result["steps"] = list;
+      }
       write_file_atomically(args.json, [&](std::ostream& out) { out << result.dump(1) << '\n'; });
     } catch (const OutputError& error) {
       std::cerr << error.what() << '\n';
       return kExitOutput;
     }
   }
-  if (state.status != solver::Status::Converged) {
-    std::cerr << args.scene << ": " << solver::to_string(info.method)
-              << " did not converge: " << state.message << '\n';
-    return kExitNotConverged;
-  }
+  for (const solver::SweepStep& step : steps)
+    if (step.state.status != solver::Status::Converged) {
+      std::cerr << args.scene << ": " << solver::to_string(info.method)
+                << " did not converge at load factor " << step.load_factor << ": "
+                << step.state.message << '\n';
+      return kExitNotConverged;
+    }
   return kExitOk;
 }
 
@@ -136,23 +167,11 @@ void register_solve(CLI::App& app, int& exit_code) {
   auto args = std::make_shared<SolveArgs>();
   CLI::App* command = app.add_subcommand("solve", "Solve a scene and report the result");
   command->add_option("scene", args->scene, "Scene file (TOML, see README)")->required();
-  command->add_option("--method", args->method, "Method")
-      ->check(CLI::IsMember({"sd", "cg", "active-set", "feti", "feti-c"}))
-      ->capture_default_str();
-  command->add_option("--preconditioner", args->preconditioner, "FETI preconditioner")
-      ->check(CLI::IsMember({"none", "lumped", "dirichlet"}))
-      ->capture_default_str();
-  command->add_option("--tol", args->tolerance, "Relative tolerance")
-      ->check(CLI::PositiveNumber)
-      ->capture_default_str();
-  command
-      ->add_option("--max-iterations", args->max_iterations,
-                   "Iteration cap (0: the method's default)")
-      ->check(CLI::NonNegativeNumber);
-  command->add_option("--load-factor", args->load_factor, "Global load factor t")
-      ->check(finite_number())
-      ->capture_default_str();
+  add_method_options(command, args->method);
   command->add_option("--json", args->json, "Write the result file (JSON) here");
+  command->add_flag("--reference", args->reference,
+                    "Record each iteration's displacement error against an active-set solve "
+                    "made in the same run");
   command->add_flag("--quiet", args->quiet, "Print no summary");
   command->callback([args, &exit_code] { exit_code = run_solve(*args); });
 }

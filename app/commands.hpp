@@ -7,5 +7,6 @@
 namespace fetic::app {
 
 void register_solve(CLI::App& app, int& exit_code);
+void register_bench(CLI::App& app, int& exit_code);
 
 }  // namespace fetic::app

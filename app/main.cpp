@@ -14,6 +14,7 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", "fetic 0.1.0");
   int exit_code = fetic::app::kExitOk;
   fetic::app::register_solve(app, exit_code);
+  fetic::app::register_bench(app, exit_code);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {

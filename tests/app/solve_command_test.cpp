@@ -4,6 +4,7 @@
 #include <catch2/catch.hpp>
 
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <cstdlib>
 #include <filesystem>
@@ -28,6 +29,7 @@ Run run(const std::string& arguments) {
   result.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
   std::ifstream in(log);
   result.output.assign(std::istreambuf_iterator<char>(in), {});
+  std::filesystem::remove(log);
   return result;
 }
 
@@ -36,7 +38,8 @@ std::string scene(const std::string& name) {
 }
 
 std::string temporary(const std::string& name) {
-  return (std::filesystem::temp_directory_path() / name).string();
+  return (std::filesystem::temp_directory_path() / (std::to_string(::getpid()) + "_" + name))
+      .string();
 }
 
 }  // namespace
@@ -106,4 +109,55 @@ TEST_CASE("fetic solve rejects bad command lines with status 1") {
   CHECK(run("solve " + scene("two_bars.toml") + " --method newton").status == 1);
   CHECK(run("solve " + scene("two_bars.toml") + " --load-factor nan").status == 1);
   CHECK(run("frobnicate").status == 1);
+}
+
+TEST_CASE("fetic solve --method feti-c --reference records the error of every iteration") {
+  const std::string json_path = temporary("fetic_reference.json");
+  const Run r =
+      run("solve " + scene("thesis.toml") + " --method feti-c --reference --json " + json_path);
+  INFO(r.output);
+  REQUIRE(r.status == 0);
+  std::ifstream in(json_path);
+  const nlohmann::json result = nlohmann::json::parse(in);
+  CHECK(result["method"] == "feti-c");
+  CHECK(result["preconditioner"] == "dirichlet");
+  const auto& history = result["history"];
+  REQUIRE(history.size() >= 2);
+  CHECK(history[0]["error"].get<double>() > 1e-3);
+  CHECK(history.back()["error"].get<double>() < 1e-8);
+  CHECK(history[0]["active_set"] == 50);  // FETI-C starts with every contact in W
+}
+
+TEST_CASE("fetic solve --load-steps sweeps with warm starts and reports every step") {
+  const std::string json_path = temporary("fetic_steps.json");
+  const Run r =
+      run("solve " + scene("thesis.toml") + " --load-steps 0.9:1.1:5 --json " + json_path);
+  INFO(r.output);
+  REQUIRE(r.status == 0);
+  CHECK_THAT(r.output, Catch::Contains("load steps   5 from 0.9 to 1.1"));
+  std::ifstream in(json_path);
+  const nlohmann::json result = nlohmann::json::parse(in);
+  REQUIRE(result["steps"].size() == 5);
+  CHECK(result["steps"][4]["load_factor"] == 1.1);
+  CHECK(result["load_factor"] == 1.1);  // the contract's keys describe the last step
+  int total = 0;
+  for (const auto& step : result["steps"]) {
+    CHECK(step["converged"] == true);
+    total += step["iterations"].get<int>();
+  }
+  CHECK(total < 5 * 6);  // fewer than five cold FETI-C solves
+  CHECK(run("solve " + scene("thesis.toml") + " --load-steps 1:2").status == 1);
+  CHECK(run("solve " + scene("thesis.toml") + " --load-steps 1:2:3 --load-factor 2").status == 1);
+}
+
+TEST_CASE("fetic bench prints a table with ratios to the active-set method") {
+  const std::string csv = temporary("fetic_bench.csv");
+  const Run r = run("bench " + scene("two_bars.toml") + " --repeat 1 --csv " + csv);
+  INFO(r.output);
+  REQUIRE(r.status == 0);
+  CHECK_THAT(r.output, Catch::Contains("solve/AS") && Catch::Contains("feti-c/dirichlet"));
+  std::ifstream in(csv);
+  std::string header;
+  std::getline(in, header);
+  CHECK(header.rfind("scene,method,unknowns,iterations", 0) == 0);
 }

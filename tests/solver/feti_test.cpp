@@ -3,8 +3,12 @@
 
 #include <catch2/catch.hpp>
 
+#include <array>
+#include <random>
+
 #include "solver/cholmod_factor.hpp"
 #include "solver/primal_problem.hpp"
+#include "tests/support/random_scenes.hpp"
 #include "tests/support/solve_helpers.hpp"
 
 using namespace fetic;
@@ -40,6 +44,22 @@ TEST_CASE("FETI-1 agrees with a direct solve on the contact-free scene, every pr
       const auto u = solver::strut_displacements(solved->model, solved->state);
       CHECK(solver::relative_error(u, direct(solved->model)) <= 1e-9);
     }
+  }
+}
+
+TEST_CASE("FETI-1 agrees with a direct solve on 40 random contact-free scenes") {
+  std::mt19937 rng(31);
+  for (int trial = 0; trial < 40; ++trial) {
+    const std::string text = testing::random_contact_free_scene(rng);
+    INFO(text);
+    solver::SolveOptions options;
+    options.preconditioner = std::array{Preconditioner::Dirichlet, Preconditioner::Lumped,
+                                        Preconditioner::None}[trial % 3];
+    options.tolerance = 1e-12;
+    const auto solved = testing::solve_text(text, MethodKind::Feti, 1.0, options);
+    REQUIRE(solved->state.status == solver::Status::Converged);
+    const auto u = solver::strut_displacements(solved->model, solved->state);
+    CHECK(solver::relative_error(u, direct(solved->model)) <= 1e-9);
   }
 }
 

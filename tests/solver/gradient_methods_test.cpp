@@ -6,6 +6,7 @@
 
 #include "solver/cholmod_factor.hpp"
 #include "solver/primal_problem.hpp"
+#include "tests/support/random_scenes.hpp"
 #include "tests/support/solve_helpers.hpp"
 
 using namespace fetic;
@@ -20,27 +21,6 @@ Eigen::VectorXd direct_solution(const solver::Model& model, double load_factor) 
   Eigen::VectorXd f = load_factor * problem.load(), u(problem.size());
   factor.solve(f.data(), u.data());
   return u;
-}
-
-// A random contact-free scene: clamped struts in any direction with any loads.
-std::string random_free_scene(std::mt19937& rng) {
-  std::uniform_real_distribution<double> unit(0.0, 1.0);
-  std::string text = "model = \"bar\"\n";
-  const int struts = 1 + static_cast<int>(unit(rng) * 4);
-  for (int s = 0; s < struts; ++s) {
-    const double angle = 6.28 * unit(rng), length = 0.5 + unit(rng);
-    char buffer[600];
-    std::snprintf(buffer, sizeof buffer,
-                  "[[strut]]\nname = \"S%d\"\nfrom = [%.17g, %.17g]\nto = [%.17g, %.17g]\n"
-                  "E = %.17g\narea = 1e-4\nelements = %d\nfixed = [%s]\n"
-                  "[[load]]\nstrut = \"S%d\"\nper_length = [%.17g, %.17g]\n",
-                  s, 3.0 * s, 0.0, 3.0 * s + length * std::cos(angle), length * std::sin(angle),
-                  1e10 + 2e11 * unit(rng), 2 + static_cast<int>(unit(rng) * 12),
-                  unit(rng) < 0.3 ? "\"from\", \"to\"" : (unit(rng) < 0.5 ? "\"from\"" : "\"to\""),
-                  s, 1e4 * (unit(rng) - 0.5), 1e4 * (unit(rng) - 0.5));
-    text += buffer;
-  }
-  return text;
 }
 
 void check_against_direct(const std::string& text, MethodKind kind, double tolerance) {
@@ -72,7 +52,7 @@ TEST_CASE("SD and CG agree with a direct solve on the bundled contact-free scene
 TEST_CASE("SD and CG agree with a direct solve on random contact-free scenes") {
   std::mt19937 rng(20261122);
   for (int trial = 0; trial < 30; ++trial) {
-    const std::string text = random_free_scene(rng);
+    const std::string text = testing::random_contact_free_scene(rng);
     INFO(text);
     check_against_direct(text, MethodKind::ConjugateGradient, 1e-12);
     check_against_direct(text, MethodKind::SteepestDescent, 1e-10);

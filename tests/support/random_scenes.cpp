@@ -171,4 +171,24 @@ std::string random_bar_scene(std::mt19937& rng) {
   return w.text();
 }
 
+std::string random_contact_free_scene(std::mt19937& rng) {
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  std::string text = "model = \"bar\"\n";
+  const int struts = 1 + static_cast<int>(unit(rng) * 4);
+  for (int s = 0; s < struts; ++s) {
+    const double angle = 6.28 * unit(rng), length = 0.5 + unit(rng);
+    char buffer[600];
+    std::snprintf(buffer, sizeof buffer,
+                  "[[strut]]\nname = \"S%d\"\nfrom = [%.17g, %.17g]\nto = [%.17g, %.17g]\n"
+                  "E = %.17g\narea = 1e-4\nelements = %d\nfixed = [%s]\n"
+                  "[[load]]\nstrut = \"S%d\"\nper_length = [%.17g, %.17g]\n",
+                  s, 3.0 * s, 0.0, 3.0 * s + length * std::cos(angle), length * std::sin(angle),
+                  1e10 + 2e11 * unit(rng), 2 + static_cast<int>(unit(rng) * 12),
+                  unit(rng) < 0.3 ? "\"from\", \"to\"" : (unit(rng) < 0.5 ? "\"from\"" : "\"to\""),
+                  s, 1e4 * (unit(rng) - 0.5), 1e4 * (unit(rng) - 0.5));
+    text += buffer;
+  }
+  return text;
+}
+
 }  // namespace fetic::testing

@@ -14,5 +14,7 @@ std::string random_opposing_pairs(std::mt19937& rng, int pairs);
 std::string random_chain(std::mt19937& rng);
 // One of the above, or both in one scene.
 std::string random_bar_scene(std::mt19937& rng);
+// 1 to 4 clamped struts in any direction with distributed loads, no contacts.
+std::string random_contact_free_scene(std::mt19937& rng);
 
 }  // namespace fetic::testing

@@ -1,0 +1,206 @@
+// fetic bench [SCENES...]: every method that applies, on each scene: iterations, set-up
+// and solve time (median of repeated runs), and the ratio of each to the primal
+// active-set method measured in the same run. Also warm against cold starts after a 5%
+// load change. Ratios, not absolute times, are what carries over between machines.
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "app/atomic_file.hpp"
+#include "app/commands.hpp"
+#include "app/exit_codes.hpp"
+#include "app/scene_input.hpp"
+#include "solver/method.hpp"
+
+namespace fetic::app {
+namespace {
+
+struct BenchArgs {
+  std::vector<std::string> scenes;
+  int repeat = 5;
+  std::string csv;
+};
+
+struct Variant {
+  solver::MethodKind method;
+  solver::Preconditioner preconditioner = solver::Preconditioner::Dirichlet;
+  bool scaling = true;
+  std::string label() const {
+    std::string text = solver::to_string(method);
+    if (method == solver::MethodKind::Feti || method == solver::MethodKind::FetiC) {
+      text += std::string("/") + solver::to_string(preconditioner);
+      if (!scaling && preconditioner != solver::Preconditioner::None) text += "-unscaled";
+    }
+    return text;
+  }
+};
+
+struct Measurement {
+  std::string scene, variant;
+  long long unknowns = 0;
+  int iterations = 0;
+  bool converged = false;
+  double setup_ms = 0.0, solve_ms = 0.0;
+  int warm_iterations = -1, cold_iterations = -1;  // after a 5% load change
+};
+
+double milliseconds(std::chrono::steady_clock::duration d) {
+  return std::chrono::duration<double, std::milli>(d).count();
+}
+
+double median(std::vector<double> values) {
+  std::sort(values.begin(), values.end());
+  return values[values.size() / 2];
+}
+
+std::vector<Variant> variants_for(const solver::Model& model) {
+  using solver::MethodKind;
+  using solver::Preconditioner;
+  std::vector<Variant> variants{{MethodKind::ActiveSet}};
+  const bool contact_free = model.pairs.empty();
+  if (contact_free) {
+    variants.push_back({MethodKind::SteepestDescent});
+    variants.push_back({MethodKind::ConjugateGradient});
+  }
+  for (Preconditioner p :
+       {Preconditioner::Dirichlet, Preconditioner::Lumped, Preconditioner::None}) {
+    if (contact_free) variants.push_back({MethodKind::Feti, p});
+    variants.push_back({MethodKind::FetiC, p});
+  }
+  variants.push_back({MethodKind::FetiC, Preconditioner::Dirichlet, false});
+  return variants;
+}
+
+Measurement measure(const solver::Model& model, const std::string& scene, const Variant& variant,
+                    int repeat) {
+  Measurement m;
+  m.scene = scene;
+  m.variant = variant.label();
+  m.unknowns = model.dof_count();
+  solver::SolveOptions options;
+  options.preconditioner = variant.preconditioner;
+  options.scaling = variant.scaling;
+  const auto setup_start = std::chrono::steady_clock::now();
+  auto method = solver::make_method(variant.method, model, options);
+  m.setup_ms = milliseconds(std::chrono::steady_clock::now() - setup_start);
+  std::vector<double> times;
+  for (int r = 0; r < repeat; ++r) {
+    const auto start = std::chrono::steady_clock::now();
+    method->start(1.0);
+    solver::run_to_end(*method);
+    times.push_back(milliseconds(std::chrono::steady_clock::now() - start));
+  }
+  m.solve_ms = median(times);
+  m.iterations = method->iteration();
+  m.converged = method->status() == solver::Status::Converged;
+  if (m.converged && (variant.method == solver::MethodKind::FetiC ||
+                      variant.method == solver::MethodKind::ActiveSet)) {
+    const solver::Snapshot previous = method->snapshot();
+    method->start(1.05, &previous);
+    solver::run_to_end(*method);
+    m.warm_iterations = method->iteration();
+    method->start(1.05);
+    solver::run_to_end(*method);
+    m.cold_iterations = method->iteration();
+  }
+  return m;
+}
+
+std::string table(const std::vector<Measurement>& rows) {
+  std::ostringstream out;
+  char line[256];
+  std::snprintf(line, sizeof line, "%-22s %-28s %9s %6s %10s %10s %9s %9s %11s\n", "scene",
+                "method", "unknowns", "iter", "setup ms", "solve ms", "solve/AS", "total/AS",
+                "warm/cold");
+  out << line;
+  for (size_t i = 0; i < rows.size(); ++i) {
+    const Measurement& m = rows[i];
+    // The active-set row of the same scene is the reference.
+    const Measurement* reference = nullptr;
+    for (const Measurement& r : rows)
+      if (r.scene == m.scene && r.variant == "active-set") reference = &r;
+    const double solve_ratio = reference ? m.solve_ms / reference->solve_ms : 0.0;
+    const double total_ratio =
+        reference ? (m.setup_ms + m.solve_ms) / (reference->setup_ms + reference->solve_ms) : 0.0;
+    std::string warm = "-";
+    if (m.warm_iterations >= 0)
+      warm = std::to_string(m.warm_iterations) + "/" + std::to_string(m.cold_iterations);
+    std::snprintf(line, sizeof line, "%-22s %-28s %9lld %5d%s %10.3f %10.3f %9.3f %9.3f %11s\n",
+                  std::filesystem::path(m.scene).filename().string().c_str(), m.variant.c_str(),
+                  m.unknowns, m.iterations, m.converged ? " " : "!", m.setup_ms, m.solve_ms,
+                  solve_ratio, total_ratio, warm.c_str());
+    out << line;
+  }
+  return out.str();
+}
+
+int run_bench(const BenchArgs& args) {
+  std::vector<std::string> scenes = args.scenes;
+  if (scenes.empty())
+    scenes = {"scenes/thesis.toml", "scenes/two_bars.toml", "scenes/chain.toml",
+              "scenes/cantilevers.toml"};
+  std::vector<Measurement> rows;
+  bool warmed_up = false;
+  for (const std::string& path : scenes) {
+    const auto scene = load_scene_or_report(path);
+    if (!scene) return kExitInvalidScene;
+    const solver::Model model = solver::build_model(*scene);
+    if (!warmed_up) {
+      // The first parallel region starts OpenMP's threads: keep that out of the table.
+      measure(model, path, {solver::MethodKind::FetiC}, 1);
+      warmed_up = true;
+    }
+    for (const Variant& variant : variants_for(model)) {
+      try {
+        rows.push_back(measure(model, path, variant, std::max(1, args.repeat)));
+      } catch (const solver::SolverError& error) {
+        std::cerr << path << ": " << variant.label() << ": " << error.what() << '\n';
+      }
+    }
+  }
+  std::cout << "Median of " << args.repeat
+            << " solves per row. solve/AS, total/AS: time relative to the active-set method on "
+               "the same scene, measured in this run (total = set-up + solve). warm/cold: "
+               "iterations of a re-solve after a 5% load change, warm-started against cold. "
+               "'!' marks a solve that did not converge.\n\n"
+            << table(rows);
+  if (!args.csv.empty()) {
+    try {
+      write_file_atomically(args.csv, [&](std::ostream& out) {
+        out << "scene,method,unknowns,iterations,converged,setup_ms,solve_ms,warm_iterations,"
+               "cold_iterations\n";
+        for (const Measurement& m : rows)
+          out << m.scene << ',' << m.variant << ',' << m.unknowns << ',' << m.iterations << ','
+              << m.converged << ',' << m.setup_ms << ',' << m.solve_ms << ',' << m.warm_iterations
+              << ',' << m.cold_iterations << '\n';
+      });
+    } catch (const OutputError& error) {
+      std::cerr << error.what() << '\n';
+      return kExitOutput;
+    }
+  }
+  return kExitOk;
+}
+
+}  // namespace
+
+void register_bench(CLI::App& app, int& exit_code) {
+  auto args = std::make_shared<BenchArgs>();
+  CLI::App* command =
+      app.add_subcommand("bench", "Benchmark every method on scenes (default: the bundled ones)");
+  command->add_option("scenes", args->scenes, "Scene files");
+  command->add_option("--repeat", args->repeat, "Solves per measurement (median)")
+      ->check(CLI::Range(1, 1000))
+      ->capture_default_str();
+  command->add_option("--csv", args->csv, "Also write the table as CSV");
+  command->callback([args, &exit_code] { exit_code = run_bench(*args); });
+}
+
+}  // namespace fetic::app

@@ -1,0 +1,42 @@
+#pragma once
+// Command-line options every solving command shares: method, preconditioner, tolerance,
+// iteration cap, load factor or load steps.
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+#include "solver/method.hpp"
+
+namespace fetic::app {
+
+struct MethodArgs {
+  std::string method = "feti-c";
+  std::string preconditioner = "dirichlet";
+  bool no_scaling = false;
+  double tolerance = 1e-10;
+  int max_iterations = 0;
+  double load_factor = 1.0;
+  std::string load_steps;  // "a:b:n", empty when not given
+
+  solver::MethodKind kind() const { return *solver::parse_method(method); }
+  solver::SolveOptions options() const;
+  // The load factors to solve at: the load steps when given, else the load factor.
+  std::vector<double> load_factors() const;
+};
+
+void add_method_options(CLI::App* command, MethodArgs& args);
+
+// "a:b:n" -> (a, b, n), or nullopt.
+struct LoadSteps {
+  double first = 0.0, last = 1.0;
+  int count = 1;
+};
+std::optional<LoadSteps> parse_load_steps(const std::string& text);
+
+// A CLI11 check that a value is a finite number.
+CLI::Validator finite_number();
+
+}  // namespace fetic::app

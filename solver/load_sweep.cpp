@@ -1,0 +1,45 @@
+#include "solver/load_sweep.hpp"
+
+namespace fetic::solver {
+
+std::vector<double> load_steps(double first, double last, int count) {
+  std::vector<double> values;
+  if (count <= 1) return {first};
+  for (int i = 0; i < count; ++i)
+    values.push_back(first + (last - first) * static_cast<double>(i) / (count - 1));
+  values.back() = last;
+  return values;
+}
+
+Snapshot predict_warm_start(const Snapshot* older, const Snapshot& newer, double load_factor) {
+  Snapshot warm = newer;
+  if (!older || older->dual.size() != newer.dual.size() || newer.dual.size() == 0 ||
+      older->in_working_set != newer.in_working_set || older->load_factor == newer.load_factor ||
+      older->status != Status::Converged || newer.status != Status::Converged)
+    return warm;
+  const double s = (load_factor - newer.load_factor) / (newer.load_factor - older->load_factor);
+  warm.dual = newer.dual + s * (newer.dual - older->dual);
+  return warm;
+}
+
+std::vector<SweepStep> sweep(Method& method, const std::vector<double>& load_factors,
+                             const std::function<void(const SweepStep&)>& on_step,
+                             const std::function<void(double)>& before_start) {
+  std::vector<SweepStep> steps;
+  for (double t : load_factors) {
+    if (before_start) before_start(t);
+    if (steps.empty()) {
+      method.start(t);
+    } else {
+      const Snapshot* older = steps.size() >= 2 ? &steps[steps.size() - 2].state : nullptr;
+      const Snapshot warm = predict_warm_start(older, steps.back().state, t);
+      method.start(t, &warm);
+    }
+    run_to_end(method);
+    steps.push_back({t, method.snapshot(), method.history()});
+    if (on_step) on_step(steps.back());
+  }
+  return steps;
+}
+
+}  // namespace fetic::solver
