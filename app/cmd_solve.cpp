@@ -12,6 +12,7 @@
 #include "app/atomic_file.hpp"
 #include "app/commands.hpp"
 #include "app/exit_codes.hpp"
+#include "app/interrupt.hpp"
 #include "app/method_options.hpp"
 #include "app/result_json.hpp"
 #include "app/scene_input.hpp"
@@ -117,17 +118,24 @@ int run_solve(const SolveArgs& args) {
     std::cout << "load steps   " << load_factors.size() << " from " << load_factors.front()
               << " to " << load_factors.back() << ", each warm-started\n";
   const auto solve_start = std::chrono::steady_clock::now();
-  const std::vector<solver::SweepStep> steps = solver::sweep(
-      *method, load_factors,
-      [&](const solver::SweepStep& step) {
-        if (!sweeping || args.quiet) return;
-        std::printf("  t = %-12.6g %-9s %4d iterations  %5d active  residual %.3e\n",
-                    step.load_factor, solver::to_string(step.state.status), step.state.iteration,
-                    step.state.active_set_size(), step.state.residual);
-      },
-      [&](double t) {
-        if (args.reference) method->set_reference(references.at(t));
-      });
+  solver::SweepHooks hooks;
+  hooks.before_start = [&](double t) {
+    if (args.reference) method->set_reference(references.at(t));
+  };
+  hooks.on_step = [&](const solver::SweepStep& step) {
+    if (!sweeping || args.quiet) return;
+    std::printf("  t = %-12.6g %-9s %4d iterations  %5d active  residual %.3e\n",
+                step.load_factor, solver::to_string(step.state.status), step.state.iteration,
+                step.state.active_set_size(), step.state.residual);
+    std::fflush(stdout);
+  };
+  hooks.keep_going = [] { return !interrupted(); };
+  const std::vector<solver::SweepStep> steps = solver::sweep(*method, load_factors, hooks);
+  if (interrupted()) {
+    std::cerr << args.scene << ": interrupted by " << interrupt_name() << " at iteration "
+              << method->iteration() << "; no result file written\n";
+    return kExitInterrupted;
+  }
   info.solve_seconds = seconds_since(solve_start);
   const solver::SweepStep& last = steps.back();
 

@@ -7,11 +7,13 @@
 
 #include "app/commands.hpp"
 #include "app/exit_codes.hpp"
+#include "app/interrupt.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{"fetic - frictionless contact of elastic struts by FETI and FETI-C"};
   app.require_subcommand(1);
   app.set_version_flag("--version", "fetic 0.1.0");
+  fetic::app::install_interrupt_handlers();
   int exit_code = fetic::app::kExitOk;
   fetic::app::register_solve(app, exit_code);
   fetic::app::register_bench(app, exit_code);

@@ -23,11 +23,11 @@ Snapshot predict_warm_start(const Snapshot* older, const Snapshot& newer, double
 }
 
 std::vector<SweepStep> sweep(Method& method, const std::vector<double>& load_factors,
-                             const std::function<void(const SweepStep&)>& on_step,
-                             const std::function<void(double)>& before_start) {
+                             const SweepHooks& hooks) {
   std::vector<SweepStep> steps;
   for (double t : load_factors) {
-    if (before_start) before_start(t);
+    if (hooks.keep_going && !hooks.keep_going()) break;
+    if (hooks.before_start) hooks.before_start(t);
     if (steps.empty()) {
       method.start(t);
     } else {
@@ -35,9 +35,9 @@ std::vector<SweepStep> sweep(Method& method, const std::vector<double>& load_fac
       const Snapshot warm = predict_warm_start(older, steps.back().state, t);
       method.start(t, &warm);
     }
-    run_to_end(method);
+    run_to_end(method, hooks.keep_going);
     steps.push_back({t, method.snapshot(), method.history()});
-    if (on_step) on_step(steps.back());
+    if (hooks.on_step) hooks.on_step(steps.back());
   }
   return steps;
 }

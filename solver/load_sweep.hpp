@@ -24,10 +24,14 @@ struct SweepStep {
   std::vector<HistoryEntry> history;
 };
 
-// Runs `method` at every load factor. `before_start(t)` runs before each start (e.g. to
-// set a reference), `on_step` sees each finished step; either may be empty.
+struct SweepHooks {
+  std::function<void(double)> before_start;            // e.g. to set a reference
+  std::function<void(const SweepStep&)> on_step;       // sees each finished step
+  std::function<bool()> keep_going;                    // false stops the sweep
+};
+
+// Runs `method` at every load factor, warm-starting each solve from the previous ones.
 std::vector<SweepStep> sweep(Method& method, const std::vector<double>& load_factors,
-                             const std::function<void(const SweepStep&)>& on_step = {},
-                             const std::function<void(double)>& before_start = {});
+                             const SweepHooks& hooks = {});
 
 }  // namespace fetic::solver

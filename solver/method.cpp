@@ -107,9 +107,8 @@ void Method::fail(std::string why) {
   message_ = std::move(why);
 }
 
-void run_to_end(Method& method) {
-  while (method.status() == Status::Running)
-    method.step();
+void run_to_end(Method& method, const std::function<bool()>& keep_going) {
+  while (method.status() == Status::Running && (!keep_going || keep_going())) method.step();
 }
 
 std::vector<std::vector<Vec2>> strut_displacements(const Model& model, const Snapshot& snapshot) {

@@ -5,6 +5,7 @@
 // method is made for a model; start() only resets the iteration, so re-solving at a new
 // load factor is cheap.
 
+#include <functional>
 #include <limits>
 #include <memory>
 #include <optional>
@@ -125,8 +126,8 @@ class Method {
 std::unique_ptr<Method> make_method(MethodKind kind, const Model& model,
                                     const SolveOptions& options);
 
-// Steps a started method until it stops.
-void run_to_end(Method& method);
+// Steps a started method until it stops, or until keep_going() (when given) says no.
+void run_to_end(Method& method, const std::function<bool()>& keep_going = {});
 
 // Node displacements per strut (average of the pieces that hold a node).
 std::vector<std::vector<Vec2>> strut_displacements(const Model& model, const Snapshot& snapshot);

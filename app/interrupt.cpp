@@ -1,0 +1,33 @@
+#include "app/interrupt.hpp"
+
+#include <csignal>
+
+namespace fetic::app {
+namespace {
+
+volatile std::sig_atomic_t received = 0;
+
+extern "C" void on_signal(int signal) { received = signal; }
+
+}  // namespace
+
+void install_interrupt_handlers() {
+  struct sigaction action {};
+  action.sa_handler = on_signal;
+  sigemptyset(&action.sa_mask);
+  action.sa_flags = 0;
+  sigaction(SIGINT, &action, nullptr);
+  sigaction(SIGTERM, &action, nullptr);
+}
+
+bool interrupted() { return received != 0; }
+
+const char* interrupt_name() {
+  switch (received) {
+    case SIGINT: return "SIGINT";
+    case SIGTERM: return "SIGTERM";
+    default: return "";
+  }
+}
+
+}  // namespace fetic::app

@@ -1,0 +1,13 @@
+#pragma once
+// SIGINT and SIGTERM only raise a flag; long loops (iterations, frames, load steps) ask
+// for it between steps and stop cleanly. Output files are written atomically, so an
+// interrupted run leaves complete files only.
+
+namespace fetic::app {
+
+void install_interrupt_handlers();
+bool interrupted();
+// "SIGINT" or "SIGTERM" (empty when not interrupted).
+const char* interrupt_name();
+
+}  // namespace fetic::app
