@@ -73,14 +73,26 @@ Decomposition decompose(const Model& model) {
     for (int node = 0; node < mesh.node_count(); ++node) {
       const Copies& c = copies[s].of_node[node];
       if (clamped[node]) continue;
-      for (size_t j = 1; j < c.size(); ++j)
-        for (int comp = 0; comp < mesh.dofs_per_node; ++comp) {
-          Row row;
-          row.kind = RowKind::Gluing;
-          row.entries = {{c[j - 1].first, c[j - 1].second * mesh.dofs_per_node + comp, 1.0},
-                         {c[j].first, c[j].second * mesh.dofs_per_node + comp, -1.0}};
-          d.rows.push_back(std::move(row));
-        }
+      // Fully redundant: one row per pair of copies (at a cross point of four subdomains
+      // six rows, not three), which the scaled Dirichlet preconditioner needs to stay
+      // effective there.
+      for (int comp = 0; comp < mesh.dofs_per_node; ++comp) {
+        RedundantGroup group;
+        group.copies = static_cast<int>(c.size());
+        for (size_t i = 0; i < c.size(); ++i)
+          for (size_t j = i + 1; j < c.size(); ++j) {
+            Row row;
+            row.kind = RowKind::Gluing;
+            row.entries = {{c[i].first, c[i].second * mesh.dofs_per_node + comp, 1.0},
+                           {c[j].first, c[j].second * mesh.dofs_per_node + comp, -1.0}};
+            for (const auto& [sub, local] : c)
+              row.copies.push_back({sub, local * mesh.dofs_per_node + comp, 1.0});
+            group.rows.push_back(static_cast<int>(d.rows.size()));
+            group.ends.emplace_back(static_cast<int>(i), static_cast<int>(j));
+            d.rows.push_back(std::move(row));
+          }
+        if (group.copies >= 3) d.redundant_groups.push_back(std::move(group));
+      }
     }
   }
   for (size_t s = 0; s < model.struts.size(); ++s) {

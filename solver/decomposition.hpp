@@ -10,9 +10,10 @@
 // rigid-body modes do not explain - which is reported.
 //
 // Rows of B, in this order: gluing rows u_a - u_b = 0 (one per DOF of every interface
-// node, chained over the subdomains that share it), Dirichlet rows u = 0 (every copy of
-// every clamped DOF; a clamped node gets no gluing row, which would be redundant), then
-// one contact row (u_a - u_b) . n <= gap per contact pair. A pair whose two nodes are
+// node and every pair of subdomains sharing it: fully redundant at cross points, which
+// keeps the scaled Dirichlet preconditioner effective there), Dirichlet rows u = 0
+// (every copy of every clamped DOF; a clamped node gets no gluing row), then one contact
+// row (u_a - u_b) . n <= gap per contact pair. A pair whose two nodes are
 // both clamped can never move and gets no row (its force is zero).
 
 #include <vector>
@@ -47,6 +48,15 @@ struct Row {
   int pair = -1;     // contact pair (Contact rows)
   double rhs = 0.0;  // c: 0 for gluing and Dirichlet rows, the gap for contact rows
   std::vector<RowEntry> entries;
+  std::vector<RowEntry> copies;  // gluing rows: every copy of the node's DOF (for scaling)
+};
+
+// The gluing rows of one DOF of a node with three or more copies: one row per pair of
+// copies (i, j), u_i - u_j = 0, so they are linearly dependent.
+struct RedundantGroup {
+  int copies = 0;
+  std::vector<int> rows;
+  std::vector<std::pair<int, int>> ends;  // (i, j) of each row, indices into the copies
 };
 
 struct Decomposition {
@@ -56,6 +66,7 @@ struct Decomposition {
   std::vector<int> pair_row;  // per contact pair: its row, or -1 (both nodes clamped)
   int total_dofs = 0;
   int total_modes = 0;
+  std::vector<RedundantGroup> redundant_groups;
 
   int row_count() const { return static_cast<int>(rows.size()); }
   int contact_rows() const { return row_count() - equality_rows; }

@@ -79,6 +79,7 @@ void FetiC::compute_search_residual() {
   const int rows = system_.rows();
   w_hat_ = r_;
   coarse_.project(w_hat_);
+  system_.project_onto_range_of_B(w_hat_);
   // Gaps of the rows outside W from the true rigid-body amplitudes.
   const Eigen::VectorXd rigid = system_.G().transpose() * rigid_amplitudes();
   face_.assign(rows, 0);
@@ -94,7 +95,10 @@ void FetiC::compute_search_residual() {
 void FetiC::record_state() {
   compute_search_residual();
   const double residual = relative(w_hat_.norm());
-  if (residual <= options_.tolerance || w_hat_.norm() == 0.0) converge();
+  if (residual <= options_.tolerance || w_hat_.norm() == 0.0)
+    converge();
+  else
+    watch_stagnation(residual);
   int working = 0;
   for (int k = system_.decomposition().equality_rows; k < system_.rows(); ++k)
     working += active_[k];
@@ -117,6 +121,7 @@ void FetiC::begin(const Snapshot* warm) {
   lambda_ = use_warm ? warm->dual : coarse_.particular(e_);
   restart_ = true;
   yw_previous_ = 0.0;
+  reset_watch();
   previous_face_.clear();
 
   const std::string unbounded = unbounded_struts(model_, load_factor_);
@@ -140,10 +145,12 @@ void FetiC::advance() {
   previous_face_ = face_;
   Eigen::VectorXd w = r_;
   coarse_.project(w);
+  system_.project_onto_range_of_B(w);
   for (int k = 0; k < system_.rows(); ++k)
     if (!face_[k]) w(k) = 0.0;
   Eigen::VectorXd y;
   preconditioner_.apply(w, &face_, y);
+  system_.project_onto_range_of_B(y);
   coarse_.project(y);
   const double yw = y.dot(w);
   const double beta = restart_ || !(yw_previous_ > 0.0) ? 0.0 : yw / yw_previous_;
@@ -152,8 +159,7 @@ void FetiC::advance() {
   const double pq = p_.dot(q_);
   ++iteration_;
   if (!(pq > 0.0) || !(yw > 0.0)) {
-    fail("FETI-C broke down at iteration " + std::to_string(iteration_) +
-         " (y'w = " + std::to_string(yw) + ", p'F p = " + std::to_string(pq) + ")");
+    fail_breakdown(yw, pq);
     return;
   }
   const double a = yw / pq;
@@ -165,7 +171,7 @@ void FetiC::advance() {
   if (modified)
     system_.residual(lambda_, load_factor_, r_);
   else
-    r_ -= a * q_;
+    update_residual(a, q_);
   restart_ = modified;
   yw_previous_ = yw;
   record_state();

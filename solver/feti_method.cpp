@@ -54,6 +54,38 @@ Eigen::VectorXd FetiMethod::rigid_amplitudes() const {
   return alpha;
 }
 
+void FetiMethod::update_residual(double a, const Eigen::VectorXd& q) {
+  if (iteration_ % kResidualReplacement == 0)
+    system_.residual(lambda_, load_factor_, r_);
+  else
+    r_ -= a * q;
+}
+
+void FetiMethod::reset_watch() {
+  best_residual_ = std::numeric_limits<double>::infinity();
+  best_iteration_ = 0;
+}
+
+void FetiMethod::watch_stagnation(double residual) {
+  if (residual < best_residual_) {
+    best_residual_ = residual;
+    best_iteration_ = iteration_;
+  } else if (iteration_ - best_iteration_ >= kStagnationWindow) {
+    fail("stagnated: the relative residual has not gone below " + format_number(best_residual_) +
+         " (iteration " + std::to_string(best_iteration_) + ") in " +
+         std::to_string(kStagnationWindow) + " iterations; the tolerance " +
+         format_number(options_.tolerance) + " is probably below what rounding allows here");
+  }
+}
+
+void FetiMethod::fail_breakdown(double yw, double pq) {
+  fail(std::string(to_string(kind())) + " broke down at iteration " + std::to_string(iteration_) +
+       ": the search direction has no curvature (y'w = " + format_number(yw) +
+       ", p'F p = " + format_number(pq) + ") at relative residual " +
+       format_number(history().empty() ? 0.0 : history().back().residual) +
+       "; if that is tiny, the tolerance is below what rounding allows here");
+}
+
 void FetiMethod::fill_contacts(Snapshot& s) const {
   const Decomposition& d = system_.decomposition();
   const int pairs = static_cast<int>(model_.pairs.size());

@@ -31,6 +31,20 @@ class FetiMethod : public Method {
   double relative(double norm) const { return d_norm_ > 0.0 ? norm / d_norm_ : norm; }
   // Force and working-set flags per contact pair from lambda and the active rows.
   void fill_contacts(Snapshot& s) const;
+  // r <- r - a q after a step a p (q = F p); every kResidualReplacement iterations r is
+  // recomputed as d - F lambda instead, so that rounding in the recursion cannot pile up.
+  void update_residual(double a, const Eigen::VectorXd& q);
+  // Call before recording a residual: fails the solve when it has not reached a new low
+  // for kStagnationWindow iterations (the tolerance is below what rounding allows).
+  void watch_stagnation(double residual);
+  // Fails for a vanishing or negative curvature p'F p, explaining the likely cause.
+  void fail_breakdown(double yw, double pq);
+  void reset_watch();
+
+  static constexpr int kResidualReplacement = 25;
+  static constexpr int kStagnationWindow = 60;
+  double best_residual_ = 0.0;
+  int best_iteration_ = 0;
 
   FetiSystem system_;
   FetiPreconditioner preconditioner_;

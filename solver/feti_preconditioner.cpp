@@ -30,19 +30,36 @@ FetiPreconditioner::FetiPreconditioner(const FetiSystem& system, Preconditioner 
   const auto& ops = system.subdomains();
   const int count = static_cast<int>(ops.size());
 
-  // Per-entry weights of B: stiffness scaling across the subdomains a row joins.
+  // Per-entry weights of B (stiffness scaling): an entry of subdomain i in a row shared
+  // with subdomain j gets k_j / (sum of k over every copy of the DOF), k the diagonal
+  // stiffness: 1/multiplicity between equal neighbours.
   std::vector<std::map<int, double>> weight(d.row_count());  // row -> subdomain -> weight
+  auto stiffness = [&](const RowEntry& entry) {
+    return ops[entry.subdomain].K.coeff(entry.dof, entry.dof);
+  };
   for (int r = 0; r < d.row_count(); ++r) {
-    std::map<int, double> stiffness;
-    for (const RowEntry& entry : d.rows[r].entries) {
-      const double k = ops[entry.subdomain].K.coeff(entry.dof, entry.dof);
-      stiffness[entry.subdomain] = std::max(stiffness[entry.subdomain], k);
-    }
+    const Row& row = d.rows[r];
+    for (const RowEntry& entry : row.entries)
+      weight[r][entry.subdomain] = 1.0;
+    // Largest diagonal stiffness per side (a plane contact row has two entries a side).
+    std::map<int, double> side;
+    for (const RowEntry& entry : row.entries)
+      side[entry.subdomain] = std::max(side[entry.subdomain], stiffness(entry));
+    if (!scaled || side.size() < 2) continue;
     double total = 0.0;
-    for (const auto& [sub, k] : stiffness)
-      total += k;
-    for (const auto& [sub, k] : stiffness)
-      weight[r][sub] = (scaled && stiffness.size() > 1 && total > 0.0) ? (total - k) / total : 1.0;
+    if (row.copies.empty())
+      for (const auto& [sub, k] : side)
+        total += k;
+    else
+      for (const RowEntry& copy : row.copies)
+        total += stiffness(copy);
+    if (!(total > 0.0)) continue;
+    for (const auto& [sub, k] : side) {
+      double others = 0.0;
+      for (const auto& [other, k_other] : side)
+        if (other != sub) others += k_other;
+      weight[r][sub] = others / total;
+    }
   }
 
   local_.resize(count);

@@ -1,5 +1,6 @@
 #include "solver/feti_system.hpp"
 
+#include <algorithm>
 #include <atomic>
 #include <string>
 
@@ -149,6 +150,20 @@ std::vector<Piece> FetiSystem::pieces(const Eigen::VectorXd& lambda, const Eigen
     result.push_back(std::move(piece));
   }
   return result;
+}
+
+void FetiSystem::project_onto_range_of_B(Eigen::VectorXd& v) const {
+  for (const RedundantGroup& group : decomposition_.redundant_groups) {
+    double copy_sum[64];  // B_g' v_g per copy (a node has at most four copies)
+    const int m = std::min(group.copies, 64);
+    std::fill(copy_sum, copy_sum + m, 0.0);
+    for (size_t k = 0; k < group.rows.size(); ++k) {
+      copy_sum[group.ends[k].first] += v(group.rows[k]);
+      copy_sum[group.ends[k].second] -= v(group.rows[k]);
+    }
+    for (size_t k = 0; k < group.rows.size(); ++k)
+      v(group.rows[k]) = (copy_sum[group.ends[k].first] - copy_sum[group.ends[k].second]) / m;
+  }
 }
 
 std::size_t FetiSystem::factor_memory() const {

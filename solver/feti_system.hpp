@@ -54,6 +54,11 @@ class FetiSystem {
   Eigen::VectorXd d(double load_factor) const;
   // e = t R' f.
   Eigen::VectorXd e(double load_factor) const;
+  // v <- its orthogonal projection onto range(B). Redundant gluing rows make F singular
+  // on ker B'; rounding drifts into that kernel, which F cannot reduce, so the iterations
+  // keep w and the directions in range(B). For the rows of a node with m copies (one
+  // per pair) the projection is (1/m) B_g B_g'.
+  void project_onto_range_of_B(Eigen::VectorXd& v) const;
 
   // Primal displacements u_j = K_j^+ (t f_j - B_j' lambda) + R_j alpha_j as pieces.
   std::vector<Piece> pieces(const Eigen::VectorXd& lambda, const Eigen::VectorXd& alpha,

@@ -1,6 +1,7 @@
 #include "solver/method.hpp"
 
 #include <cmath>
+#include <cstdio>
 
 namespace fetic::solver {
 
@@ -97,8 +98,8 @@ void Method::record(double residual, int active_set) {
          " at iteration " + std::to_string(iteration_));
   } else if (status_ == Status::Running && iteration_ >= max_iterations_) {
     fail("no convergence within " + std::to_string(max_iterations_) +
-         " iterations (relative residual " + std::to_string(residual) + ", tolerance " +
-         std::to_string(options_.tolerance) + ")");
+         " iterations (relative residual " + format_number(residual) + ", tolerance " +
+         format_number(options_.tolerance) + ")");
   }
 }
 
@@ -107,8 +108,15 @@ void Method::fail(std::string why) {
   message_ = std::move(why);
 }
 
+std::string format_number(double value) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.3g", value);
+  return buffer;
+}
+
 void run_to_end(Method& method, const std::function<bool()>& keep_going) {
-  while (method.status() == Status::Running && (!keep_going || keep_going())) method.step();
+  while (method.status() == Status::Running && (!keep_going || keep_going()))
+    method.step();
 }
 
 std::vector<std::vector<Vec2>> strut_displacements(const Model& model, const Snapshot& snapshot) {

@@ -129,6 +129,9 @@ std::unique_ptr<Method> make_method(MethodKind kind, const Model& model,
 // Steps a started method until it stops, or until keep_going() (when given) says no.
 void run_to_end(Method& method, const std::function<bool()>& keep_going = {});
 
+// A number for messages: "3.8e-12".
+std::string format_number(double value);
+
 // Node displacements per strut (average of the pieces that hold a node).
 std::vector<std::vector<Vec2>> strut_displacements(const Model& model, const Snapshot& snapshot);
 

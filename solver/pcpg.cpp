@@ -32,20 +32,26 @@ void Pcpg::begin(const Snapshot* warm) {
   }
   system_.residual(lambda_, load_factor_, r_);
   yw_previous_ = 0.0;
+  reset_watch();
   record_residual();
 }
 
 void Pcpg::record_residual() {
   w_ = r_;
   coarse_.project(w_);
+  system_.project_onto_range_of_B(w_);
   const double residual = relative(w_.norm());
-  if (residual <= options_.tolerance || w_.norm() == 0.0) converge();
+  if (residual <= options_.tolerance || w_.norm() == 0.0)
+    converge();
+  else
+    watch_stagnation(residual);
   record(residual, 0);
 }
 
 void Pcpg::advance() {
   Eigen::VectorXd z;
   preconditioner_.apply(w_, nullptr, z);
+  system_.project_onto_range_of_B(z);
   coarse_.project(z);  // y = P z
   const double yw = z.dot(w_);
   const double beta = yw_previous_ > 0.0 ? yw / yw_previous_ : 0.0;
@@ -54,13 +60,12 @@ void Pcpg::advance() {
   const double pq = p_.dot(q_);
   ++iteration_;
   if (!(pq > 0.0) || !(yw > 0.0)) {
-    fail("PCPG broke down at iteration " + std::to_string(iteration_) +
-         " (p'F p = " + std::to_string(pq) + "): the interface problem is not positive definite");
+    fail_breakdown(yw, pq);
     return;
   }
   const double a = yw / pq;
   lambda_ += a * p_;
-  r_ -= a * q_;
+  update_residual(a, q_);
   yw_previous_ = yw;
   record_residual();
 }

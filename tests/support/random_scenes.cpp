@@ -171,6 +171,56 @@ std::string random_bar_scene(std::mt19937& rng) {
   return w.text();
 }
 
+std::string random_plane_pairs(std::mt19937& rng, int pairs) {
+  std::string struts, loads, contacts;
+  for (int p = 0; p < pairs; ++p) {
+    const double angle = uniform(rng, 0.0, 2.0 * kPi);
+    const double dx = std::cos(angle), dy = std::sin(angle);
+    const double ox = 5.0 * p, oy = 0.0;
+    const double E = uniform(rng, 5e10, 3e11), nu = uniform(rng, 0.2, 0.35), t = 0.01;
+    const double h = uniform(rng, 0.05, 0.2), l1 = uniform(rng, 0.5, 1.5),
+                 l2 = uniform(rng, 0.5, 1.5);
+    const int across = integer(rng, 1, 4);
+    const double gap = chance(rng, 0.25) ? 0.0 : uniform(rng, 1e-5, 5e-4);
+    const bool r1 = chance(rng, 0.5), r2 = chance(rng, 0.5);
+    auto strut = [&](const std::string& name, double s0, double s1, bool reversed, bool clamp_s0) {
+      const int elements = integer(rng, 2, 8);
+      const double ax = ox + s0 * dx, ay = oy + s0 * dy, bx = ox + s1 * dx, by = oy + s1 * dy;
+      struts += "\n[[strut]]\nname = \"" + name + "\"\n";
+      struts += "from = " + (reversed ? point(bx, by) : point(ax, ay)) + "\n";
+      struts += "to = " + (reversed ? point(ax, ay) : point(bx, by)) + "\n";
+      struts += "E = " + number(E * uniform(rng, 0.5, 1.5)) + "\nnu = " + number(nu) + "\n";
+      struts += "height = " + number(h) + "\nthickness = " + number(t) + "\n";
+      struts += "elements = " + std::to_string(elements) +
+                "\nelements_across = " + std::to_string(across) + "\n";
+      struts += "subdomains = " + std::to_string(integer(rng, 1, std::min(3, elements))) + "\n";
+      struts +=
+          "subdomains_across = " + std::to_string(integer(rng, 1, std::min(2, across))) + "\n";
+      struts += std::string("fixed = [\"") + ((clamp_s0 != reversed) ? "from" : "to") + "\"]\n";
+    };
+    const std::string a = "A" + std::to_string(p), b = "B" + std::to_string(p);
+    strut(a, 0.0, l1, r1, true);
+    strut(b, l1 + gap, l1 + gap + l2, r2, false);
+    // Axial push on b's near end that would close about 0.5-3 gaps; a bending load on a
+    // that tilts its end face by about as much across the height.
+    const double EA = E * h * t, EI = E * t * h * h * h / 12.0;
+    const double closing = (gap > 0.0 ? gap : 2e-4 * l2) * uniform(rng, 0.5, 3.0);
+    const double push = (chance(rng, 0.85) ? 1.0 : -1.0) * closing * EA / l2;
+    const double across_push = uniform(rng, -0.2, 0.2) * push;
+    const std::string b_near = (r2 ? "to" : "from");
+    loads += "\n[[load]]\nstrut = \"" + b + "\"\nat = \"" + b_near +
+             "\"\nforce = " + point(-push * dx - across_push * dy, -push * dy + across_push * dx) +
+             "\n";
+    const double tilt = closing / h * uniform(rng, 0.5, 3.0);
+    const double q = (chance(rng, 0.5) ? 1.0 : -1.0) * tilt * 6.0 * EI / (l1 * l1 * l1);
+    loads += "\n[[load]]\nstrut = \"" + a + "\"\nper_length = " + point(-q * dy, q * dx) + "\n";
+    const std::string a_end = a + (r1 ? ".from" : ".to"), b_end = b + (r2 ? ".to" : ".from");
+    contacts += chance(rng, 0.5) ? "\n[[contact]]\na = \"" + a_end + "\"\nb = \"" + b_end + "\"\n"
+                                 : "\n[[contact]]\na = \"" + b_end + "\"\nb = \"" + a_end + "\"\n";
+  }
+  return "title = \"random plane\"\nmodel = \"plane\"\n" + struts + loads + contacts;
+}
+
 std::string random_contact_free_scene(std::mt19937& rng) {
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   std::string text = "model = \"bar\"\n";

@@ -14,6 +14,10 @@ std::string random_opposing_pairs(std::mt19937& rng, int pairs);
 std::string random_chain(std::mt19937& rng);
 // One of the above, or both in one scene.
 std::string random_bar_scene(std::mt19937& rng);
+// Plane model: `pairs` pairs of facing plane struts on lines of any direction, bent
+// across their axis and pushed together so that their end faces often close over only
+// part of their height; 1-3 subdomains along, 1-2 across.
+std::string random_plane_pairs(std::mt19937& rng, int pairs);
 // 1 to 4 clamped struts in any direction with distributed loads, no contacts.
 std::string random_contact_free_scene(std::mt19937& rng);
 

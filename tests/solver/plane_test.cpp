@@ -1,0 +1,99 @@
+// The plane model against the independent reference (own element code, condensation,
+// CGAL's exact QP): the active-set method and FETI-C with every preconditioner, on
+// random pairs of plane struts whose end faces close over part of their height.
+
+#include <catch2/catch.hpp>
+
+#include <array>
+#include <random>
+
+#include "solver/cholmod_factor.hpp"
+#include "solver/primal_problem.hpp"
+#include "tests/support/random_scenes.hpp"
+#include "tests/support/solve_helpers.hpp"
+
+using namespace fetic;
+using fetic::solver::MethodKind;
+using fetic::solver::Preconditioner;
+
+TEST_CASE("plane model: active set and FETI-C agree with CGAL on 100 random bent pairs") {
+  std::mt19937 rng(2026);
+  int partial = 0, checked = 0;
+  for (int trial = 0; trial < 100; ++trial) {
+    const std::string text = testing::random_plane_pairs(rng, 1 + trial % 2);
+    const double load_factor = std::uniform_real_distribution<double>(0.5, 1.5)(rng);
+    const scenes::Scene scene = scenes::parse_scene(text, "plane.toml");
+    INFO(text);
+    INFO("load factor " << load_factor);
+    const auto reference = testing::solve_reference_qp(scene, load_factor);
+    REQUIRE(reference.optimal);
+
+    solver::SolveOptions options;
+    options.preconditioner = std::array{Preconditioner::Dirichlet, Preconditioner::Lumped,
+                                        Preconditioner::None}[trial % 3];
+    for (MethodKind kind : {MethodKind::ActiveSet, MethodKind::FetiC}) {
+      INFO(solver::to_string(kind) << " / " << solver::to_string(options.preconditioner));
+      const auto solved = testing::solve(scene, kind, load_factor, options);
+      INFO("message: " << solved->state.message);
+      REQUIRE(solved->state.status == solver::Status::Converged);
+      CHECK(testing::displacement_error(*solved, reference) <= 1e-8);
+      CHECK(testing::force_error(*solved, reference, 1e-12 * testing::load_scale(solved->model)) <=
+            1e-8);
+    }
+    // Count contacts closed over only part of the end face.
+    size_t first = 0;
+    for (const auto& contact : scene.contacts) {
+      const size_t pairs = scene.struts[contact.a.strut].elements_across + 1;
+      int active = 0;
+      for (size_t k = first; k < first + pairs; ++k)
+        active += reference.force[k] > 0.0;
+      partial += active > 0 && active < static_cast<int>(pairs);
+      first += pairs;
+    }
+    ++checked;
+  }
+  CHECK(checked == 100);
+  CHECK(partial >= 30);
+}
+
+TEST_CASE("plane model: FETI-1 agrees with a direct solve on a bent cantilever") {
+  const std::string text = R"(
+model = "plane"
+[[strut]]
+name = "beam"
+from = [0.0, 0.0]
+to = [2.0, 0.5]
+E = 7e10
+nu = 0.33
+height = 0.2
+thickness = 0.02
+elements = 12
+elements_across = 4
+subdomains = 4
+subdomains_across = 2
+fixed = ["from"]
+[[load]]
+strut = "beam"
+per_length = [0.0, -3000.0]
+[[load]]
+strut = "beam"
+at = "to"
+force = [500.0, 200.0]
+)";
+  for (Preconditioner p :
+       {Preconditioner::Dirichlet, Preconditioner::Lumped, Preconditioner::None}) {
+    solver::SolveOptions options;
+    options.preconditioner = p;
+    const auto solved = testing::solve_text(text, MethodKind::Feti, 1.0, options);
+    REQUIRE(solved->state.status == solver::Status::Converged);
+    solver::PrimalProblem problem(solved->model);
+    solver::CholmodFactor factor;
+    REQUIRE(factor.factorize(problem.stiffness()) == solver::CholmodFactor::Result::Ok);
+    Eigen::VectorXd f = problem.load(), u(problem.size());
+    factor.solve(f.data(), u.data());
+    solver::Snapshot direct;
+    direct.pieces = problem.pieces(u);
+    CHECK(solver::relative_error(solver::strut_displacements(solved->model, solved->state),
+                                 solver::strut_displacements(solved->model, direct)) <= 1e-8);
+  }
+}
