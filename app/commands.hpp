@@ -8,5 +8,9 @@ namespace fetic::app {
 
 void register_solve(CLI::App& app, int& exit_code);
 void register_bench(CLI::App& app, int& exit_code);
+void register_generate(CLI::App& app, int& exit_code);
+void register_render(CLI::App& app, int& exit_code);
+void register_figures(CLI::App& app, int& exit_code);
+void register_bench_render(CLI::App& app, int& exit_code);
 
 }  // namespace fetic::app

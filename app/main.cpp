@@ -17,6 +17,10 @@ int main(int argc, char** argv) {
   int exit_code = fetic::app::kExitOk;
   fetic::app::register_solve(app, exit_code);
   fetic::app::register_bench(app, exit_code);
+  fetic::app::register_generate(app, exit_code);
+  fetic::app::register_render(app, exit_code);
+  fetic::app::register_figures(app, exit_code);
+  fetic::app::register_bench_render(app, exit_code);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {

@@ -1,0 +1,310 @@
+// fetic render SCENE --out DIR: solver states as PNG frames (an iteration movie, the final
+// state, or a sequence of load steps), optionally assembled into an mp4 by ffmpeg.
+
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "app/atomic_file.hpp"
+#include "app/commands.hpp"
+#include "app/exit_codes.hpp"
+#include "app/interrupt.hpp"
+#include "app/render_output.hpp"
+#include "app/scene_input.hpp"
+#include "render/colormap.hpp"
+#include "render/frame_composer.hpp"
+#include "render/frame_sequence.hpp"
+#include "solver/method.hpp"
+
+extern char** environ;
+
+namespace fetic::app {
+namespace {
+
+struct RenderArgs {
+  std::string scene;
+  std::string out;
+  std::string method = "feti-c";
+  std::string preconditioner = "dirichlet";
+  double tolerance = 1e-10;
+  int max_iterations = 0;
+  std::string size = "1280x720";
+  bool every_iteration = false;
+  bool final_only = false;
+  double load_factor = 1.0;
+  std::string load_steps;
+  std::string movie;
+  int fps = 8;
+  double magnification = 0.0;
+  std::string color = "subdomain";
+  bool no_overlay = false;
+  int max_frames = 2000;
+  int threads = 0;
+};
+
+// "a:b:n" with finite a, b and n >= 1.
+bool parse_load_steps(const std::string& text, double& a, double& b, int& n) {
+  char colon1 = 0, colon2 = 0, extra = 0;
+  return std::sscanf(text.c_str(), "%lf%c%lf%c%d%c", &a, &colon1, &b, &colon2, &n, &extra) == 5 &&
+         colon1 == ':' && colon2 == ':' && std::isfinite(a) && std::isfinite(b) && n >= 1 &&
+         n <= 100000;
+}
+
+bool program_on_path(const std::string& name) {
+  const char* path = std::getenv("PATH");
+  if (!path) return false;
+  std::string directories = path;
+  std::size_t start = 0;
+  while (start <= directories.size()) {
+    const std::size_t end = std::min(directories.find(':', start), directories.size());
+    const std::filesystem::path candidate =
+        std::filesystem::path(directories.substr(start, end - start)) / name;
+    if (::access(candidate.c_str(), X_OK) == 0) return true;
+    start = end + 1;
+  }
+  return false;
+}
+
+// Runs ffmpeg on frames 0 .. count-1 of `directory`; the movie appears atomically.
+int assemble_movie(const std::string& directory, int count, int fps, const std::string& movie) {
+  if (!program_on_path("ffmpeg")) {
+    std::cerr << movie << ": ffmpeg is not installed, so no movie was made; the " << count
+              << " frames are in " << directory << " (apt-get install ffmpeg)\n";
+    return kExitOutput;
+  }
+  // frame_0000.png -> frame_%04d.png
+  const std::string name = frame_name(0, count);
+  const std::string digits = std::to_string(name.size() - std::string("frame_.png").size());
+  const std::string input =
+      (std::filesystem::path(directory) / ("frame_%0" + digits + "d.png")).string();
+  try {
+    write_via_temporary(movie, [&](const std::string& temporary) {
+      std::vector<std::string> arguments{"ffmpeg",
+                                         "-y",
+                                         "-loglevel",
+                                         "error",
+                                         "-framerate",
+                                         std::to_string(fps),
+                                         "-start_number",
+                                         "0",
+                                         "-i",
+                                         input,
+                                         "-frames:v",
+                                         std::to_string(count),
+                                         "-c:v",
+                                         "libx264",
+                                         "-pix_fmt",
+                                         "yuv420p",
+                                         "-vf",
+                                         "pad=ceil(iw/2)*2:ceil(ih/2)*2",
+                                         "-f",
+                                         "mp4",
+                                         temporary};
+      std::vector<char*> argv;
+      for (std::string& argument : arguments)
+        argv.push_back(argument.data());
+      argv.push_back(nullptr);
+      pid_t child = 0;
+      if (posix_spawnp(&child, "ffmpeg", nullptr, nullptr, argv.data(), environ) != 0) return false;
+      int status = 0;
+      if (waitpid(child, &status, 0) < 0) return false;
+      errno = 0;
+      return WIFEXITED(status) && WEXITSTATUS(status) == 0;
+    });
+  } catch (const OutputError& error) {
+    std::cerr << error.what() << " (ffmpeg failed)\n";
+    return kExitOutput;
+  }
+  std::cout << "movie        " << movie << " (" << count << " frames at " << fps
+            << " per second)\n";
+  return kExitOk;
+}
+
+int run_render(const RenderArgs& args) {
+  const auto scene = load_scene_or_report(args.scene);
+  if (!scene) return kExitInvalidScene;
+  const solver::Model model = solver::build_model(*scene);
+  const ImageSize size = *parse_image_size(args.size);
+
+  render::FramePlan plan;
+  if (!args.load_steps.empty()) {
+    double a = 0, b = 0;
+    int n = 0;
+    if (!parse_load_steps(args.load_steps, a, b, n)) {
+      std::cerr << "--load-steps: expected a:b:n (from, to, count >= 1), got " << args.load_steps
+                << '\n';
+      return kExitUsage;
+    }
+    plan.load_factors = render::load_steps(a, b, n);
+    plan.every_iteration = args.every_iteration;  // one frame per step unless asked
+  } else {
+    plan.load_factors = {args.load_factor};
+    plan.every_iteration = !args.final_only;
+  }
+
+  solver::SolveOptions options;
+  options.tolerance = args.tolerance;
+  options.max_iterations = args.max_iterations;
+  options.preconditioner = *solver::parse_preconditioner(args.preconditioner);
+  const solver::MethodKind kind = *solver::parse_method(args.method);
+  std::unique_ptr<solver::Method> method;
+  try {
+    method = solver::make_method(kind, model, options);
+  } catch (const solver::SolverError& error) {
+    std::cerr << args.scene << ": " << error.what() << '\n';
+    return kExitSolverSetup;
+  }
+
+  // Survey pass: the same deterministic run, for fixed scales and the frame count.
+  const render::RunExtent extent =
+      render::survey(model, *method, plan, [] { return !interrupted(); });
+  if (interrupted()) {
+    std::cerr << args.scene << ": interrupted by " << interrupt_name() << " before any frame\n";
+    return kExitInterrupted;
+  }
+  if (extent.frame_count > args.max_frames) {
+    std::cerr << args.scene << ": " << extent.frame_count << " frames (" << args.method << " takes "
+              << extent.largest_iteration << " iterations) is more than --max-frames "
+              << args.max_frames << "; raise it, or render --final or fewer --load-steps\n";
+    return kExitUsage;
+  }
+  if (!make_output_directory(args.out)) return kExitOutput;
+  auto headless = open_headless(args.out);
+  if (!headless) return kExitNoDisplay;
+
+  render::View view;
+  view.width = size.width;
+  view.height = size.height;
+  view.magnification = args.magnification;
+  view.color_by = args.color == "stress" ? render::ColorBy::Stress : render::ColorBy::Subdomain;
+  view.show_overlay = !args.no_overlay;
+  render::OverlayInfo info;
+  info.title =
+      model.title.empty() ? std::filesystem::path(args.scene).filename().string() : model.title;
+  info.method = args.method;
+  if (kind == solver::MethodKind::Feti || kind == solver::MethodKind::FetiC)
+    info.method += ", " + args.preconditioner + " preconditioner";
+  const render::FrameComposer composer(model, view, extent, info,
+                                       static_cast<int>(plan.load_factors.size()));
+
+  const int threads = args.threads > 0 ? args.threads : default_encoder_threads();
+  render::PngEncoderPool pool(threads);
+  int written = 0;
+  try {
+    render::run_frames(*method, plan, [&](const render::Frame& frame) {
+      if (interrupted()) return false;
+      const render::ComposedFrame composed = composer.compose(frame);
+      render::Image image =
+          headless->renderer->render(size.width, size.height, {&composed.scene, &composed.overlay},
+                                     render::palette::background);
+      const std::string path =
+          (std::filesystem::path(args.out) / frame_name(frame.index, extent.frame_count)).string();
+      pool.submit(std::move(image),
+                  [path](render::PngBytes png) { write_png_atomically(path, png); });
+      ++written;
+      return true;
+    });
+    pool.finish();
+  } catch (const OutputError& error) {
+    std::cerr << error.what() << '\n';
+    return kExitOutput;
+  } catch (const render::RenderError& error) {
+    std::cerr << args.out << ": rendering failed: " << error.what() << '\n';
+    return kExitOutput;
+  }
+  if (interrupted()) {
+    std::cerr << args.out << ": interrupted by " << interrupt_name() << " after " << written
+              << " complete frames\n";
+    return kExitInterrupted;
+  }
+
+  std::cout << "frames       " << written << " in " << args.out << " ("
+            << frame_name(0, extent.frame_count) << " .. "
+            << frame_name(written - 1, extent.frame_count) << "), " << size.width << "x"
+            << size.height << ", magnification " << composer.framing().magnification << "\n";
+  std::cout << "renderer     " << headless->context->description() << "\n";
+  const std::string next =
+      (std::filesystem::path(args.out) / frame_name(written, extent.frame_count)).string();
+  if (std::filesystem::exists(next))
+    std::cout << "note         " << next
+              << " and later frames are from an earlier run; they were left alone\n";
+
+  int status = kExitOk;
+  if (!args.movie.empty()) status = assemble_movie(args.out, written, args.fps, args.movie);
+  if (extent.final_status != solver::Status::Converged) {
+    std::cerr << args.scene << ": " << args.method << " did not converge: " << extent.final_message
+              << " (the frames show it)\n";
+    if (status == kExitOk) status = kExitNotConverged;
+  }
+  return status;
+}
+
+}  // namespace
+
+void register_render(CLI::App& app, int& exit_code) {
+  auto args = std::make_shared<RenderArgs>();
+  CLI::App* command = app.add_subcommand(
+      "render",
+      "Render solver states to PNG frames: an iteration movie, the final state or load steps");
+  command->add_option("scene", args->scene, "Scene file (TOML, see README)")->required();
+  command->add_option("--out", args->out, "Directory for frame_0000.png, frame_0001.png, ...")
+      ->required();
+  command->add_option("--method", args->method, "Method")
+      ->check(CLI::IsMember({"sd", "cg", "active-set", "feti", "feti-c"}))
+      ->capture_default_str();
+  command->add_option("--preconditioner", args->preconditioner, "FETI preconditioner")
+      ->check(CLI::IsMember({"none", "lumped", "dirichlet"}))
+      ->capture_default_str();
+  command->add_option("--tol", args->tolerance, "Relative tolerance")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  command
+      ->add_option("--max-iterations", args->max_iterations,
+                   "Iteration cap (0: the method's default)")
+      ->check(CLI::NonNegativeNumber);
+  command->add_option("--size", args->size, "Image size in pixels")
+      ->check(image_size_check())
+      ->capture_default_str();
+  auto* every = command->add_flag("--every-iteration", args->every_iteration,
+                                  "One frame per iteration, from the initial state (default for "
+                                  "one load factor)");
+  auto* final_only =
+      command->add_flag("--final", args->final_only, "Only the final state of each solve");
+  every->excludes(final_only);
+  auto* factor = command->add_option("--load-factor", args->load_factor, "Global load factor t")
+                     ->check(CLI::Range(-1e12, 1e12))
+                     ->capture_default_str();
+  auto* steps = command->add_option("--load-steps", args->load_steps,
+                                    "a:b:n: n load factors from a to b, each solve warm-started "
+                                    "from the previous one; one frame per step");
+  factor->excludes(steps);
+  command->add_option("--movie", args->movie, "Also assemble the frames into this mp4 (ffmpeg)");
+  command->add_option("--fps", args->fps, "Frames per second of the movie")
+      ->check(CLI::Range(1, 120))
+      ->capture_default_str();
+  command
+      ->add_option("--magnification", args->magnification,
+                   "Displacement (and gap) magnification; 0 chooses one from the largest")
+      ->check(CLI::Range(0.0, 1e12))
+      ->capture_default_str();
+  command->add_option("--color", args->color, "Colour struts by subdomain or by axial stress")
+      ->check(CLI::IsMember({"subdomain", "stress"}))
+      ->capture_default_str();
+  command->add_flag("--no-overlay", args->no_overlay, "No information panel");
+  command->add_option("--max-frames", args->max_frames, "Refuse runs with more frames")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  command->add_option("--threads", args->threads, "PNG encoding threads (0: one per core)")
+      ->check(CLI::Range(0, 64));
+  command->callback([args, &exit_code] { exit_code = run_render(*args); });
+}
+
+}  // namespace fetic::app

@@ -1,0 +1,50 @@
+#pragma once
+// What the rendering commands (render, figures, bench-render) share: image sizes on the
+// command line, the headless renderer with its error messages, PNG files written
+// atomically.
+
+#include <memory>
+#include <optional>
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+#include "render/egl_context.hpp"
+#include "render/font.hpp"
+#include "render/gl_renderer.hpp"
+#include "render/png_writer.hpp"
+
+namespace fetic::app {
+
+struct ImageSize {
+  int width = 1280;
+  int height = 720;
+};
+
+// "WxH" with 16 <= W, H <= 8192.
+std::optional<ImageSize> parse_image_size(const std::string& text);
+CLI::Validator image_size_check();
+
+// frame_0000.png ... with at least 4 digits, more when `count` needs them.
+std::string frame_name(int index, int count);
+
+// Writes the PNG to a temporary file beside `path` and renames it: a reader never sees a
+// half-written PNG. Throws OutputError naming the file.
+void write_png_atomically(const std::string& path, const render::PngBytes& png);
+
+// Worker threads for PNG encoding: one per core.
+int default_encoder_threads();
+
+struct Headless {
+  std::unique_ptr<render::GlContext> context;
+  std::unique_ptr<render::FontAtlas> font;
+  std::unique_ptr<render::GlRenderer> renderer;
+};
+// The EGL context, fonts and renderer, or nullopt after printing why (the caller exits
+// with kExitNoDisplay). `output` names what was to be rendered, for the message.
+std::optional<Headless> open_headless(const std::string& output);
+
+// Creates the directory (and parents); prints the problem and returns false on failure.
+bool make_output_directory(const std::string& directory);
+
+}  // namespace fetic::app

@@ -1,0 +1,108 @@
+#include "render/frame_sequence.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "solver/stiffness.hpp"
+
+namespace fetic::render {
+
+std::vector<double> load_steps(double a, double b, int n) {
+  if (n <= 1) return {b};
+  std::vector<double> factors(static_cast<std::size_t>(n));
+  for (int i = 0; i < n; ++i)
+    factors[static_cast<std::size_t>(i)] = a + (b - a) * i / (n - 1);
+  factors.back() = b;  // exactly, whatever the rounding
+  return factors;
+}
+
+int run_frames(solver::Method& method, const FramePlan& plan,
+               const std::function<bool(const Frame&)>& visit) {
+  int index = 0;
+  solver::Snapshot warm;
+  bool have_warm = false;
+  for (std::size_t step = 0; step < plan.load_factors.size(); ++step) {
+    method.start(plan.load_factors[step], have_warm ? &warm : nullptr);
+    const auto emit = [&](const solver::Snapshot& snapshot) {
+      return visit(Frame{index++, static_cast<int>(step), snapshot, method.history()});
+    };
+    if (plan.every_iteration) {
+      if (!emit(method.snapshot())) return index;
+      while (method.status() == solver::Status::Running) {
+        method.step();
+        if (!emit(method.snapshot())) return index;
+      }
+      warm = method.snapshot();
+    } else {
+      solver::run_to_end(method);
+      warm = method.snapshot();
+      if (!emit(warm)) return index;
+    }
+    have_warm = true;
+  }
+  return index;
+}
+
+double largest_displacement(const solver::Snapshot& snapshot) {
+  double largest = 0.0;
+  for (const solver::Piece& piece : snapshot.pieces)
+    for (const solver::Vec2& u : piece.displacement)
+      if (std::isfinite(u.norm())) largest = std::max(largest, u.norm());
+  return largest;
+}
+
+std::vector<std::vector<double>> piece_stresses(const solver::Model& model,
+                                                const solver::Snapshot& snapshot) {
+  std::vector<std::vector<double>> stresses;
+  stresses.reserve(snapshot.pieces.size());
+  for (const solver::Piece& piece : snapshot.pieces) {
+    const solver::StrutMesh& mesh = model.struts[static_cast<std::size_t>(piece.strut)];
+    const int dofs = mesh.dofs_per_node;
+    Eigen::VectorXd box_dofs(piece.box.node_count() * dofs);
+    for (int n = 0; n < piece.box.node_count(); ++n) {
+      const solver::Vec2& u = piece.displacement[static_cast<std::size_t>(n)];
+      if (dofs == 1) {
+        box_dofs[n] = u.dot(mesh.e1);
+      } else {
+        box_dofs[2 * n] = u.x();
+        box_dofs[2 * n + 1] = u.y();
+      }
+    }
+    const Eigen::VectorXd sigma = solver::axial_stress(mesh, piece.box, box_dofs);
+    stresses.emplace_back(sigma.data(), sigma.data() + sigma.size());
+  }
+  return stresses;
+}
+
+void RunExtent::include(const solver::Model& model, const Frame& frame) {
+  frame_count = std::max(frame_count, frame.index + 1);
+  largest_displacement =
+      std::max(largest_displacement, render::largest_displacement(frame.snapshot));
+  for (double f : frame.snapshot.force)
+    if (std::isfinite(f)) largest_force = std::max(largest_force, std::abs(f));
+  for (const auto& piece : piece_stresses(model, frame.snapshot))
+    for (double s : piece)
+      if (std::isfinite(s)) largest_stress = std::max(largest_stress, std::abs(s));
+  largest_iteration = std::max(largest_iteration, frame.snapshot.iteration);
+  largest_active_set = std::max(largest_active_set, frame.snapshot.active_set_size());
+  for (const solver::HistoryEntry& entry : frame.history)
+    if (std::isfinite(entry.residual) && entry.residual > 0.0) {
+      smallest_residual =
+          smallest_residual > 0.0 ? std::min(smallest_residual, entry.residual) : entry.residual;
+      largest_residual = std::max(largest_residual, entry.residual);
+    }
+  final_status = frame.snapshot.status;
+  final_message = frame.snapshot.message;
+}
+
+RunExtent survey(const solver::Model& model, solver::Method& method, const FramePlan& plan,
+                 const std::function<bool()>& keep_going) {
+  RunExtent extent;
+  run_frames(method, plan, [&](const Frame& frame) {
+    extent.include(model, frame);
+    return !keep_going || keep_going();
+  });
+  return extent;
+}
+
+}  // namespace fetic::render

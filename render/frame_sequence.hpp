@@ -1,0 +1,63 @@
+#pragma once
+// Which solver states become frames, and the range of values over all of them. A movie
+// is rendered in two passes over the same deterministic run: the first (survey) finds the
+// largest displacement, force and stress so that magnification, colour scales and plot
+// axes stay fixed from frame to frame; the second renders.
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "solver/method.hpp"
+#include "solver/model.hpp"
+
+namespace fetic::render {
+
+struct FramePlan {
+  std::vector<double> load_factors{1.0};  // one solve per factor, each warm from the last
+  bool every_iteration = true;            // else only the final state of each solve
+};
+
+// n load factors from a to b inclusive (n = 1 gives b).
+std::vector<double> load_steps(double a, double b, int n);
+
+struct Frame {
+  int index = 0;      // 0, 1, ... over the whole plan
+  int load_step = 0;  // index into FramePlan::load_factors
+  const solver::Snapshot& snapshot;
+  const std::vector<solver::HistoryEntry>& history;  // of the current solve, so far
+};
+
+// Drives `method` through the plan and calls `visit` for each frame in order (frame 0 of
+// a solve is its initial state, right after start()). Stops early when `visit` returns
+// false. Returns the number of frames visited.
+int run_frames(solver::Method& method, const FramePlan& plan,
+               const std::function<bool(const Frame&)>& visit);
+
+// Largest values over a run, for fixed scales.
+struct RunExtent {
+  int frame_count = 0;
+  double largest_displacement = 0.0;  // |u| over all nodes and frames
+  double largest_force = 0.0;         // contact pressure
+  double largest_stress = 0.0;        // |axial stress|
+  int largest_iteration = 0;          // iterations of the longest solve
+  int largest_active_set = 0;
+  double smallest_residual = 0.0;  // positive residuals only; 0 when there were none
+  double largest_residual = 0.0;
+  solver::Status final_status = solver::Status::Running;
+  std::string final_message;
+
+  void include(const solver::Model& model, const Frame& frame);
+};
+
+// The survey pass: runs the plan once and returns its extent; stops early when
+// keep_going (if given) returns false.
+RunExtent survey(const solver::Model& model, solver::Method& method, const FramePlan& plan,
+                 const std::function<bool()>& keep_going = {});
+
+// Largest |displacement| of a snapshot, and its axial stresses per piece and element.
+double largest_displacement(const solver::Snapshot& snapshot);
+std::vector<std::vector<double>> piece_stresses(const solver::Model& model,
+                                                const solver::Snapshot& snapshot);
+
+}  // namespace fetic::render

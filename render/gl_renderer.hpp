@@ -1,0 +1,43 @@
+#pragma once
+// Draws draw lists with OpenGL 3.3 core: one vertex buffer, one shader (vertex colour
+// times the font atlas, whose white texel serves solid triangles), into a 4x multisampled
+// frame buffer object that is resolved before it is read back. Works in any current
+// context (EGL headless or a window).
+
+#include <cstdint>
+#include <vector>
+
+#include "render/draw_list.hpp"
+#include "render/font.hpp"
+#include "render/gl_context.hpp"
+#include "render/image.hpp"
+
+namespace fetic::render {
+
+class GlRenderer {
+ public:
+  // The context must be current; the font atlas must outlive the renderer.
+  GlRenderer(GlContext& context, const FontAtlas& font);
+  ~GlRenderer();
+  GlRenderer(const GlRenderer&) = delete;
+  GlRenderer& operator=(const GlRenderer&) = delete;
+
+  // Draws the layers in order over the background and reads the pixels back (alpha 255).
+  Image render(int width, int height, const std::vector<const DrawList*>& layers, Color background);
+  int samples() const { return samples_; }
+
+ private:
+  void resize(int width, int height);
+  void release_targets();
+  void append(const DrawList& list, std::vector<TexturedVertex>& out) const;
+
+  GlContext& context_;
+  const FontAtlas& font_;
+  unsigned program_ = 0, vao_ = 0, vbo_ = 0, texture_ = 0;
+  unsigned msaa_fbo_ = 0, msaa_color_ = 0, resolve_fbo_ = 0, resolve_color_ = 0;
+  int viewport_location_ = -1;
+  int width_ = 0, height_ = 0, samples_ = 0;
+  std::vector<TexturedVertex> vertices_;
+};
+
+}  // namespace fetic::render

@@ -1,0 +1,35 @@
+#pragma once
+// How a solver state is shown: image size, magnification, what to colour by and which
+// layers to draw. Plain settings; the command line and the tests fill them in.
+
+namespace fetic::render {
+
+enum class ColorBy { Subdomain, Stress };
+
+struct View {
+  int width = 1280;
+  int height = 720;
+  // Displacements (and gaps, see magnify_gaps) are drawn this many times larger;
+  // 0 chooses a round factor from the largest displacement and gap of the run.
+  double magnification = 0.0;
+  // Draw gaps magnified like displacements, so that a closed contact is drawn closed and
+  // an open one open. Otherwise the tips of a closing contact would overlap on screen.
+  bool magnify_gaps = true;
+  ColorBy color_by = ColorBy::Subdomain;
+  bool show_supports = true;
+  bool show_loads = true;
+  bool show_gaps = true;
+  bool show_contacts = true;  // red circles at active contact pairs
+  bool show_forces = true;    // contact force glyphs scaled by lambda
+  bool show_overlay = true;   // title, method, iteration, residual, plots
+  float bar_width = 0.0f;     // on-screen width of bars in pixels; 0: from the image size
+};
+
+// Text height in pixels that suits an image of this size.
+inline float base_text_size(int width, int height) {
+  const int smaller = width * 9 < height * 16 ? width * 9 / 16 : height;
+  const float size = static_cast<float>(smaller) / 48.0f;
+  return size < 10.0f ? 10.0f : (size > 18.0f ? 18.0f : static_cast<float>(static_cast<int>(size)));
+}
+
+}  // namespace fetic::render

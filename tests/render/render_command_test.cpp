@@ -1,0 +1,169 @@
+// End to end: `fetic render` writes one complete PNG per iteration from the initial state,
+// identical run to run; `fetic figures` writes the figures; errors name the file and use
+// the documented exit statuses (including no EGL display and no ffmpeg).
+
+#include <catch2/catch.hpp>
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct Run {
+  int status = -1;
+  std::string output;
+};
+
+Run run(const std::string& arguments, const std::string& environment = "") {
+  // One log per process: the test cases run in parallel.
+  const std::string log =
+      (fs::temp_directory_path() / ("fetic_render_test_" + std::to_string(::getpid()) + ".txt"))
+          .string();
+  const std::string command =
+      environment + " " + std::string(FETIC_EXECUTABLE) + " " + arguments + " > " + log + " 2>&1";
+  const int raw = std::system(command.c_str());
+  Run result;
+  result.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+  std::ifstream in(log);
+  result.output.assign(std::istreambuf_iterator<char>(in), {});
+  return result;
+}
+
+std::string scene(const std::string& name) {
+  return std::string(FETIC_BUNDLED_SCENES_DIR) + "/" + name;
+}
+
+fs::path fresh_directory(const std::string& name) {
+  const fs::path directory = fs::temp_directory_path() / (name + "_" + std::to_string(::getpid()));
+  fs::remove_all(directory);
+  return directory;
+}
+
+std::string bytes(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), {}};
+}
+
+std::vector<std::string> files(const fs::path& directory) {
+  std::vector<std::string> names;
+  for (const auto& entry : fs::directory_iterator(directory))
+    names.push_back(entry.path().filename().string());
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+}  // namespace
+
+TEST_CASE("fetic render: the initial state and one frame per iteration, identical run to run") {
+  const fs::path first = fresh_directory("fetic_render_frames_1");
+  const fs::path second = fresh_directory("fetic_render_frames_2");
+  const std::string common = scene("thesis.toml") + " --method active-set --size 320x200 --out ";
+  const Run a = run("render " + common + first.string());
+  INFO(a.output);
+  REQUIRE(a.status == 0);
+  REQUIRE(run("render " + common + second.string()).status == 0);
+  const auto names = files(first);
+  // The active-set method takes 14 iterations on the thesis scene: 15 frames.
+  REQUIRE(names.size() == 15);
+  CHECK(names.front() == "frame_0000.png");
+  CHECK(names.back() == "frame_0014.png");
+  for (const std::string& name : names) {
+    const std::string png = bytes(first / name);
+    CHECK(png.substr(1, 3) == "PNG");  // complete files only: no temporaries left
+    CHECK(png == bytes(second / name));
+  }
+}
+
+TEST_CASE("fetic render: final state, load steps, stress colours") {
+  const fs::path final_only = fresh_directory("fetic_render_final");
+  CHECK(run("render " + scene("chain.toml") + " --method active-set --final --size 200x120 --out " +
+            final_only.string())
+            .status == 0);
+  CHECK(files(final_only) == std::vector<std::string>{"frame_0000.png"});
+
+  const fs::path steps = fresh_directory("fetic_render_steps");
+  const Run r =
+      run("render " + scene("chain.toml") +
+          " --method active-set --load-steps 0.25:1:4 --color stress --size 200x120 --out " +
+          steps.string());
+  INFO(r.output);
+  CHECK(r.status == 0);
+  CHECK(files(steps).size() == 4);
+}
+
+TEST_CASE("fetic render: errors name the file and use the documented statuses") {
+  const fs::path out = fresh_directory("fetic_render_errors");
+  const Run refused = run("render " + scene("thesis.toml") + " --method cg --out " + out.string());
+  CHECK(refused.status == 3);
+  CHECK_THAT(refused.output, Catch::Contains("thesis.toml: conjugate gradients"));
+
+  const Run missing = run("render no_such_scene.toml --out " + out.string());
+  CHECK(missing.status == 2);
+  CHECK_THAT(missing.output, Catch::Contains("no_such_scene.toml"));
+
+  CHECK(run("render " + scene("thesis.toml") + " --size 10x10 --out " + out.string()).status == 1);
+  CHECK(run("render " + scene("thesis.toml") + " --load-steps 1:2 --out " + out.string()).status ==
+        1);
+  CHECK(run("render " + scene("thesis.toml") + " --final --every-iteration --out " + out.string())
+            .status == 1);
+
+  const Run too_many = run("render " + scene("thesis.toml") +
+                           " --method active-set --max-frames 3 --out " + out.string());
+  CHECK(too_many.status == 1);
+  CHECK_THAT(too_many.output, Catch::Contains("--max-frames 3"));
+}
+
+TEST_CASE("fetic render: no EGL display is a clear error with status 6") {
+  // GLVND finds no EGL vendor library: as on a machine without Mesa's EGL.
+  const fs::path out = fresh_directory("fetic_render_no_display");
+  const Run r =
+      run("render " + scene("two_bars.toml") + " --method active-set --out " + out.string(),
+          "__EGL_VENDOR_LIBRARY_FILENAMES=/nonexistent/vendor.json");
+  CHECK(r.status == 6);
+  CHECK_THAT(r.output, Catch::Contains(out.string() + ": cannot render: no EGL display"));
+}
+
+TEST_CASE("fetic render --movie: an mp4 with ffmpeg, a clear message without it") {
+  const fs::path out = fresh_directory("fetic_render_movie");
+  const std::string movie = (out / "movie.mp4").string();
+  const std::string arguments = "render " + scene("two_bars.toml") +
+                                " --method active-set --size 96x64 --out " + out.string() +
+                                " --movie " + movie;
+  const Run without = run(arguments, "PATH=/nonexistent");
+  CHECK(without.status == 5);
+  CHECK_THAT(without.output, Catch::Contains(movie + ": ffmpeg is not installed"));
+  CHECK_FALSE(fs::exists(movie));
+
+  if (std::system("command -v ffmpeg > /dev/null 2>&1") != 0) {
+    WARN("ffmpeg is not installed here: the movie itself is not checked");
+    return;
+  }
+  const Run with = run(arguments);
+  INFO(with.output);
+  CHECK(with.status == 0);
+  REQUIRE(fs::exists(movie));
+  CHECK(fs::file_size(movie) > 1000);
+}
+
+TEST_CASE("fetic figures: figures by id, and the thesis scene named when it is missing") {
+  const fs::path out = fresh_directory("fetic_figures");
+  const Run r = run("figures --size 400x300 --figure 2.1 --figure 3.2 --out " + out.string());
+  INFO(r.output);
+  CHECK(r.status == 0);
+  CHECK(files(out) ==
+        std::vector<std::string>{"fig2_1_quadratic_forms.png", "fig3_2_steepest_descent.png"});
+
+  const Run missing =
+      run("figures --size 400x300 --figure 9.3 --scene no_thesis.toml --out " + out.string());
+  CHECK(missing.status == 2);
+  CHECK_THAT(missing.output, Catch::Contains("no_thesis.toml"));
+}

@@ -1,0 +1,203 @@
+// Turning solver states into draw lists, without GL: magnification and gap shifts, closed
+// contacts drawn closed, FETI pieces drawn apart until they agree, frames of a run.
+
+#include <catch2/catch.hpp>
+
+#include <cmath>
+
+#include "render/frame_sequence.hpp"
+#include "render/overlay.hpp"
+#include "render/scene_drawing.hpp"
+#include "render/scene_framing.hpp"
+#include "scenes/load_scene.hpp"
+#include "solver/method.hpp"
+
+using namespace fetic;
+using namespace fetic::render;
+
+namespace {
+
+struct Solved {
+  solver::Model model;
+  std::unique_ptr<solver::Method> method;
+  solver::Snapshot final;
+  RunExtent extent;
+};
+
+std::unique_ptr<Solved> solve(const std::string& scene_file, solver::MethodKind kind) {
+  auto solved = std::make_unique<Solved>();
+  solved->model = solver::build_model(
+      scenes::load_scene_file(std::string(FETIC_BUNDLED_SCENES_DIR) + "/" + scene_file));
+  solved->method = solver::make_method(kind, solved->model, {});
+  solved->extent = survey(solved->model, *solved->method, FramePlan{});
+  solved->final = solved->method->snapshot();
+  return solved;
+}
+
+View small_view() {
+  View view;
+  view.width = 400;
+  view.height = 300;
+  return view;
+}
+
+}  // namespace
+
+TEST_CASE("magnification: round numbers, the largest displacement or gap at 8% of the scene") {
+  CHECK(round_magnification(73.0) == 50.0);
+  CHECK(round_magnification(199.0) == 100.0);
+  CHECK(round_magnification(0.3) == 0.2);
+  CHECK(round_magnification(0.0) == 1.0);
+  const auto solved = solve("thesis.toml", solver::MethodKind::ActiveSet);
+  const double m = automatic_magnification(solved->model, solved->extent, true);
+  double largest_gap = 0.0;
+  for (const auto& pair : solved->model.pairs)
+    largest_gap = std::max(largest_gap, pair.gap);
+  const double raw = 0.08 * 4.9 / std::max(largest_gap, solved->extent.largest_displacement);
+  CHECK(m == round_magnification(raw));
+}
+
+TEST_CASE("gap shifts widen every contact's gap by the magnification") {
+  const auto solved = solve("chain.toml", solver::MethodKind::ActiveSet);
+  const double m = 40.0;
+  const auto offsets = gap_offsets(solved->model, m);
+  for (const auto& pair : solved->model.pairs) {
+    const double widened = (offsets[pair.strut_b] - offsets[pair.strut_a]).dot(pair.normal);
+    CHECK(widened == Approx((m - 1.0) * pair.gap));
+  }
+  // The clamped strut a group starts from stays in place.
+  CHECK(offsets[0].norm() == 0.0);
+}
+
+TEST_CASE("closed contacts are drawn closed, open ones as wide as m times their gap") {
+  const auto solved = solve("thesis.toml", solver::MethodKind::ActiveSet);
+  const View view = small_view();
+  const SceneFraming framing = frame_scene(solved->model, view, solved->extent, scene_region(view));
+  const auto displacements = solver::strut_displacements(solved->model, solved->final);
+  const auto marks = contact_marks(solved->model, solved->final, framing);
+  REQUIRE(marks.size() == solved->model.pairs.size());
+  int active = 0;
+  for (const ContactMark& mark : marks) {
+    const auto& pair = solved->model.pairs[static_cast<std::size_t>(mark.pair)];
+    const double closing =
+        (displacements[pair.strut_a][pair.node_a] - displacements[pair.strut_b][pair.node_b])
+            .dot(pair.normal);
+    const double drawn_gap = framing.magnification * (pair.gap - closing) * framing.pixels_per_unit;
+    CHECK(length(mark.b - mark.a) == Approx(drawn_gap).margin(0.05));
+    if (mark.active) {
+      ++active;
+      CHECK(length(mark.b - mark.a) < 0.05f);
+      CHECK(mark.force > 0.0);
+    }
+  }
+  CHECK(active == solved->final.active_set_size());
+  CHECK(active > 0);
+}
+
+TEST_CASE("the pieces of a strut are drawn where each puts the shared node: torn apart") {
+  const auto solved = solve("two_bars.toml", solver::MethodKind::ActiveSet);
+  // Split the left strut's single piece into two that disagree at node 2.
+  solver::Snapshot torn = solved->final;
+  const solver::Piece whole = torn.pieces[0];
+  REQUIRE(whole.box.i1 >= 2);
+  solver::Piece first = whole, second = whole;
+  first.box.i1 = 2;
+  first.displacement.resize(3);
+  second.box.i0 = 2;
+  second.displacement.assign(whole.displacement.begin() + 2, whole.displacement.end());
+  second.displacement[0] += solver::Vec2(2e-4, 0.0);
+  torn.pieces[0] = first;
+  torn.pieces.push_back(second);
+
+  const View view = small_view();
+  const SceneFraming framing = frame_scene(solved->model, view, solved->extent, scene_region(view));
+  const auto nodes = piece_outline_nodes(solved->model, torn, framing);
+  const Point end_of_first = nodes[0].back();
+  const Point start_of_second = nodes.back().front();
+  CHECK(length(start_of_second - end_of_first) ==
+        Approx(framing.magnification * 2e-4 * framing.pixels_per_unit).epsilon(1e-4));
+
+  // Once they agree, the ends meet.
+  torn.pieces.back().displacement[0] -= solver::Vec2(2e-4, 0.0);
+  const auto agreed = piece_outline_nodes(solved->model, torn, framing);
+  CHECK(length(agreed.back().front() - agreed[0].back()) < 1e-3f);
+}
+
+TEST_CASE("a scene stays inside its region and its layers follow the view") {
+  const auto solved = solve("chain.toml", solver::MethodKind::ActiveSet);
+  View view = small_view();
+  view.color_by = ColorBy::Stress;
+  const Rect region = scene_region(view);
+  const SceneFraming framing = frame_scene(solved->model, view, solved->extent, region);
+  const DrawList list = draw_scene(solved->model, solved->final, view, framing);
+  for (const Vertex& v : list.vertices()) {
+    CHECK(v.position.x >= region.x0 - 1.0f);
+    CHECK(v.position.x <= region.x1 + 1.0f);
+    CHECK(v.position.y >= region.y0 - 1.0f);
+    CHECK(v.position.y <= region.y1 + 1.0f);
+  }
+  bool legend = false, magnification = false;
+  for (const TextItem& text : list.texts()) {
+    legend = legend || text.text.rfind("axial stress [", 0) == 0;
+    magnification = magnification || text.text.find("×") != std::string::npos;
+  }
+  CHECK(legend);
+  CHECK(magnification);
+
+  View bare = view;
+  bare.show_loads = bare.show_supports = bare.show_gaps = bare.show_contacts = bare.show_forces =
+      false;
+  CHECK(draw_scene(solved->model, solved->final, bare, framing).triangle_count() <
+        list.triangle_count());
+}
+
+TEST_CASE("frames: the initial state and one per iteration; load steps one per step") {
+  const solver::Model model = solver::build_model(
+      scenes::load_scene_file(std::string(FETIC_BUNDLED_SCENES_DIR) + "/thesis.toml"));
+  const auto method = solver::make_method(solver::MethodKind::ActiveSet, model, {});
+  std::vector<int> iterations;
+  const int count = run_frames(*method, FramePlan{}, [&](const Frame& frame) {
+    CHECK(frame.index == static_cast<int>(iterations.size()));
+    CHECK(frame.history.size() == static_cast<std::size_t>(frame.snapshot.iteration + 1));
+    iterations.push_back(frame.snapshot.iteration);
+    return true;
+  });
+  CHECK(count == static_cast<int>(method->history().size()));
+  CHECK(iterations.front() == 0);
+  CHECK(iterations.back() == method->iteration());
+
+  const auto factors = load_steps(0.2, 1.0, 5);
+  REQUIRE(factors.size() == 5);
+  CHECK(factors[1] == Approx(0.4));
+  CHECK(factors.back() == 1.0);
+  FramePlan steps;
+  steps.load_factors = factors;
+  steps.every_iteration = false;
+  std::vector<double> seen;
+  CHECK(run_frames(*method, steps, [&](const Frame& frame) {
+          CHECK(frame.snapshot.status == solver::Status::Converged);
+          seen.push_back(frame.snapshot.load_factor);
+          return true;
+        }) == 5);
+  CHECK(seen == factors);
+  CHECK(run_frames(*method, FramePlan{}, [](const Frame&) { return false; }) == 1);  // stops
+}
+
+TEST_CASE("the overlay names method, iteration, residual and active set") {
+  const auto solved = solve("thesis.toml", solver::MethodKind::ActiveSet);
+  const View view = small_view();
+  const DrawList overlay = draw_overlay({"Thesis", "active-set", ""}, solved->model, solved->final,
+                                        solved->method->history(), solved->extent, view);
+  std::string all;
+  for (const TextItem& text : overlay.texts())
+    all += text.text + "|";
+  CHECK_THAT(all, Catch::Contains("active-set|"));
+  CHECK_THAT(all, Catch::Contains("|" + std::to_string(solved->final.iteration) + "|"));
+  CHECK_THAT(all, Catch::Contains(std::to_string(solved->final.active_set_size()) + " of 50|"));
+  CHECK_THAT(all, Catch::Contains("relative residual"));
+  CHECK_THAT(all, Catch::Contains("converged"));
+  const Rect panel = overlay_panel(view);
+  const Rect around{panel.x0 - 1.0f, panel.y0 - 1.0f, panel.x1 + 1.0f, panel.y1 + 1.0f};
+  for (const Vertex& v : overlay.vertices())
+    CHECK(around.contains(v.position));
+}
