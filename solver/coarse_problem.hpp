@@ -43,6 +43,7 @@ class CoarseProblem {
   Eigen::VectorXd amplitudes(const Eigen::VectorXd& r) const;  // (G^ G^')^+ G^ r
 
   const std::vector<UnheldGroup>& unheld() const { return unheld_; }
+  std::size_t factor_memory() const { return factor_.peak_memory(); }
 
  private:
   void find_unheld_groups();

@@ -19,6 +19,10 @@ class FetiMethod : public Method {
  public:
   Snapshot snapshot() const override;
   const FetiSystem& system() const { return system_; }
+  // Bytes CHOLMOD holds at its peak for the subdomain, preconditioner and coarse factors.
+  std::size_t factor_memory() const {
+    return system_.factor_memory() + preconditioner_.factor_memory() + coarse_.factor_memory();
+  }
 
  protected:
   FetiMethod(const Model& model, const SolveOptions& options, int default_max_iterations);

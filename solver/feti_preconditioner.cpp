@@ -100,6 +100,13 @@ FetiPreconditioner::FetiPreconditioner(const FetiSystem& system, Preconditioner 
   y_.resize(offset);
 }
 
+std::size_t FetiPreconditioner::factor_memory() const {
+  std::size_t total = 0;
+  for (const Local& local : local_)
+    total += local.K_ii.peak_memory();
+  return total;
+}
+
 void FetiPreconditioner::apply(const Eigen::VectorXd& w, const std::vector<char>* mask,
                                Eigen::VectorXd& z) const {
   const int rows = static_cast<int>(w.size());

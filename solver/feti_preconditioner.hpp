@@ -27,6 +27,7 @@ class FetiPreconditioner {
   FetiPreconditioner(const FetiSystem& system, Preconditioner kind, bool scaled);
 
   Preconditioner kind() const { return kind_; }
+  std::size_t factor_memory() const;  // CHOLMOD's peak for the interior factors, bytes
   // z = M^-1 w, using and producing only rows with mask[r] != 0 (all rows without a mask).
   void apply(const Eigen::VectorXd& w, const std::vector<char>* mask, Eigen::VectorXd& z) const;
 

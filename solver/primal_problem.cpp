@@ -27,7 +27,7 @@ std::string singular_message(const Model& model, int strut, CholmodFactor::Resul
   }
 }
 
-PrimalProblem::PrimalProblem(const Model& model) : model_(model) {
+PrimalProblem::PrimalProblem(const Model& model, bool factorize_blocks) : model_(model) {
   const int strut_count = static_cast<int>(model.struts.size());
   // Free DOFs per strut, numbered strut by strut.
   std::vector<std::vector<int>> global_of(strut_count);
@@ -83,9 +83,11 @@ PrimalProblem::PrimalProblem(const Model& model) : model_(model) {
     } else {
       block.kernel.resize(block.size, 0);
     }
-    const CholmodFactor::Result result = block.inverse.factorize(Ks, block.kernel);
-    if (result != CholmodFactor::Result::Ok || block.inverse.rcond() < kSingularRcond)
-      throw SolverError(singular_message(model, block.strut, result, "the strut"));
+    if (factorize_blocks) {
+      const CholmodFactor::Result result = block.inverse.factorize(Ks, block.kernel);
+      if (result != CholmodFactor::Result::Ok || block.inverse.rcond() < kSingularRcond)
+        throw SolverError(singular_message(model, block.strut, result, "the strut"));
+    }
     for (int j = 0; j < block.size; ++j)
       f_(block.offset + j) = model.loads[block.strut](block.strut_dofs[j]);
   }

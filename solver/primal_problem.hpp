@@ -30,7 +30,9 @@ struct StrutBlock {
 
 class PrimalProblem {
  public:
-  explicit PrimalProblem(const Model& model);  // throws SolverError for a singular strut
+  // Assembles and (unless factorize_blocks is false) factorizes every strut block;
+  // throws SolverError for a singular strut.
+  explicit PrimalProblem(const Model& model, bool factorize_blocks = true);
 
   int size() const { return size_; }
   const SparseMatrix& stiffness() const { return K_; }

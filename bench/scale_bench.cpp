@@ -1,0 +1,324 @@
+// fetic-bench-scale: FETI-C on generated plane scenes up to a million unknowns, every
+// figure a ratio measured in the same run:
+//   1. against the direct floor (one CHOLMOD solve with FETI-C's final working set
+//      imposed as equalities), the primal active-set method and Ipopt;
+//   2. numerical scalability: iterations as the number of subdomains grows 16 times at
+//      fixed H/h, and as h shrinks at fixed H, for each preconditioner;
+//   3. memory: FETI-C's factors against the CHOLMOD factor of the whole problem.
+// Tables are printed and written as CSV. `--preset quick` runs in about a minute.
+
+#include <sys/resource.h>
+
+#include <chrono>
+#include <cstdio>
+#include <fstream>
+#include <functional>
+#include <iostream>
+#include <memory>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+#include "bench/ipopt_qp.hpp"
+#include "scenes/generate_scene.hpp"
+#include "solver/direct_floor.hpp"
+#include "solver/feti_method.hpp"
+#include "solver/method.hpp"
+#include "solver/primal_problem.hpp"
+
+namespace fetic::bench {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+std::string fixed(double value, int digits = 2) {
+  char buffer[48];
+  std::snprintf(buffer, sizeof buffer, "%.*f", digits, value);
+  return buffer;
+}
+
+std::string scientific(double value) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.1e", value);
+  return buffer;
+}
+
+std::string megabytes(std::size_t bytes) {
+  return fixed(bytes / 1048576.0, 1);
+}
+
+// A printed table that is also written as CSV.
+struct Table {
+  std::string name;
+  std::vector<std::string> header;
+  std::vector<std::vector<std::string>> rows;
+
+  void print() const {
+    std::vector<size_t> width(header.size());
+    for (size_t c = 0; c < header.size(); ++c)
+      width[c] = header[c].size();
+    for (const auto& row : rows)
+      for (size_t c = 0; c < row.size(); ++c)
+        width[c] = std::max(width[c], row[c].size());
+    std::cout << "\n" << name << "\n";
+    auto line = [&](const std::vector<std::string>& cells) {
+      std::cout << "|";
+      for (size_t c = 0; c < cells.size(); ++c)
+        std::cout << " " << cells[c] << std::string(width[c] - cells[c].size(), ' ') << " |";
+      std::cout << "\n";
+    };
+    line(header);
+    std::cout << "|";
+    for (size_t w : width)
+      std::cout << std::string(w + 2, '-') << "|";
+    std::cout << "\n";
+    for (const auto& row : rows)
+      line(row);
+    std::cout.flush();
+  }
+  void write_csv(const std::string& directory, const std::string& file) const {
+    if (directory.empty()) return;
+    std::ofstream out(directory + "/" + file);
+    auto write = [&](const std::vector<std::string>& cells) {
+      for (size_t c = 0; c < cells.size(); ++c)
+        out << (c ? "," : "") << cells[c];
+      out << "\n";
+    };
+    write(header);
+    for (const auto& row : rows)
+      write(row);
+  }
+};
+
+struct FetiRun {
+  int iterations = 0;
+  bool converged = false;
+  double setup = 0.0, solve = 0.0;
+  std::size_t memory = 0;
+  solver::Snapshot state;
+  double total() const { return setup + solve; }
+};
+
+FetiRun run_feti_c(const solver::Model& model, solver::Preconditioner preconditioner) {
+  FetiRun run;
+  solver::SolveOptions options;
+  options.preconditioner = preconditioner;
+  auto start = Clock::now();
+  auto method = solver::make_method(solver::MethodKind::FetiC, model, options);
+  run.setup = seconds_since(start);
+  start = Clock::now();
+  method->start(1.0);
+  solver::run_to_end(*method);
+  run.solve = seconds_since(start);
+  run.iterations = method->iteration();
+  run.converged = method->status() == solver::Status::Converged;
+  run.state = method->snapshot();
+  run.memory = dynamic_cast<const solver::FetiMethod&>(*method).factor_memory();
+  return run;
+}
+
+double error_against(const solver::Model& model, const std::vector<solver::Piece>& pieces,
+                     const std::vector<solver::Piece>& reference) {
+  solver::Snapshot a, b;
+  a.pieces = pieces;
+  b.pieces = reference;
+  return solver::relative_error(solver::strut_displacements(model, a),
+                                solver::strut_displacements(model, b));
+}
+
+scenes::GenerateOptions plane(int pairs, int ex, int ey, int sx, int sy) {
+  scenes::GenerateOptions o;
+  o.model = scenes::ModelKind::Plane;
+  o.pairs = pairs;
+  o.elements = ex;
+  o.elements_across = ey;
+  o.subdomains = sx;
+  o.subdomains_across = sy;
+  return o;
+}
+
+std::string describe(const scenes::GenerateOptions& o) {
+  return std::to_string(o.pairs) + "x(" + std::to_string(o.elements) + "x" +
+         std::to_string(o.elements_across) + " el, " + std::to_string(o.subdomains) + "x" +
+         std::to_string(o.subdomains_across) + " sub)";
+}
+
+struct Args {
+  std::string preset = "quick";
+  std::string csv_dir;
+  bool skip_active_set_above_limit = true;
+};
+
+Table comparison_table(const std::vector<scenes::GenerateOptions>& sizes, long long ipopt_limit,
+                       long long active_set_limit) {
+  Table table{
+      "1. FETI-C (Dirichlet) against the direct floor, the active-set method and Ipopt "
+      "(times in seconds; ratios = other / FETI-C; error = relative displacement "
+      "error against the floor)",
+      {"scene", "unknowns", "subdomains", "contact pairs", "FETI-C iter", "FETI-C s", "floor s",
+       "FETI-C/floor", "active-set s", "AS/FETI-C", "Ipopt s", "Ipopt/FETI-C", "FETI-C err",
+       "Ipopt err"},
+      {}};
+  for (const auto& options : sizes) {
+    const scenes::Scene scene = scenes::generate_scene(options);
+    const solver::Model model = solver::build_model(scene);
+    const FetiRun feti = run_feti_c(model, solver::Preconditioner::Dirichlet);
+    const solver::FloorSolution floor =
+        solver::solve_with_working_set(model, 1.0, feti.state.in_working_set);
+    std::vector<std::string> row{describe(options),
+                                 std::to_string(model.dof_count()),
+                                 std::to_string(feti.state.pieces.size()),
+                                 std::to_string(model.pairs.size()),
+                                 std::to_string(feti.iterations) + (feti.converged ? "" : "!"),
+                                 fixed(feti.total()),
+                                 fixed(floor.total_seconds()),
+                                 fixed(feti.total() / floor.total_seconds())};
+    if (model.dof_count() <= active_set_limit) {
+      const auto start = Clock::now();
+      auto method = solver::make_method(solver::MethodKind::ActiveSet, model, {});
+      method->start(1.0);
+      solver::run_to_end(*method);
+      const double seconds = seconds_since(start);
+      row.push_back(fixed(seconds) + " (" + std::to_string(method->iteration()) + " it)");
+      row.push_back(fixed(seconds / feti.total(), 1));
+    } else {
+      row.insert(row.end(), {"-", "-"});
+    }
+    std::string ipopt_error = "-";
+    if (model.dof_count() <= ipopt_limit) {
+      const IpoptResult ipopt = solve_with_ipopt(model, 1.0, 1e-10);
+      const solver::PrimalProblem problem(model, false);
+      if (ipopt.u.size() == problem.size())
+        ipopt_error = scientific(error_against(model, problem.pieces(ipopt.u), floor.pieces));
+      row.push_back(fixed(ipopt.seconds) + " (" + std::to_string(ipopt.iterations) + " it" +
+                    (ipopt.solved ? "" : ", " + ipopt.status) + ")");
+      row.push_back(fixed(ipopt.seconds / feti.total(), 1));
+    } else {
+      row.insert(row.end(), {"-", "-"});
+    }
+    row.push_back(scientific(error_against(model, feti.state.pieces, floor.pieces)));
+    row.push_back(ipopt_error);
+    table.rows.push_back(row);
+    table.print();
+  }
+  return table;
+}
+
+Table scalability_table(const std::string& title,
+                        const std::vector<scenes::GenerateOptions>& sizes) {
+  Table table{
+      title,
+      {"scene", "unknowns", "subdomains", "H/h", "dirichlet", "lumped", "none", "dirichlet s"},
+      {}};
+  for (const auto& options : sizes) {
+    const scenes::Scene scene = scenes::generate_scene(options);
+    const solver::Model model = solver::build_model(scene);
+    std::vector<std::string> row{
+        describe(options), std::to_string(model.dof_count()),
+        std::to_string(options.pairs * 2 * options.subdomains * options.subdomains_across),
+        std::to_string(options.elements / options.subdomains)};
+    double seconds = 0.0;
+    for (solver::Preconditioner p :
+         {solver::Preconditioner::Dirichlet, solver::Preconditioner::Lumped,
+          solver::Preconditioner::None}) {
+      const FetiRun run = run_feti_c(model, p);
+      row.push_back(std::to_string(run.iterations) + (run.converged ? "" : "!"));
+      if (p == solver::Preconditioner::Dirichlet) seconds = run.total();
+    }
+    row.push_back(fixed(seconds));
+    table.rows.push_back(row);
+  }
+  table.print();
+  return table;
+}
+
+Table memory_table(const std::vector<scenes::GenerateOptions>& sizes) {
+  Table table{
+      "3. Memory: CHOLMOD's peak for FETI-C's factors (subdomains, Dirichlet interiors, "
+      "coarse) against the factor of the whole problem (MB)",
+      {"scene", "unknowns", "FETI-C MB", "floor factor MB", "ratio", "floor factor nnz"},
+      {}};
+  for (const auto& options : sizes) {
+    const scenes::Scene scene = scenes::generate_scene(options);
+    const solver::Model model = solver::build_model(scene);
+    const FetiRun feti = run_feti_c(model, solver::Preconditioner::Dirichlet);
+    const solver::FloorSolution floor =
+        solver::solve_with_working_set(model, 1.0, feti.state.in_working_set);
+    table.rows.push_back({describe(options), std::to_string(model.dof_count()),
+                          megabytes(feti.memory), megabytes(floor.factor_memory),
+                          fixed(static_cast<double>(feti.memory) / floor.factor_memory),
+                          std::to_string(floor.factor_nonzeros)});
+  }
+  table.print();
+  return table;
+}
+
+std::string machine() {
+  std::ifstream cpuinfo("/proc/cpuinfo");
+  std::string line, model = "unknown CPU";
+  while (std::getline(cpuinfo, line))
+    if (line.rfind("model name", 0) == 0) {
+      model = line.substr(line.find(':') + 2);
+      break;
+    }
+  return model + ", " + std::to_string(std::thread::hardware_concurrency()) + " threads";
+}
+
+int run(const Args& args) {
+  const bool full = args.preset == "full";
+  std::cout << "fetic-bench-scale, preset " << args.preset << ", machine: " << machine() << "\n";
+  // 1. comparison: ~10k, ~100k and (full) ~1M unknowns; square elements, ~square subdomains.
+  std::vector<scenes::GenerateOptions> sizes{plane(4, 40, 10, 4, 1), plane(5, 100, 24, 5, 1)};
+  if (full) sizes.push_back(plane(25, 200, 48, 10, 2));
+  const Table comparison = comparison_table(sizes, 120'000, full ? 1'200'000 : 120'000);
+  comparison.write_csv(args.csv_dir, "comparison.csv");
+
+  // 2. numerical scalability.
+  const int step = full ? 16 : 8;  // elements per subdomain side (H/h)
+  std::vector<scenes::GenerateOptions> more_subdomains{plane(2, 2 * step, step, 2, 1),
+                                                       plane(2, 4 * step, 2 * step, 4, 2),
+                                                       plane(2, 8 * step, 4 * step, 8, 4)};
+  const Table scale_h = scalability_table(
+      "2a. Iterations as the subdomains grow 16 times at fixed H/h", more_subdomains);
+  scale_h.write_csv(args.csv_dir, "subdomains.csv");
+  std::vector<scenes::GenerateOptions> finer{plane(2, 8, 4, 4, 2), plane(2, 16, 8, 4, 2),
+                                             plane(2, 32, 16, 4, 2)};
+  if (full) finer.push_back(plane(2, 64, 32, 4, 2));
+  const Table scale_small_h =
+      scalability_table("2b. Iterations as h shrinks at fixed H (4x2 subdomains per strut)", finer);
+  scale_small_h.write_csv(args.csv_dir, "refinement.csv");
+
+  // 3. memory.
+  std::vector<scenes::GenerateOptions> memory{plane(5, 100, 24, 5, 1)};
+  if (full) memory.push_back(plane(25, 200, 48, 10, 2));
+  memory_table(memory).write_csv(args.csv_dir, "memory.csv");
+
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  std::cout << "\npeak resident memory of this run: " << usage.ru_maxrss / 1024 << " MB\n";
+  return 0;
+}
+
+}  // namespace
+}  // namespace fetic::bench
+
+int main(int argc, char** argv) {
+  CLI::App app{
+      "fetic-bench-scale: FETI-C at scale against the direct floor, the active-set "
+      "method and Ipopt"};
+  fetic::bench::Args args;
+  app.add_option("--preset", args.preset, "quick (about a minute) or full (about 1M unknowns)")
+      ->check(CLI::IsMember({"quick", "full"}))
+      ->capture_default_str();
+  app.add_option("--csv-dir", args.csv_dir, "Write every table as CSV into this directory")
+      ->check(CLI::ExistingDirectory);
+  CLI11_PARSE(app, argc, argv);
+  return fetic::bench::run(args);
+}

@@ -1,0 +1,28 @@
+#pragma once
+// Generated test scenes of any size: `pairs` pairs of opposing struts in the spirit of
+// the thesis' problem. Left struts are clamped at their left ends; right struts are
+// clamped at their right ends and pushed toward the left ones; gaps, loads and
+// stiffnesses vary from pair to pair (deterministically, from a seed). In the plane
+// model the left struts are also bent across their axis, so that their end faces close
+// over only part of the height.
+
+#include <cstdint>
+
+#include "scenes/scene.hpp"
+
+namespace fetic::scenes {
+
+struct GenerateOptions {
+  ModelKind model = ModelKind::Plane;
+  int pairs = 10;
+  int elements = 32;          // along each strut
+  int elements_across = 8;    // plane model
+  int subdomains = 4;         // along each strut
+  int subdomains_across = 1;  // plane model
+  std::uint32_t seed = 1;
+};
+
+// Throws std::invalid_argument for options that would give an invalid scene.
+Scene generate_scene(const GenerateOptions& options);
+
+}  // namespace fetic::scenes
