@@ -147,6 +147,8 @@ int run_bench(const BenchArgs& args) {
                 n / serial.total);
     std::printf("%d encoder threads  %.2f frames/s (rendering on the main thread)\n", threads,
                 n / pooled.total);
+    std::printf("             (rendering on the main thread took %.2f ms per frame meanwhile)\n",
+                ms(pooled.compose + pooled.render));
     std::printf("speed-up     %.2fx\n", serial.total / pooled.total);
   } catch (const OutputError& error) {
     std::cerr << error.what() << '\n';

@@ -191,7 +191,7 @@ int run_render(const RenderArgs& args) {
       model.title.empty() ? std::filesystem::path(args.scene).filename().string() : model.title;
   info.method = args.method;
   if (kind == solver::MethodKind::Feti || kind == solver::MethodKind::FetiC)
-    info.method += ", " + args.preconditioner + " preconditioner";
+    info.method += " (" + args.preconditioner + ")";
   const render::FrameComposer composer(model, view, extent, info,
                                        static_cast<int>(plan.load_factors.size()));
 

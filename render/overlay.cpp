@@ -47,7 +47,11 @@ DrawList draw_overlay(const OverlayInfo& info, const solver::Model& model,
   const float key_width = estimated_text_width("load factor", row_size) + 0.6f * t;
   const auto row = [&](const std::string& key, const std::string& value, Color color) {
     list.text(key, {x0, y}, row_size, palette::muted);
-    list.text(value, {x0 + key_width, y}, row_size, color);
+    // A value too long for the panel is set smaller rather than spill over its edge.
+    const float room = x1 - x0 - key_width;
+    const float width = estimated_text_width(value, row_size);
+    const float size = width > room ? std::max(0.7f * row_size, row_size * room / width) : row_size;
+    list.text(value, {x0 + key_width, y + 0.5f * (row_size - size)}, size, color);
     y += 1.3f * row_size;
   };
   row("method", info.method, palette::ink);

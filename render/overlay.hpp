@@ -17,7 +17,7 @@ namespace fetic::render {
 
 struct OverlayInfo {
   std::string title;
-  std::string method;     // e.g. "feti-c, Dirichlet preconditioner"
+  std::string method;     // e.g. "feti-c (dirichlet)"
   std::string load_step;  // e.g. "step 3 of 10"; empty for a single load factor
 };
 

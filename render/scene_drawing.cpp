@@ -189,7 +189,7 @@ void draw_stress_legend(DrawList& list, const SceneFraming& framing) {
   const Rect& region = framing.region;
   const float width = std::min(13.0f * text, 0.4f * region.width());
   const float height = 0.7f * text;
-  const float x0 = region.x0 + text, y1 = region.y1 - 1.4f * text;
+  const float x0 = region.x0 + 2.2f * text, y1 = region.y1 - 1.4f * text;
   const float y0 = y1 - height;
   constexpr int kSteps = 48;
   for (int j = 0; j < kSteps; ++j) {

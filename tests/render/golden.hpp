@@ -15,7 +15,7 @@
 namespace fetic::testing {
 
 inline constexpr int kChannelThreshold = 24;
-inline constexpr double kMaxDifferingFraction = 0.003;
+inline constexpr double kMaxDifferingFraction = 0.001;
 
 struct Comparison {
   bool same_size = false;

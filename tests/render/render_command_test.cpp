@@ -83,6 +83,31 @@ TEST_CASE("fetic render: the initial state and one frame per iteration, identica
   }
 }
 
+TEST_CASE("fetic render --method feti-c: one frame per FETI-C iteration, identical run to run") {
+  // The iteration count comes from `fetic solve`: the renderer drives the same stepper.
+  const fs::path json =
+      fs::temp_directory_path() / ("fetic_render_feti_c_" + std::to_string(::getpid()) + ".json");
+  REQUIRE(run("solve " + scene("thesis.toml") + " --method feti-c --quiet --json " + json.string())
+              .status == 0);
+  const std::string result = bytes(json);
+  const auto at = result.find("\"iterations\":");
+  REQUIRE(at != std::string::npos);
+  const int iterations = std::stoi(result.substr(at + 13));
+  fs::remove(json);
+
+  const fs::path first = fresh_directory("fetic_render_feti_c_1");
+  const fs::path second = fresh_directory("fetic_render_feti_c_2");
+  const std::string common = scene("thesis.toml") + " --method feti-c --size 256x160 --out ";
+  const Run a = run("render " + common + first.string());
+  INFO(a.output);
+  REQUIRE(a.status == 0);
+  REQUIRE(run("render " + common + second.string()).status == 0);
+  const auto names = files(first);
+  CHECK(names.size() == static_cast<std::size_t>(iterations + 1));
+  for (const std::string& name : names)
+    CHECK(bytes(first / name) == bytes(second / name));
+}
+
 TEST_CASE("fetic render: final state, load steps, stress colours") {
   const fs::path final_only = fresh_directory("fetic_render_final");
   CHECK(run("render " + scene("chain.toml") + " --method active-set --final --size 200x120 --out " +
