@@ -17,6 +17,7 @@
 #include "app/commands.hpp"
 #include "app/exit_codes.hpp"
 #include "app/interrupt.hpp"
+#include "app/method_options.hpp"
 #include "app/render_output.hpp"
 #include "app/scene_input.hpp"
 #include "render/colormap.hpp"
@@ -32,15 +33,10 @@ namespace {
 struct RenderArgs {
   std::string scene;
   std::string out;
-  std::string method = "feti-c";
-  std::string preconditioner = "dirichlet";
-  double tolerance = 1e-10;
-  int max_iterations = 0;
+  MethodArgs method;  // --method, --preconditioner, --tol, --load-factor, --load-steps, ...
   std::string size = "1280x720";
   bool every_iteration = false;
   bool final_only = false;
-  double load_factor = 1.0;
-  std::string load_steps;
   std::string movie;
   int fps = 8;
   double magnification = 0.0;
@@ -49,14 +45,6 @@ struct RenderArgs {
   int max_frames = 2000;
   int threads = 0;
 };
-
-// "a:b:n" with finite a, b and n >= 1.
-bool parse_load_steps(const std::string& text, double& a, double& b, int& n) {
-  char colon1 = 0, colon2 = 0, extra = 0;
-  return std::sscanf(text.c_str(), "%lf%c%lf%c%d%c", &a, &colon1, &b, &colon2, &n, &extra) == 5 &&
-         colon1 == ':' && colon2 == ':' && std::isfinite(a) && std::isfinite(b) && n >= 1 &&
-         n <= 100000;
-}
 
 bool program_on_path(const std::string& name) {
   const char* path = std::getenv("PATH");
@@ -135,33 +123,24 @@ int run_render(const RenderArgs& args) {
   const ImageSize size = *parse_image_size(args.size);
 
   render::FramePlan plan;
-  if (!args.load_steps.empty()) {
-    double a = 0, b = 0;
-    int n = 0;
-    if (!parse_load_steps(args.load_steps, a, b, n)) {
-      std::cerr << "--load-steps: expected a:b:n (from, to, count >= 1), got " << args.load_steps
-                << '\n';
-      return kExitUsage;
-    }
-    plan.load_factors = render::load_steps(a, b, n);
-    plan.every_iteration = args.every_iteration;  // one frame per step unless asked
-  } else {
-    plan.load_factors = {args.load_factor};
-    plan.every_iteration = !args.final_only;
-  }
+  plan.load_factors = args.method.load_factors();
+  // One frame per load step unless every iteration is asked for; one load factor: every
+  // iteration unless --final.
+  plan.every_iteration = args.method.load_steps.empty() ? !args.final_only : args.every_iteration;
 
-  solver::SolveOptions options;
-  options.tolerance = args.tolerance;
-  options.max_iterations = args.max_iterations;
-  options.preconditioner = *solver::parse_preconditioner(args.preconditioner);
-  const solver::MethodKind kind = *solver::parse_method(args.method);
+  const solver::MethodKind kind = args.method.kind();
+  const std::string& method_name = args.method.method;
   std::unique_ptr<solver::Method> method;
   try {
-    method = solver::make_method(kind, model, options);
+    method = solver::make_method(kind, model, args.method.options());
   } catch (const solver::SolverError& error) {
     std::cerr << args.scene << ": " << error.what() << '\n';
     return kExitSolverSetup;
   }
+  // Before the (possibly long) survey: the output directory and a display must exist.
+  if (!make_output_directory(args.out)) return kExitOutput;
+  auto headless = open_headless(args.out);
+  if (!headless) return kExitNoDisplay;
 
   // Survey pass: the same deterministic run, for fixed scales and the frame count.
   const render::RunExtent extent =
@@ -171,15 +150,11 @@ int run_render(const RenderArgs& args) {
     return kExitInterrupted;
   }
   if (extent.frame_count > args.max_frames) {
-    std::cerr << args.scene << ": " << extent.frame_count << " frames (" << args.method << " takes "
+    std::cerr << args.scene << ": " << extent.frame_count << " frames (" << method_name << " takes "
               << extent.largest_iteration << " iterations) is more than --max-frames "
               << args.max_frames << "; raise it, or render --final or fewer --load-steps\n";
     return kExitUsage;
   }
-  if (!make_output_directory(args.out)) return kExitOutput;
-  auto headless = open_headless(args.out);
-  if (!headless) return kExitNoDisplay;
-
   render::View view;
   view.width = size.width;
   view.height = size.height;
@@ -189,9 +164,9 @@ int run_render(const RenderArgs& args) {
   render::OverlayInfo info;
   info.title =
       model.title.empty() ? std::filesystem::path(args.scene).filename().string() : model.title;
-  info.method = args.method;
+  info.method = method_name;
   if (kind == solver::MethodKind::Feti || kind == solver::MethodKind::FetiC)
-    info.method += " (" + args.preconditioner + ")";
+    info.method += " (" + args.method.preconditioner + ")";
   const render::FrameComposer composer(model, view, extent, info,
                                        static_cast<int>(plan.load_factors.size()));
 
@@ -240,7 +215,7 @@ int run_render(const RenderArgs& args) {
   int status = kExitOk;
   if (!args.movie.empty()) status = assemble_movie(args.out, written, args.fps, args.movie);
   if (extent.final_status != solver::Status::Converged) {
-    std::cerr << args.scene << ": " << args.method << " did not converge: " << extent.final_message
+    std::cerr << args.scene << ": " << method_name << " did not converge: " << extent.final_message
               << " (the frames show it)\n";
     if (status == kExitOk) status = kExitNotConverged;
   }
@@ -257,19 +232,7 @@ void register_render(CLI::App& app, int& exit_code) {
   command->add_option("scene", args->scene, "Scene file (TOML, see README)")->required();
   command->add_option("--out", args->out, "Directory for frame_0000.png, frame_0001.png, ...")
       ->required();
-  command->add_option("--method", args->method, "Method")
-      ->check(CLI::IsMember({"sd", "cg", "active-set", "feti", "feti-c"}))
-      ->capture_default_str();
-  command->add_option("--preconditioner", args->preconditioner, "FETI preconditioner")
-      ->check(CLI::IsMember({"none", "lumped", "dirichlet"}))
-      ->capture_default_str();
-  command->add_option("--tol", args->tolerance, "Relative tolerance")
-      ->check(CLI::PositiveNumber)
-      ->capture_default_str();
-  command
-      ->add_option("--max-iterations", args->max_iterations,
-                   "Iteration cap (0: the method's default)")
-      ->check(CLI::NonNegativeNumber);
+  add_method_options(command, args->method);
   command->add_option("--size", args->size, "Image size in pixels")
       ->check(image_size_check())
       ->capture_default_str();
@@ -279,13 +242,6 @@ void register_render(CLI::App& app, int& exit_code) {
   auto* final_only =
       command->add_flag("--final", args->final_only, "Only the final state of each solve");
   every->excludes(final_only);
-  auto* factor = command->add_option("--load-factor", args->load_factor, "Global load factor t")
-                     ->check(CLI::Range(-1e12, 1e12))
-                     ->capture_default_str();
-  auto* steps = command->add_option("--load-steps", args->load_steps,
-                                    "a:b:n: n load factors from a to b, each solve warm-started "
-                                    "from the previous one; one frame per step");
-  factor->excludes(steps);
   command->add_option("--movie", args->movie, "Also assemble the frames into this mp4 (ffmpeg)");
   command->add_option("--fps", args->fps, "Frames per second of the movie")
       ->check(CLI::Range(1, 120))
@@ -293,7 +249,8 @@ void register_render(CLI::App& app, int& exit_code) {
   command
       ->add_option("--magnification", args->magnification,
                    "Displacement (and gap) magnification; 0 chooses one from the largest")
-      ->check(CLI::Range(0.0, 1e12))
+      ->check(CLI::NonNegativeNumber)
+      ->check(finite_number())
       ->capture_default_str();
   command->add_option("--color", args->color, "Colour struts by subdomain or by axial stress")
       ->check(CLI::IsMember({"subdomain", "stress"}))

@@ -7,15 +7,6 @@
 
 namespace fetic::render {
 
-std::vector<double> load_steps(double a, double b, int n) {
-  if (n <= 1) return {b};
-  std::vector<double> factors(static_cast<std::size_t>(n));
-  for (int i = 0; i < n; ++i)
-    factors[static_cast<std::size_t>(i)] = a + (b - a) * i / (n - 1);
-  factors.back() = b;  // exactly, whatever the rounding
-  return factors;
-}
-
 int run_frames(solver::Method& method, const FramePlan& plan,
                const std::function<bool(const Frame&)>& visit) {
   int index = 0;

@@ -15,11 +15,9 @@ namespace fetic::render {
 
 struct FramePlan {
   std::vector<double> load_factors{1.0};  // one solve per factor, each warm from the last
+                                          // (e.g. solver::load_steps(a, b, n))
   bool every_iteration = true;            // else only the final state of each solve
 };
-
-// n load factors from a to b inclusive (n = 1 gives b).
-std::vector<double> load_steps(double a, double b, int n);
 
 struct Frame {
   int index = 0;      // 0, 1, ... over the whole plan
