@@ -108,7 +108,6 @@ void FetiC::record_state() {
 void FetiC::begin(const Snapshot* warm) {
   d_ = system_.d(load_factor_);
   e_ = system_.e(load_factor_);
-  d_norm_ = d_.norm();
   const int rows = system_.rows();
   const int first_contact = system_.decomposition().equality_rows;
   std::vector<char> active(rows, 1);
@@ -128,6 +127,7 @@ void FetiC::begin(const Snapshot* warm) {
   if (!unbounded.empty()) {
     lambda_.setZero();
     system_.residual(lambda_, load_factor_, r_);
+    set_scale();
     w_hat_ = r_;
     record(relative(r_.norm()), 0);
     fail(unbounded);
@@ -135,6 +135,7 @@ void FetiC::begin(const Snapshot* warm) {
   }
   plan(lambda_);
   system_.residual(lambda_, load_factor_, r_);
+  set_scale();
   record_state();
 }
 

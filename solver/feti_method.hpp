@@ -4,6 +4,7 @@
 // reconstruction of the primal displacements from the current lambda - torn across
 // subdomain interfaces until lambda has converged.
 
+#include <algorithm>
 #include <vector>
 
 #include <Eigen/Core>
@@ -31,8 +32,13 @@ class FetiMethod : public Method {
   // with groups of floating struts the active rows leave free placed as close to where
   // they started as the gaps allow.
   Eigen::VectorXd rigid_amplitudes() const;
-  // ||w|| / ||d||, the relative criterion of ALGORITHMS.md 4.3/4.5.
-  double relative(double norm) const { return d_norm_ > 0.0 ? norm / d_norm_ : norm; }
+  // ||w|| relative to the scale of the problem (ALGORITHMS.md 4.3/4.5 use ||d||).
+  double relative(double norm) const { return scale_ > 0.0 ? norm / scale_ : norm; }
+  // Sets the scale from r = d - F lambda at the starting lambda: max(||d||, ||F lambda||).
+  // ||d|| alone depends on the generalized inverse: when K^+ f happens to vanish (a load
+  // on a fixed DOF) and the gaps are zero, d = 0 and the test would turn absolute;
+  // F lambda_0, the interface displacement of multipliers that balance the loads, does not.
+  void set_scale() { scale_ = std::max(d_.norm(), (d_ - r_).norm()); }
   // Force and working-set flags per contact pair from lambda and the active rows.
   void fill_contacts(Snapshot& s) const;
   // r <- r - a q after a step a p (q = F p); every kResidualReplacement iterations r is
@@ -55,7 +61,7 @@ class FetiMethod : public Method {
   CoarseProblem coarse_;
   Eigen::VectorXd d_;
   Eigen::VectorXd e_;
-  double d_norm_ = 0.0;
+  double scale_ = 0.0;
   Eigen::VectorXd lambda_;
   Eigen::VectorXd r_;  // d - F lambda
 };

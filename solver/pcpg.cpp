@@ -22,7 +22,6 @@ Pcpg::Pcpg(const Model& model, const SolveOptions& options)
 void Pcpg::begin(const Snapshot* warm) {
   d_ = system_.d(load_factor_);
   e_ = system_.e(load_factor_);
-  d_norm_ = d_.norm();
   lambda_ = coarse_.particular(e_);
   if (warm && warm->dual.size() == lambda_.size()) {
     // Keep the previous multipliers' part in ker G; restore G lambda = e for the new load.
@@ -31,6 +30,7 @@ void Pcpg::begin(const Snapshot* warm) {
     lambda_ += previous;
   }
   system_.residual(lambda_, load_factor_, r_);
+  set_scale();
   yw_previous_ = 0.0;
   reset_watch();
   record_residual();
