@@ -8,7 +8,11 @@ namespace fetic::app {
 
 std::optional<scenes::Scene> load_scene_or_report(const std::string& path) {
   try {
-    return scenes::load_scene_file(path);
+    scenes::Scene scene = scenes::load_scene_file(path);
+    for (const scenes::Problem& warning : scene.warnings)
+      std::cerr << scenes::format_problems(path, {{warning.line, "warning: " + warning.message}})
+                << '\n';
+    return scene;
   } catch (const scenes::SceneError& error) {
     std::cerr << error.what() << '\n';
     return std::nullopt;

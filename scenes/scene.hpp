@@ -3,8 +3,10 @@
 // Plain data, validated by load_scene(); the solver builds its model from it.
 
 #include <array>
+
 #include <string>
 #include <vector>
+#include "scenes/scene_error.hpp"
 
 namespace fetic::scenes {
 
@@ -61,6 +63,9 @@ struct Scene {
   std::vector<Strut> struts;
   std::vector<Load> loads;
   std::vector<Contact> contacts;
+  // Things that are valid but worth knowing (e.g. a gap at the resolution of the
+  // coordinates); the commands print them as "file:line: warning: ...".
+  std::vector<Problem> warnings;
 };
 
 const char* to_string(ModelKind model);

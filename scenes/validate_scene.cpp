@@ -46,7 +46,8 @@ void check_strut_geometry(const Scene& scene, std::vector<Problem>& problems) {
                                std::to_string(kMaxUnknowns)});
 }
 
-void check_contacts(const Scene& scene, std::vector<Problem>& problems) {
+void check_contacts(const Scene& scene, std::vector<Problem>& problems,
+                    std::vector<Problem>& warnings) {
   std::map<std::pair<int, int>, int> end_used;  // (strut, end) -> line of first contact
   for (const Contact& contact : scene.contacts) {
     const std::string label =
@@ -90,6 +91,15 @@ void check_contacts(const Scene& scene, std::vector<Problem>& problems) {
                                             " (a negative gap is not allowed)"});
       continue;
     }
+    // A gap far below the size of the coordinates is only as exact as their last digits.
+    const Point pa = end_point(a, contact.a.end), pb = end_point(b, contact.b.end);
+    const double size =
+        std::max({std::abs(pa[0]), std::abs(pa[1]), std::abs(pb[0]), std::abs(pb[1]), scale});
+    if (g.gap > 0.0 && g.gap < 1e-9 * size)
+      warnings.push_back({contact.line, label + ": the gap " + number_text(g.gap) +
+                                            " is at the resolution of the coordinates (about " +
+                                            number_text(2.2e-16 * size) +
+                                            "); it follows from their last digits"});
     if (scene.model == ModelKind::Plane && a.elements_across != b.elements_across)
       problems.push_back({contact.line, label +
                                             ": the end faces have different numbers of "
@@ -137,11 +147,12 @@ void check_plane_struts_held(const Scene& scene, std::vector<Problem>& problems)
 
 }  // namespace
 
-std::vector<Problem> validate_scene(const Scene& scene) {
+std::vector<Problem> validate_scene(Scene& scene) {
   std::vector<Problem> problems;
+  scene.warnings.clear();
   check_strut_geometry(scene, problems);
   if (!problems.empty()) return problems;
-  check_contacts(scene, problems);
+  check_contacts(scene, problems, scene.warnings);
   if (scene.model == ModelKind::Bar)
     check_bar_struts_held(scene, problems);
   else

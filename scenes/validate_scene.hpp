@@ -10,6 +10,7 @@
 
 namespace fetic::scenes {
 
-std::vector<Problem> validate_scene(const Scene& scene);
+// Returns the problems that make the scene invalid; fills scene.warnings.
+std::vector<Problem> validate_scene(Scene& scene);
 
 }  // namespace fetic::scenes

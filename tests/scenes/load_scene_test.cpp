@@ -123,3 +123,30 @@ TEST_CASE("every bundled scene loads") {
   }
   CHECK(count >= 4);
 }
+
+TEST_CASE("a gap at the resolution of the coordinates is kept and reported as a warning") {
+  const char* text = R"(model = "bar"
+[defaults]
+E = 1e9
+area = 1e-4
+elements = 1
+[[strut]]
+name = "A"
+from = [0.0, 0.0]
+to = [1.0, 0.0]
+fixed = ["from"]
+[[strut]]
+name = "B"
+from = [1.000000000000001, 0.0]
+to = [2.0, 0.0]
+fixed = ["to"]
+[[contact]]
+a = "A.to"
+b = "B.from"
+)";
+  const Scene scene = parse_scene(text, "tiny.toml");
+  REQUIRE(scene.warnings.size() == 1);
+  CHECK(scene.warnings[0].line == 16);  // the [[contact]] table
+  CHECK_THAT(scene.warnings[0].message, Catch::Contains("at the resolution of the coordinates"));
+  CHECK(contact_geometry(scene, scene.contacts[0]).gap > 0.0);
+}
