@@ -46,6 +46,73 @@ void check_strut_geometry(const Scene& scene, std::vector<Problem>& problems) {
                                std::to_string(kMaxUnknowns)});
 }
 
+// Double precision squares and sums these scales during the iterations (energies, norms,
+// lambda' F lambda); keeping each within [1/kMagnitudeLimit, kMagnitudeLimit] keeps every
+// such product far from overflow and underflow. Outside it we refuse rather than return
+// NaN or a silently rounded answer.
+constexpr double kMagnitudeLimit = 1e60;
+
+bool outside_magnitude_range(double value) {
+  const double magnitude = std::abs(value);
+  return magnitude > kMagnitudeLimit || magnitude < 1.0 / kMagnitudeLimit;
+}
+
+std::string magnitude_range_text() {
+  return "outside the range double precision solves reliably (" +
+         number_text(1.0 / kMagnitudeLimit) + " to " + number_text(kMagnitudeLimit) + ")";
+}
+
+// Stiffness of one element: E A / h for a bar, E t for a plane element (independent of
+// its size); the displacement scale is force over this.
+double element_stiffness(const Scene& scene, const Strut& strut) {
+  if (scene.model == ModelKind::Bar) return strut.E * strut.area * strut.elements / length(strut);
+  return strut.E * strut.thickness;
+}
+
+void check_magnitudes(const Scene& scene, std::vector<Problem>& problems) {
+  for (const Strut& strut : scene.struts) {
+    const double l = length(strut);
+    if (outside_magnitude_range(l))
+      problems.push_back({strut.line, "strut " + quoted(strut.name) + ": length " + number_text(l) +
+                                          " m is " + magnitude_range_text()});
+    const double k = element_stiffness(scene, strut);
+    if (outside_magnitude_range(k))
+      problems.push_back(
+          {strut.line, "strut " + quoted(strut.name) + ": element stiffness " +
+                           (scene.model == ModelKind::Bar ? "E * area / element length = "
+                                                          : "E * thickness = ") +
+                           number_text(k) + " N/m is " + magnitude_range_text()});
+  }
+  for (const Load& load : scene.loads) {
+    const double size = std::hypot(load.force[0], load.force[1]);
+    if (size == 0.0) continue;  // an explicit zero load is fine
+    const double total = load.per_length ? size * length(scene.struts[load.strut]) : size;
+    if (outside_magnitude_range(total))
+      problems.push_back({load.line, "load on strut " + quoted(scene.struts[load.strut].name) +
+                                         ": force " + number_text(total) + " N is " +
+                                         magnitude_range_text() + "; write 0 for no load"});
+  }
+}
+
+// Bilinear elements much longer than wide (or the reverse) lock in bending and make the
+// stiffness ill-conditioned: still valid, but the user should know before a solve stalls.
+constexpr double kAspectRatioWarning = 1e3;
+
+void check_element_shapes(const Scene& scene, std::vector<Problem>& warnings) {
+  if (scene.model != ModelKind::Plane) return;
+  for (const Strut& strut : scene.struts) {
+    const double along = length(strut) / strut.elements;
+    const double across = strut.height / strut.elements_across;
+    const double ratio = std::max(along / across, across / along);
+    if (ratio > kAspectRatioWarning)
+      warnings.push_back({strut.line, "strut " + quoted(strut.name) + ": its elements are " +
+                                          number_text(along) + " by " + number_text(across) +
+                                          " m (aspect ratio " + number_text(ratio) +
+                                          "); expect an ill-conditioned stiffness and slow or "
+                                          "stalled iterations"});
+  }
+}
+
 void check_contacts(const Scene& scene, std::vector<Problem>& problems,
                     std::vector<Problem>& warnings) {
   std::map<std::pair<int, int>, int> end_used;  // (strut, end) -> line of first contact
@@ -152,7 +219,10 @@ std::vector<Problem> validate_scene(Scene& scene) {
   scene.warnings.clear();
   check_strut_geometry(scene, problems);
   if (!problems.empty()) return problems;
+  check_magnitudes(scene, problems);
+  if (!problems.empty()) return problems;
   check_contacts(scene, problems, scene.warnings);
+  check_element_shapes(scene, scene.warnings);
   if (scene.model == ModelKind::Bar)
     check_bar_struts_held(scene, problems);
   else

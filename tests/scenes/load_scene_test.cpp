@@ -150,3 +150,23 @@ b = "B.from"
   CHECK_THAT(scene.warnings[0].message, Catch::Contains("at the resolution of the coordinates"));
   CHECK(contact_geometry(scene, scene.contacts[0]).gap > 0.0);
 }
+
+TEST_CASE("plane elements of extreme aspect ratio are reported as a warning") {
+  const char* text = R"(model = "plane"
+[[strut]]
+name = "thin"
+from = [0.0, 0.0]
+to = [1.0, 0.0]
+E = 2.1e11
+nu = 0.3
+height = 1e-6
+thickness = 0.01
+elements = 10
+elements_across = 1
+fixed = ["from"]
+)";
+  const Scene scene = parse_scene(text, "thin.toml");
+  REQUIRE(scene.warnings.size() == 1);
+  CHECK(scene.warnings[0].line == 2);
+  CHECK_THAT(scene.warnings[0].message, Catch::Contains("aspect ratio 100000"));
+}

@@ -62,6 +62,10 @@ TEST_CASE("two bars at extreme magnitudes: every contact method matches the clos
       {"struts 1000 km long", 2.1e11, 1e-4, 1e6, 1.0, 1e12},
       {"micrometre struts", 2.1e11, 1e-12, 1e-6, 1e-9, 1e-3},
       {"pulled apart", 2.1e11, 1e-4, 1.0, 1e-3, -5e4},
+      // The edges of the range the scene layer accepts (element stiffness and forces within
+      // 1e-60..1e60): displacements of 1e117 and 1e-118 are still exact.
+      {"softest accepted stiffness, largest force", 2.5e-60, 1.0, 1.0, 0.0, 1e59},
+      {"stiffest accepted stiffness, smallest force", 2.4e59, 1.0, 1.0, 0.0, 1e-59},
   };
   for (const Case& c : cases) {
     const auto scene = scenes::parse_scene(two_bars(c), "extreme.toml");
