@@ -143,9 +143,15 @@ std::string table(const std::vector<Measurement>& rows) {
 
 int run_bench(const BenchArgs& args) {
   std::vector<std::string> scenes = args.scenes;
-  if (scenes.empty())
+  if (scenes.empty()) {
     scenes = {"scenes/thesis.toml", "scenes/two_bars.toml", "scenes/chain.toml",
-              "scenes/cantilevers.toml"};
+              "scenes/cantilevers.toml", "scenes/plane_pair.toml"};
+    if (!std::filesystem::exists(scenes.front())) {
+      std::cerr << "fetic bench: the bundled scenes are found relative to the repository "
+                   "root (scenes/*.toml); run it from there or name the scene files\n";
+      return kExitUsage;
+    }
+  }
   std::vector<Measurement> rows;
   bool warmed_up = false;
   for (const std::string& path : scenes) {
