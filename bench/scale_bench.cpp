@@ -220,8 +220,10 @@ Table comparison_table(const std::vector<scenes::GenerateOptions>& sizes, long l
     row.push_back(scientific(error_against(model, feti.state.pieces, floor.pieces)));
     row.push_back(ipopt_error);
     table.rows.push_back(row);
-    table.print();
+    // Progress on stderr (the big rows take minutes); the table is printed once, complete.
+    std::cerr << "  done: " << row[0] << ", " << row[1] << " unknowns\n";
   }
+  table.print();
   return table;
 }
 
