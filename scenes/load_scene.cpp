@@ -529,9 +529,105 @@ class SceneParser {
   Reader read_;
 };
 
+// toml++ 3.3 (Debian 12) asks whether a non-ASCII character is whitespace wherever it
+// expects a key, a value or the text after a line-ending backslash, and for most code
+// points (U+00A1..U+0499, U+FC66..U+FEFE, ...) that question reaches TOML_UNREACHABLE:
+// undefined behaviour (found by fuzz/fuzz_scene with UBSan). TOML allows non-ASCII
+// characters only inside strings and comments, so this lexer finds the first one anywhere
+// else, before toml++ sees it. Returns its line and what it is, or line 0.
+Problem misplaced_non_ascii(std::string_view text) {
+  enum class State { Normal, Comment, Basic, Literal, MultiBasic, MultiLiteral };
+  State state = State::Normal;
+  int line = 1;
+  bool continuation = false;  // after a line-ending backslash in a multi-line basic string
+  const auto starts = [&](size_t i, std::string_view what) {
+    return text.substr(i, what.size()) == what;
+  };
+  const auto skip_quotes = [&](size_t& i, char quote) {  // up to 2 quotes before the end
+    for (int extra = 0; extra < 2 && i + 1 < text.size() && text[i + 1] == quote; ++extra)
+      ++i;
+  };
+  for (size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    const bool ascii = static_cast<unsigned char>(c) < 0x80;
+    if (c == '\n') ++line;
+    switch (state) {
+      case State::Normal:
+        if (!ascii)
+          return {line, "TOML syntax error: a non-ASCII character outside a string or comment"};
+        if (c == '#') {
+          state = State::Comment;
+        } else if (starts(i, "\"\"\"")) {
+          state = State::MultiBasic;
+          i += 2;
+        } else if (starts(i, "'''")) {
+          state = State::MultiLiteral;
+          i += 2;
+        } else if (c == '"') {
+          state = State::Basic;
+        } else if (c == '\'') {
+          state = State::Literal;
+        }
+        break;
+      case State::Comment:
+        if (c == '\n') state = State::Normal;
+        break;
+      case State::Basic:
+        if (c == '\\' && i + 1 < text.size() && text[i + 1] != '\n')
+          ++i;  // an escaped character
+        else if (c == '"' || c == '\n')
+          state = State::Normal;
+        break;
+      case State::Literal:
+        if (c == '\'' || c == '\n') state = State::Normal;
+        break;
+      case State::MultiBasic:
+        if (continuation) {
+          if (c == ' ' || c == '\t' || c == '\r' || c == '\n') break;
+          if (!ascii)
+            return {line,
+                    "TOML syntax error: a non-ASCII character right after a line-ending "
+                    "backslash in a multi-line string"};
+          continuation = false;
+        }
+        if (c == '\\') {
+          size_t j = i + 1;
+          while (j < text.size() && (text[j] == ' ' || text[j] == '\t' || text[j] == '\r'))
+            ++j;
+          if (j < text.size() && text[j] == '\n')
+            continuation = true;
+          else if (i + 1 < text.size())
+            ++i;  // an escaped character
+        } else if (starts(i, "\"\"\"")) {
+          state = State::Normal;
+          i += 2;
+          skip_quotes(i, '"');
+        }
+        break;
+      case State::MultiLiteral:
+        if (starts(i, "'''")) {
+          state = State::Normal;
+          i += 2;
+          skip_quotes(i, '\'');
+        }
+        break;
+    }
+  }
+  return {0, ""};
+}
+
 }  // namespace
 
 Scene parse_scene(std::string_view text, const std::string& path) {
+  // TOML allows no NUL byte anywhere; toml++ 3.3 trips over some (after '[' an internal
+  // assertion, found by fuzz/fuzz_scene). Refuse them up front with a clearer message.
+  if (const size_t nul = text.find('\0'); nul != std::string_view::npos) {
+    const auto line = 1 + std::count(text.begin(), text.begin() + static_cast<long>(nul), '\n');
+    throw SceneError(
+        path, {{static_cast<int>(line), "TOML syntax error: a NUL byte (not a text file?)"}});
+  }
+  if (Problem problem = misplaced_non_ascii(text); problem.line > 0)
+    throw SceneError(path, {std::move(problem)});
   toml::table root;
   try {
     root = toml::parse(text, path);
