@@ -540,6 +540,7 @@ Problem misplaced_non_ascii(std::string_view text) {
   State state = State::Normal;
   int line = 1;
   bool continuation = false;  // after a line-ending backslash in a multi-line basic string
+  char previous = '\n';       // the character before, outside strings and comments
   const auto starts = [&](size_t i, std::string_view what) {
     return text.substr(i, what.size()) == what;
   };
@@ -552,34 +553,48 @@ Problem misplaced_non_ascii(std::string_view text) {
     const bool ascii = static_cast<unsigned char>(c) < 0x80;
     if (c == '\n') ++line;
     switch (state) {
-      case State::Normal:
+      case State::Normal: {
         if (!ascii)
           return {line, "TOML syntax error: a non-ASCII character outside a string or comment"};
+        // A quote starts a string only where TOML allows one. Elsewhere (as in 0"x) toml++
+        // scans on through it as part of a bare value, so what follows is outside a string.
+        const bool string_may_start =
+            std::string_view(" \t\r\n=[{,.").find(previous) != std::string_view::npos;
         if (c == '#') {
           state = State::Comment;
-        } else if (starts(i, "\"\"\"")) {
+        } else if (string_may_start && starts(i, "\"\"\"")) {
           state = State::MultiBasic;
           i += 2;
-        } else if (starts(i, "'''")) {
+        } else if (string_may_start && starts(i, "'''")) {
           state = State::MultiLiteral;
           i += 2;
-        } else if (c == '"') {
+        } else if (string_may_start && c == '"') {
           state = State::Basic;
-        } else if (c == '\'') {
+        } else if (string_may_start && c == '\'') {
           state = State::Literal;
         }
+        previous = c;
         break;
+      }
       case State::Comment:
-        if (c == '\n') state = State::Normal;
+        if (c == '\n') {
+          state = State::Normal;
+          previous = c;
+        }
         break;
       case State::Basic:
         if (c == '\\' && i + 1 < text.size() && text[i + 1] != '\n')
           ++i;  // an escaped character
-        else if (c == '"' || c == '\n')
+        else if (c == '"' || c == '\n') {
           state = State::Normal;
+          previous = c;  // a quote right after a string starts none
+        }
         break;
       case State::Literal:
-        if (c == '\'' || c == '\n') state = State::Normal;
+        if (c == '\'' || c == '\n') {
+          state = State::Normal;
+          previous = c;
+        }
         break;
       case State::MultiBasic:
         if (continuation) {
@@ -594,6 +609,10 @@ Problem misplaced_non_ascii(std::string_view text) {
           size_t j = i + 1;
           while (j < text.size() && (text[j] == ' ' || text[j] == '\t' || text[j] == '\r'))
             ++j;
+          if (j < text.size() && static_cast<unsigned char>(text[j]) >= 0x80)
+            return {line,
+                    "TOML syntax error: a non-ASCII character after a backslash in a "
+                    "multi-line string"};
           if (j < text.size() && text[j] == '\n')
             continuation = true;
           else if (i + 1 < text.size())
@@ -602,6 +621,7 @@ Problem misplaced_non_ascii(std::string_view text) {
           state = State::Normal;
           i += 2;
           skip_quotes(i, '"');
+          previous = '"';
         }
         break;
       case State::MultiLiteral:
@@ -609,6 +629,7 @@ Problem misplaced_non_ascii(std::string_view text) {
           state = State::Normal;
           i += 2;
           skip_quotes(i, '\'');
+          previous = '\'';
         }
         break;
     }
