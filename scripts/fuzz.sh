@@ -40,7 +40,7 @@ build-fuzz/fuzz/fuzz_scene build-fuzz/corpus \
 last=$(grep -E '^#[0-9]+' "$log" | tail -1 || true)
 execs=$(grep -E '^stat::number_of_executed_units' "$log" | awk '{print $2}' || true)
 echo "fuzz: ${seconds} s, ${execs:-?} executions; last status: ${last:-none}"
-echo "fuzz: corpus $(ls build-fuzz/corpus | wc -l) inputs in build-fuzz/corpus; log $log"
+echo "fuzz: corpus $(find build-fuzz/corpus -type f | wc -l) inputs in build-fuzz/corpus; log $log"
 if [ "$status" -ne 0 ]; then
   echo "fuzz: FAILED (exit $status); the end of the log:" >&2
   tail -60 "$log" >&2
