@@ -1,6 +1,7 @@
 // Inputs that once crashed fuzz/fuzz_scene (scripts/fuzz.sh), kept as regression tests:
-// each must load as a valid scene or be refused with a SceneError whose every line names
-// the file, the same invariant as the fuzz target. NAME.expect, when present, holds text
+// each must load as a valid scene (which loads again after scene_to_toml()) or be refused
+// with a SceneError whose every line names the file, the same invariants as the fuzz
+// target. NAME.expect, when present, holds text
 // the message must contain.
 
 #include <catch2/catch.hpp>
@@ -11,6 +12,7 @@
 #include <string>
 
 #include "scenes/load_scene.hpp"
+#include "scenes/write_scene.hpp"
 
 namespace {
 
@@ -36,6 +38,12 @@ TEST_CASE("inputs that crashed the fuzzer are refused cleanly, naming the file")
       const fetic::scenes::Scene scene = fetic::scenes::load_scene_file(path);
       CHECK(expected.empty());  // an expected message means the input must be refused
       CHECK(scene.path == path);
+      // and, as in the fuzz target, it survives a round trip through scene_to_toml()
+      const std::string text = fetic::scenes::scene_to_toml(scene);
+      INFO(text);
+      const fetic::scenes::Scene again = fetic::scenes::parse_scene(text, path);
+      CHECK(again.title == scene.title);
+      CHECK(again.struts.size() == scene.struts.size());
     } catch (const fetic::scenes::SceneError& error) {
       const std::string message = error.what();
       INFO(message);
