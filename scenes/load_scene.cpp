@@ -1,6 +1,7 @@
 #include "scenes/load_scene.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <fstream>
 #include <limits>
@@ -540,7 +541,11 @@ Problem misplaced_non_ascii(std::string_view text) {
   State state = State::Normal;
   int line = 1;
   bool continuation = false;  // after a line-ending backslash in a multi-line basic string
-  char previous = '\n';       // the character before, outside strings and comments
+  // Outside strings and comments: in a value (after '=', until the end of the line outside
+  // brackets), brackets open there, and inside a bare word (key, number, date, ...).
+  bool value = false;
+  int depth = 0;
+  bool in_word = false;
   const auto starts = [&](size_t i, std::string_view what) {
     return text.substr(i, what.size()) == what;
   };
@@ -556,30 +561,52 @@ Problem misplaced_non_ascii(std::string_view text) {
       case State::Normal: {
         if (!ascii)
           return {line, "TOML syntax error: a non-ASCII character outside a string or comment"};
-        // A quote starts a string only where TOML allows one. Elsewhere (as in 0"x) toml++
-        // scans on through it as part of a bare value, so what follows is outside a string.
-        const bool string_may_start =
-            std::string_view(" \t\r\n=[{,.").find(previous) != std::string_view::npos;
         if (c == '#') {
           state = State::Comment;
-        } else if (string_may_start && starts(i, "\"\"\"")) {
-          state = State::MultiBasic;
-          i += 2;
-        } else if (string_may_start && starts(i, "'''")) {
-          state = State::MultiLiteral;
-          i += 2;
-        } else if (string_may_start && c == '"') {
-          state = State::Basic;
-        } else if (string_may_start && c == '\'') {
-          state = State::Literal;
+          in_word = false;
+          break;
         }
-        previous = c;
+        if (c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == ',' || c == ']' ||
+            c == '}') {  // toml++'s value terminators
+          in_word = false;
+          if (value && (c == ']' || c == '}') && depth > 0) --depth;
+          if (c == '\n' && depth == 0) value = false;
+          break;
+        }
+        if (c == '"' || c == '\'') {
+          // In a bare word (0"x, a."b") toml++ scans on through the quote: no string.
+          if (in_word) break;
+          const bool triple = starts(i, c == '"' ? "\"\"\"" : "'''");
+          state = c == '"' ? (triple ? State::MultiBasic : State::Basic)
+                           : (triple ? State::MultiLiteral : State::Literal);
+          if (triple) i += 2;
+          break;
+        }
+        if (!value) {  // keys and table headers
+          if (c == '=') {
+            value = true;
+            depth = 0;
+            in_word = false;
+          } else {
+            in_word =
+                std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.';
+          }
+          break;
+        }
+        if (!in_word && (c == '[' || c == '{')) {
+          ++depth;
+        } else if (!in_word && c == '=') {
+          // key = value inside an inline table
+        } else {
+          in_word = true;
+        }
         break;
       }
       case State::Comment:
         if (c == '\n') {
           state = State::Normal;
-          previous = c;
+          in_word = false;
+          if (depth == 0) value = false;
         }
         break;
       case State::Basic:
@@ -587,13 +614,15 @@ Problem misplaced_non_ascii(std::string_view text) {
           ++i;  // an escaped character
         else if (c == '"' || c == '\n') {
           state = State::Normal;
-          previous = c;  // a quote right after a string starts none
+          in_word = true;  // a quote right after a string starts none
+          if (c == '\n' && depth == 0) value = false;
         }
         break;
       case State::Literal:
         if (c == '\'' || c == '\n') {
           state = State::Normal;
-          previous = c;
+          in_word = true;
+          if (c == '\n' && depth == 0) value = false;
         }
         break;
       case State::MultiBasic:
@@ -621,7 +650,7 @@ Problem misplaced_non_ascii(std::string_view text) {
           state = State::Normal;
           i += 2;
           skip_quotes(i, '"');
-          previous = '"';
+          in_word = true;
         }
         break;
       case State::MultiLiteral:
@@ -629,7 +658,7 @@ Problem misplaced_non_ascii(std::string_view text) {
           state = State::Normal;
           i += 2;
           skip_quotes(i, '\'');
-          previous = '\'';
+          in_word = true;
         }
         break;
     }
