@@ -11,6 +11,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -43,7 +44,7 @@ int count_frames(const fs::path& directory) {
   return count;
 }
 
-pid_t start_render(const fs::path& out, const fs::path& log) {
+pid_t start_render(const fs::path& out, const fs::path& log, const std::string& movie = "") {
   const std::string scene = std::string(FETIC_BUNDLED_SCENES_DIR) + "/chain.toml";
   const std::string steps = "0.01:1:" + std::to_string(kFrames);
   const pid_t child = ::fork();
@@ -53,9 +54,15 @@ pid_t start_render(const fs::path& out, const fs::path& log) {
       ::dup2(::fileno(file), 1);
       ::dup2(::fileno(file), 2);
     }
-    ::execl(FETIC_EXECUTABLE, "fetic", "render", scene.c_str(), "--method", "active-set",
-            "--load-steps", steps.c_str(), "--max-frames", "100000", "--size", "320x200",
-            "--threads", "2", "--out", out.c_str(), static_cast<char*>(nullptr));
+    if (movie.empty())
+      ::execl(FETIC_EXECUTABLE, "fetic", "render", scene.c_str(), "--method", "active-set",
+              "--load-steps", steps.c_str(), "--max-frames", "100000", "--size", "320x200",
+              "--threads", "2", "--out", out.c_str(), static_cast<char*>(nullptr));
+    else
+      ::execl(FETIC_EXECUTABLE, "fetic", "render", scene.c_str(), "--method", "active-set",
+              "--load-steps", steps.c_str(), "--max-frames", "100000", "--size", "320x200",
+              "--threads", "2", "--out", out.c_str(), "--movie", movie.c_str(),
+              static_cast<char*>(nullptr));
     ::_exit(127);
   }
   return child;
@@ -155,4 +162,56 @@ TEST_CASE("fetic render killed in the middle of a movie leaves only complete PNG
       fs::remove(log);
     }
   }
+}
+
+TEST_CASE("fetic render: SIGTERM while ffmpeg assembles the movie stops it, leaves no movie") {
+  if (std::system("command -v ffmpeg > /dev/null 2>&1") != 0) {
+    WARN("ffmpeg is not installed here: not checked");
+    return;
+  }
+  const fs::path out =
+      fs::temp_directory_path() / ("fetic_render_movie_term_" + std::to_string(::getpid()));
+  const fs::path log = out.string() + ".log";
+  fs::remove_all(out);
+  const std::string movie = (out / "movie.mp4").string();
+  const pid_t child = start_render(out, log, movie);
+  REQUIRE(child > 0);
+  // ffmpeg writes movie.mp4.tmpPID while it runs: signal then.
+  const auto has_temporary_movie = [&] {
+    std::error_code error;
+    for (const auto& entry : fs::directory_iterator(out, error))
+      if (entry.path().filename().string().rfind("movie.mp4.tmp", 0) == 0) return true;
+    return false;
+  };
+  const auto deadline = std::chrono::steady_clock::now() + 300s;
+  int status = 0;
+  bool exited = false;
+  while (!has_temporary_movie() && std::chrono::steady_clock::now() < deadline) {
+    if (::waitpid(child, &status, WNOHANG) == child) {
+      exited = true;
+      break;
+    }
+    std::this_thread::sleep_for(2ms);
+  }
+  if (exited || !has_temporary_movie()) {
+    if (!exited) {
+      ::kill(child, SIGKILL);
+      ::waitpid(child, &status, 0);
+    }
+    FAIL("ffmpeg was not seen at work:\n" << read_bytes(log));
+  }
+  REQUIRE(::kill(child, SIGTERM) == 0);
+  const std::optional<int> result = wait_bounded(child, 120s);
+  const std::string output = read_bytes(log);
+  INFO(output);
+  REQUIRE(result);
+  REQUIRE(WIFEXITED(*result));
+  CHECK(WEXITSTATUS(*result) == 130);
+  CHECK_THAT(output, Catch::Contains("interrupted by SIGTERM while ffmpeg was assembling"));
+  CHECK_FALSE(fs::exists(movie));
+  CHECK_FALSE(has_temporary_movie());
+  CHECK(count_frames(out) == kFrames);
+  check_complete_pngs(out);
+  fs::remove_all(out);
+  fs::remove(log);
 }
