@@ -16,6 +16,7 @@
 #include "app/atomic_file.hpp"
 #include "app/commands.hpp"
 #include "app/exit_codes.hpp"
+#include "app/interrupt.hpp"
 #include "app/scene_input.hpp"
 #include "solver/method.hpp"
 
@@ -164,6 +165,11 @@ int run_bench(const BenchArgs& args) {
       warmed_up = true;
     }
     for (const Variant& variant : variants_for(model)) {
+      if (interrupted()) {
+        std::cerr << path << ": fetic bench interrupted by " << interrupt_name() << " after "
+                  << rows.size() << " measurement(s); no table or CSV written\n";
+        return kExitInterrupted;
+      }
       try {
         rows.push_back(measure(model, path, variant, std::max(1, args.repeat)));
       } catch (const solver::SolverError& error) {

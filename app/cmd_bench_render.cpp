@@ -15,6 +15,7 @@
 #include "app/atomic_file.hpp"
 #include "app/commands.hpp"
 #include "app/exit_codes.hpp"
+#include "app/interrupt.hpp"
 #include "app/render_output.hpp"
 #include "app/scene_input.hpp"
 #include "render/colormap.hpp"
@@ -75,8 +76,9 @@ int run_bench(const BenchArgs& args) {
   // Frames of the iteration movie, repeated until there are enough.
   const auto for_each_frame = [&](const std::function<void(const render::Frame&, int)>& use) {
     int index = 0;
-    while (index < args.frames)
+    while (index < args.frames && !interrupted())
       render::run_frames(*method, plan, [&](const render::Frame& frame) {
+        if (interrupted()) return false;
         use(frame, index);
         return ++index < args.frames;
       });
@@ -129,6 +131,12 @@ int run_bench(const BenchArgs& args) {
       pool.finish();
     }
     pooled.total = seconds(start);
+    if (interrupted()) {
+      std::cerr << directory << ": fetic bench-render interrupted by " << interrupt_name()
+                << "; the frames written are complete\n";
+      if (temporary) std::filesystem::remove_all(directory);
+      return kExitInterrupted;
+    }
 
     const double n = args.frames;
     const auto ms = [&](double total) { return 1e3 * total / n; };

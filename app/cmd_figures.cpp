@@ -12,6 +12,7 @@
 #include "app/atomic_file.hpp"
 #include "app/commands.hpp"
 #include "app/exit_codes.hpp"
+#include "app/interrupt.hpp"
 #include "app/render_output.hpp"
 #include "app/scene_input.hpp"
 #include "render/figures.hpp"
@@ -57,6 +58,11 @@ int run_figures(const FiguresArgs& args) {
   render::FigureMaker maker(thesis ? &*thesis : nullptr, thesis_problem);
   int written = 0, skipped = 0;
   for (const std::string& id : ids) {
+    if (interrupted()) {
+      std::cerr << args.out << ": interrupted by " << interrupt_name() << " after " << written
+                << " complete figure(s)\n";
+      return kExitInterrupted;
+    }
     const render::Figure figure = maker.make(id, size.width, size.height);
     if (!figure.drawing) {
       std::cerr << "skipped      figure " << id

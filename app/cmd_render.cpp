@@ -5,7 +5,9 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cerrno>
 #include <cmath>
+#include <csignal>
 #include <cstdlib>
 #include <filesystem>
 #include <iostream>
@@ -102,12 +104,27 @@ int assemble_movie(const std::string& directory, int count, int fps, const std::
       argv.push_back(nullptr);
       pid_t child = 0;
       if (posix_spawnp(&child, "ffmpeg", nullptr, nullptr, argv.data(), environ) != 0) return false;
+      // SIGINT/SIGTERM interrupt waitpid (no SA_RESTART): stop ffmpeg then, and wait for
+      // it, so that its temporary file is removed only once nobody writes it any more.
       int status = 0;
-      if (waitpid(child, &status, 0) < 0) return false;
+      bool stopped = false;
+      while (waitpid(child, &status, 0) < 0) {
+        if (errno != EINTR) return false;
+        if (interrupted() && !stopped) {
+          ::kill(child, SIGTERM);
+          stopped = true;
+        }
+      }
       errno = 0;
-      return WIFEXITED(status) && WEXITSTATUS(status) == 0;
+      return !interrupted() && WIFEXITED(status) && WEXITSTATUS(status) == 0;
     });
   } catch (const OutputError& error) {
+    if (interrupted()) {
+      std::cerr << movie << ": interrupted by " << interrupt_name()
+                << " while ffmpeg was assembling the movie; no movie written, the " << count
+                << " frames are complete\n";
+      return kExitInterrupted;
+    }
     std::cerr << error.what() << " (ffmpeg failed)\n";
     return kExitOutput;
   }

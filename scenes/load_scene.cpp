@@ -1,6 +1,7 @@
 #include "scenes/load_scene.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <fstream>
 #include <limits>
@@ -529,9 +530,154 @@ class SceneParser {
   Reader read_;
 };
 
+// toml++ 3.3 (Debian 12) asks whether a non-ASCII character is whitespace wherever it
+// expects a key, a value or the text after a line-ending backslash, and for most code
+// points (U+00A1..U+0499, U+FC66..U+FEFE, ...) that question reaches TOML_UNREACHABLE:
+// undefined behaviour (found by fuzz/fuzz_scene with UBSan). TOML allows non-ASCII
+// characters only inside strings and comments, so this lexer finds the first one anywhere
+// else, before toml++ sees it. Returns its line and what it is, or line 0.
+Problem misplaced_non_ascii(std::string_view text) {
+  enum class State { Normal, Comment, Basic, Literal, MultiBasic, MultiLiteral };
+  State state = State::Normal;
+  int line = 1;
+  bool continuation = false;  // after a line-ending backslash in a multi-line basic string
+  // Outside strings and comments: in a value (after '=', until the end of the line outside
+  // brackets), brackets open there, and inside a bare word (key, number, date, ...).
+  bool value = false;
+  int depth = 0;
+  bool in_word = false;
+  const auto starts = [&](size_t i, std::string_view what) {
+    return text.substr(i, what.size()) == what;
+  };
+  const auto skip_quotes = [&](size_t& i, char quote) {  // up to 2 quotes before the end
+    for (int extra = 0; extra < 2 && i + 1 < text.size() && text[i + 1] == quote; ++extra)
+      ++i;
+  };
+  for (size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    const bool ascii = static_cast<unsigned char>(c) < 0x80;
+    if (c == '\n') ++line;
+    switch (state) {
+      case State::Normal: {
+        if (!ascii)
+          return {line, "TOML syntax error: a non-ASCII character outside a string or comment"};
+        if (c == '#') {
+          state = State::Comment;
+          in_word = false;
+          break;
+        }
+        if (c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == ',' || c == ']' ||
+            c == '}') {  // toml++'s value terminators
+          in_word = false;
+          if (value && (c == ']' || c == '}') && depth > 0) --depth;
+          if (c == '\n' && depth == 0) value = false;
+          break;
+        }
+        if (c == '"' || c == '\'') {
+          // In a bare word (0"x, a."b") toml++ scans on through the quote: no string.
+          if (in_word) break;
+          const bool triple = starts(i, c == '"' ? "\"\"\"" : "'''");
+          state = c == '"' ? (triple ? State::MultiBasic : State::Basic)
+                           : (triple ? State::MultiLiteral : State::Literal);
+          if (triple) i += 2;
+          break;
+        }
+        if (!value) {  // keys and table headers
+          if (c == '=') {
+            value = true;
+            depth = 0;
+            in_word = false;
+          } else {
+            in_word =
+                std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.';
+          }
+          break;
+        }
+        if (!in_word && (c == '[' || c == '{')) {
+          ++depth;
+        } else if (!in_word && c == '=') {
+          // key = value inside an inline table
+        } else {
+          in_word = true;
+        }
+        break;
+      }
+      case State::Comment:
+        if (c == '\n') {
+          state = State::Normal;
+          in_word = false;
+          if (depth == 0) value = false;
+        }
+        break;
+      case State::Basic:
+        if (c == '\\' && i + 1 < text.size() && text[i + 1] != '\n')
+          ++i;  // an escaped character
+        else if (c == '"' || c == '\n') {
+          state = State::Normal;
+          in_word = true;  // a quote right after a string starts none
+          if (c == '\n' && depth == 0) value = false;
+        }
+        break;
+      case State::Literal:
+        if (c == '\'' || c == '\n') {
+          state = State::Normal;
+          in_word = true;
+          if (c == '\n' && depth == 0) value = false;
+        }
+        break;
+      case State::MultiBasic:
+        if (continuation) {
+          if (c == ' ' || c == '\t' || c == '\r' || c == '\n') break;
+          if (!ascii)
+            return {line,
+                    "TOML syntax error: a non-ASCII character right after a line-ending "
+                    "backslash in a multi-line string"};
+          continuation = false;
+        }
+        if (c == '\\') {
+          size_t j = i + 1;
+          while (j < text.size() && (text[j] == ' ' || text[j] == '\t' || text[j] == '\r'))
+            ++j;
+          if (j < text.size() && static_cast<unsigned char>(text[j]) >= 0x80)
+            return {line,
+                    "TOML syntax error: a non-ASCII character after a backslash in a "
+                    "multi-line string"};
+          if (j < text.size() && text[j] == '\n')
+            continuation = true;
+          else if (i + 1 < text.size())
+            ++i;  // an escaped character
+        } else if (starts(i, "\"\"\"")) {
+          state = State::Normal;
+          i += 2;
+          skip_quotes(i, '"');
+          in_word = true;
+        }
+        break;
+      case State::MultiLiteral:
+        if (starts(i, "'''")) {
+          state = State::Normal;
+          i += 2;
+          skip_quotes(i, '\'');
+          in_word = true;
+        }
+        break;
+    }
+  }
+  return {0, ""};
+}
+
 }  // namespace
 
 Scene parse_scene(std::string_view text, const std::string& path) {
+  // TOML allows no NUL byte anywhere; toml++ 3.3 trips over some (after '[' an internal
+  // assertion, found by fuzz/fuzz_scene). Refuse them up front with a clearer message.
+  if (const size_t nul = text.find('\0'); nul != std::string_view::npos) {
+    const auto line = 1 + std::count(text.begin(), text.begin() + static_cast<long>(nul), '\n');
+    throw SceneError(
+        path, {{static_cast<int>(line), "TOML syntax error: a NUL byte (not a text file?)"}});
+  }
+  if (Problem problem = misplaced_non_ascii(text); problem.line > 0)
+    throw SceneError(path, {std::move(problem)});
   toml::table root;
   try {
     root = toml::parse(text, path);

@@ -1,6 +1,32 @@
 #include "scenes/scene_error.hpp"
 
 namespace fetic::scenes {
+namespace {
+
+// Messages quote the file (toml++'s "saw 'x'", names given in the scene): a newline or
+// another control character there would start a line that does not name the file (found
+// by fuzz/fuzz_scene), so they are shown escaped.
+std::string printable(const std::string& message) {
+  std::string text;
+  for (const char c : message) {
+    const auto byte = static_cast<unsigned char>(c);
+    if (c == '\n') {
+      text += "\\n";
+    } else if (c == '\r') {
+      text += "\\r";
+    } else if ((byte < 0x20 && c != '\t') || byte == 0x7f) {
+      static const char digits[] = "0123456789abcdef";
+      text += "\\x";
+      text += digits[byte >> 4];
+      text += digits[byte & 15];
+    } else {
+      text += c;
+    }
+  }
+  return text;
+}
+
+}  // namespace
 
 std::string format_problems(const std::string& path, const std::vector<Problem>& problems) {
   std::string text;
@@ -8,7 +34,7 @@ std::string format_problems(const std::string& path, const std::vector<Problem>&
     if (!text.empty()) text += '\n';
     text += path;
     if (problem.line > 0) text += ':' + std::to_string(problem.line);
-    text += ": " + problem.message;
+    text += ": " + printable(problem.message);
   }
   return text;
 }

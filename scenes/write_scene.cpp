@@ -21,11 +21,22 @@ std::string point(Point p) {
   return "[" + number(p[0]) + ", " + number(p[1]) + "]";
 }
 
+// A TOML basic string. Control characters (a title may hold them as \u escapes) must be
+// escaped again, or the text does not load (found by fuzz/fuzz_scene's round trip).
 std::string quoted(const std::string& text) {
   std::string out = "\"";
   for (char c : text) {
-    if (c == '"' || c == '\\') out += '\\';
-    out += c;
+    const auto byte = static_cast<unsigned char>(c);
+    if (c == '"' || c == '\\') {
+      out += '\\';
+      out += c;
+    } else if (byte < 0x20 || byte == 0x7f) {
+      char escape[12];
+      std::snprintf(escape, sizeof escape, "\\u%04X", static_cast<unsigned>(byte));
+      out += escape;
+    } else {
+      out += c;
+    }
   }
   return out + "\"";
 }

@@ -1,0 +1,33 @@
+#!/usr/bin/env bash
+# Builds fetic with AddressSanitizer + UndefinedBehaviorSanitizer (g++) into ./build-asan
+# and runs the whole test suite there. Any sanitizer report fails the run.
+#
+# -O1 -g1: ASan's usual optimisation level (readable stacks, much faster than -O0), line
+# tables only to keep the build light on 2 cores. NDEBUG is not defined, so Eigen's and
+# the project's assertions are active as well.
+#
+# Leaks: every process that opens the EGL context (the tests labelled egl: golden images
+# and `fetic render`/`figures` end to end) ends with 112 bytes in two 56-byte blocks
+# that LeakSanitizer calls indirect leaks, allocated from code without symbols or frame
+# pointers inside Mesa/llvmpipe: the stack ends at an unnamed address, so no suppression
+# scoped to a library can match it (and the slow unwinder deadlocks in llvmpipe's
+# threads). Those tests therefore run with ASan and UBSan as strict as the others but
+# without the leak check; all other tests keep it.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+jobs="${FETIC_JOBS:-$(nproc)}"
+start=$(date +%s)
+cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+  -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1" -DFETIC_SANITIZE=ON -DFETIC_WERROR=ON
+cmake --build build-asan -j"$jobs"
+built=$(date +%s)
+options="abort_on_error=1:strict_string_checks=1:detect_stack_use_after_return=1"
+options="$options:check_initialization_order=1:strict_init_order=1"
+export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1${UBSAN_OPTIONS:+:$UBSAN_OPTIONS}"
+status=0
+ASAN_OPTIONS="$options:detect_leaks=1${ASAN_OPTIONS:+:$ASAN_OPTIONS}" \
+  ctest --test-dir build-asan --output-on-failure -j"$jobs" --timeout 900 -LE egl || status=1
+ASAN_OPTIONS="$options:detect_leaks=0${ASAN_OPTIONS:+:$ASAN_OPTIONS}" \
+  ctest --test-dir build-asan --output-on-failure -j"$jobs" --timeout 900 -L egl || status=1
+echo "sanitize: build $((built - start)) s, tests $(($(date +%s) - built)) s"
+exit "$status"
