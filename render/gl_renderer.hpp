@@ -22,8 +22,20 @@ class GlRenderer {
   GlRenderer(const GlRenderer&) = delete;
   GlRenderer& operator=(const GlRenderer&) = delete;
 
-  // Draws the layers in order over the background and reads the pixels back (alpha 255).
+  // Draws the layers in order over the background and reads the pixels back (alpha 255):
+  // draw() then read_back().
   Image render(int width, int height, const std::vector<const DrawList*>& layers, Color background);
+  // Draws the layers into the multisampled buffer and resolves it; the picture stays in
+  // the renderer until the next draw (a window re-shows it without drawing again).
+  void draw(int width, int height, const std::vector<const DrawList*>& layers, Color background);
+  // The last drawn picture, rows top to bottom, alpha 255.
+  Image read_back();
+  // Copies the last drawn picture into the default frame buffer (a window's back buffer)
+  // with its top-left corner at pixel (x, y) from the top-left of a frame buffer
+  // `target_height` pixels high.
+  void blit_to_default(int x, int y, int target_height);
+  int width() const { return width_; }
+  int height() const { return height_; }
   int samples() const { return samples_; }
 
  private:

@@ -1,0 +1,183 @@
+#include "app/gui/solver_worker.hpp"
+
+#include <chrono>
+
+#include "solver/load_sweep.hpp"
+
+namespace fetic::app::gui {
+
+SolverWorker::SolverWorker(std::function<void()> wake) : wake_(std::move(wake)) {
+  thread_ = std::thread([this] { run(); });
+}
+
+SolverWorker::~SolverWorker() {
+  {
+    std::lock_guard lock(mutex_);
+    stop_ = true;
+  }
+  changed_.notify_all();
+  thread_.join();
+}
+
+void SolverWorker::request(const SolverTarget& target) {
+  {
+    std::lock_guard lock(mutex_);
+    target_ = target;
+    ++version_;
+    idle_ = false;
+  }
+  changed_.notify_all();
+}
+
+std::shared_ptr<const SolveState> SolverWorker::latest() const {
+  std::lock_guard lock(mutex_);
+  return latest_;
+}
+
+bool SolverWorker::busy() const {
+  std::lock_guard lock(mutex_);
+  return !idle_;
+}
+
+bool SolverWorker::superseded() const {
+  std::lock_guard lock(mutex_);
+  return stop_ || version_ != seen_;
+}
+
+void SolverWorker::publish(std::shared_ptr<const SolveState> state) {
+  {
+    std::lock_guard lock(mutex_);
+    latest_ = std::move(state);
+  }
+  if (wake_) wake_();
+}
+
+void SolverWorker::run() {
+  using Clock = std::chrono::steady_clock;
+  std::unique_ptr<solver::Method> method;
+  // What the current method was made for.
+  std::shared_ptr<const solver::Model> made_model;  // keeps the method's model alive
+  std::uint64_t made_generation = 0;
+  solver::MethodKind made_kind{};
+  solver::SolveOptions made_options;
+  double made_max_load = -1.0;
+  std::shared_ptr<const render::RunExtent> extent;
+  std::string setup_error;
+  // The last two finished solves (secant warm start), or an abandoned iterate.
+  std::unique_ptr<solver::Snapshot> older, newer;
+
+  for (;;) {
+    SolverTarget target;
+    {
+      std::unique_lock lock(mutex_);
+      changed_.wait(lock, [&] { return stop_ || version_ != seen_; });
+      if (stop_) return;
+      seen_ = version_;
+      target = target_;
+    }
+    if (!target.model) continue;
+
+    const bool remake = !method && setup_error.empty()
+                            ? true
+                            : made_generation != target.model_generation ||
+                                  made_kind != target.method ||
+                                  made_options.preconditioner != target.options.preconditioner ||
+                                  made_options.scaling != target.options.scaling ||
+                                  made_options.tolerance != target.options.tolerance ||
+                                  made_options.max_iterations != target.options.max_iterations;
+    if (remake || made_max_load != target.max_load) {
+      if (remake) {
+        method.reset();
+        setup_error.clear();
+        older.reset();
+        newer.reset();
+        try {
+          made_model = target.model;
+          method = solver::make_method(target.method, *made_model, target.options);
+        } catch (const solver::SolverError& error) {
+          setup_error = error.what();
+        }
+        made_generation = target.model_generation;
+        made_kind = target.method;
+        made_options = target.options;
+      }
+      // Fixed scales for the slider range: every iteration of the solve at its top.
+      made_max_load = target.max_load;
+      auto survey = std::make_shared<render::RunExtent>();
+      if (method) {
+        render::FramePlan plan;
+        plan.load_factors = {target.max_load};
+        *survey = render::survey(*target.model, *method, plan, [&] { return !superseded(); });
+        if (superseded()) {
+          made_max_load = -1.0;  // survey again with the newer request
+          continue;
+        }
+      }
+      extent = survey;
+    }
+
+    auto state = std::make_shared<SolveState>();
+    state->model = target.model;
+    state->model_generation = target.model_generation;
+    state->request = target.request;
+    state->load_factor = target.load_factor;
+    state->method = target.method;
+    state->preconditioner = target.options.preconditioner;
+    state->extent = extent;
+    if (!method) {
+      state->finished = true;
+      state->status = solver::Status::Failed;
+      state->error = setup_error;
+      state->message = setup_error;
+      publish(state);
+      std::lock_guard lock(mutex_);
+      if (version_ == seen_) idle_ = true;
+      continue;
+    }
+
+    const auto begin = Clock::now();
+    if (newer) {
+      const solver::Snapshot warm =
+          solver::predict_warm_start(older.get(), *newer, target.load_factor);
+      method->start(target.load_factor, &warm);
+    } else {
+      method->start(target.load_factor);
+    }
+    const auto take = [&] {
+      state->iterates.push_back(std::make_shared<const solver::Snapshot>(method->snapshot()));
+      state->history = method->history();
+      state->status = method->status();
+      state->message = method->message();
+      state->solve_seconds = std::chrono::duration<double>(Clock::now() - begin).count();
+    };
+    take();
+    publish(std::make_shared<const SolveState>(*state));
+    bool abandoned = false;
+    while (method->status() == solver::Status::Running) {
+      if (superseded()) {
+        abandoned = true;
+        break;
+      }
+      method->step();
+      take();
+      state->finished = method->status() != solver::Status::Running;
+      publish(std::make_shared<const SolveState>(*state));
+    }
+    if (abandoned) {
+      // The next solve starts from where this one got to (no secant: not a solution).
+      newer = std::make_unique<solver::Snapshot>(*state->iterates.back());
+      older.reset();
+      continue;
+    }
+    state->finished = true;
+    if (state->iterates.size() == 1) publish(std::make_shared<const SolveState>(*state));
+    if (method->status() == solver::Status::Converged) {
+      older = std::move(newer);
+      newer = std::make_unique<solver::Snapshot>(*state->iterates.back());
+    }
+    std::lock_guard lock(mutex_);
+    if (version_ == seen_) idle_ = true;
+  }
+}
+
+}  // namespace fetic::app::gui
