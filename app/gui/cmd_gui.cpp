@@ -128,7 +128,7 @@ class GuiApp {
   void apply(const Request& request);
   void sync();  // the sync point: applies the queued requests, takes the newest state
   void panels(float height);
-  void keys();
+  static void key_event(GLFWwindow* window, int key, int scancode, int action, int mods);
   void mouse(float view_x, float view_width, float view_height);
   void draw_picture(int width, int height);
   render::View view(int width, int height) const;
@@ -534,20 +534,46 @@ void GuiApp::step_recording() {
   });
 }
 
-void GuiApp::keys() {
-  const ImGuiIO& io = ImGui::GetIO();
-  if (io.WantTextInput) return;
-  if (ImGui::IsKeyPressed(GLFW_KEY_SPACE, false)) push({RequestKind::TogglePlay, 0.0, {}});
-  if (ImGui::IsKeyPressed(GLFW_KEY_RIGHT, true)) push({RequestKind::Step, 0.0, {}});
-  if (ImGui::IsKeyPressed(GLFW_KEY_LEFT, true)) push({RequestKind::StepBack, 0.0, {}});
-  if (ImGui::IsKeyPressed(GLFW_KEY_R, false)) push({RequestKind::Reset, 0.0, {}});
-  if (ImGui::IsKeyPressed(GLFW_KEY_S, false)) push({RequestKind::Screenshot, 0.0, {}});
-  if (ImGui::IsKeyPressed(GLFW_KEY_F5, false)) push({RequestKind::Reload, 0.0, {}});
-  if (ImGui::IsKeyPressed(GLFW_KEY_H, false) || ImGui::IsKeyPressed(GLFW_KEY_F1, false))
-    push({RequestKind::Toggle, 0.0, "help"});
-  if (ImGui::IsKeyPressed(GLFW_KEY_HOME, false)) push({RequestKind::ResetView, 0.0, {}});
-  if (ImGui::IsKeyPressed(GLFW_KEY_Q, false) || ImGui::IsKeyPressed(GLFW_KEY_ESCAPE, false))
-    push({RequestKind::Quit, 0.0, {}});
+// GLFW calls this for every key event, before ImGui sees it (ImGui chains to it): a press
+// and its release within one frame still count, which polling ImGui's key state would miss.
+void GuiApp::key_event(GLFWwindow* window, int key, int /*scancode*/, int action, int /*mods*/) {
+  auto* app = static_cast<GuiApp*>(glfwGetWindowUserPointer(window));
+  if (!app || action == GLFW_RELEASE) return;
+  if (ImGui::GetCurrentContext() && ImGui::GetIO().WantTextInput) return;
+  const bool repeat = action == GLFW_REPEAT;
+  switch (key) {
+    case GLFW_KEY_SPACE:
+      if (!repeat) app->push({RequestKind::TogglePlay, 0.0, {}});
+      break;
+    case GLFW_KEY_RIGHT:
+      app->push({RequestKind::Step, 0.0, {}});
+      break;
+    case GLFW_KEY_LEFT:
+      app->push({RequestKind::StepBack, 0.0, {}});
+      break;
+    case GLFW_KEY_R:
+      if (!repeat) app->push({RequestKind::Reset, 0.0, {}});
+      break;
+    case GLFW_KEY_S:
+      if (!repeat) app->push({RequestKind::Screenshot, 0.0, {}});
+      break;
+    case GLFW_KEY_F5:
+      if (!repeat) app->push({RequestKind::Reload, 0.0, {}});
+      break;
+    case GLFW_KEY_H:
+    case GLFW_KEY_F1:
+      if (!repeat) app->push({RequestKind::Toggle, 0.0, "help"});
+      break;
+    case GLFW_KEY_HOME:
+      app->push({RequestKind::ResetView, 0.0, {}});
+      break;
+    case GLFW_KEY_Q:
+    case GLFW_KEY_ESCAPE:
+      app->push({RequestKind::Quit, 0.0, {}});
+      break;
+    default:
+      break;
+  }
 }
 
 void GuiApp::mouse(float view_x, float view_width, float view_height) {
@@ -699,16 +725,15 @@ void GuiApp::panels(float height) {
     ImGui::SetNextWindowPos(ImVec2(kPanelWidth + 40, 40));
     ImGui::Begin("Keys", &help_,
                  ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoSavedSettings);
-    static const char* keys[][2] = {
-        {"Space", "play / pause the iterations"},
-        {"Right, Left", "one iteration forward / back"},
-        {"R", "reset to iteration 0"},
-        {"S", "screenshot (PNG of the picture)"},
-        {"F5", "reload the scene file"},
-        {"Home", "reset pan and zoom (or double-click)"},
-        {"mouse drag", "pan the picture; wheel: zoom"},
-        {"H, F1", "this help"},
-        {"Q, Esc", "quit"}};
+    static const char* keys[][2] = {{"Space", "play / pause the iterations"},
+                                    {"Right, Left", "one iteration forward / back"},
+                                    {"R", "reset to iteration 0"},
+                                    {"S", "screenshot (PNG of the picture)"},
+                                    {"F5", "reload the scene file"},
+                                    {"Home", "reset pan and zoom (or double-click)"},
+                                    {"mouse drag", "pan the picture; wheel: zoom"},
+                                    {"H, F1", "this help"},
+                                    {"Q, Esc", "quit"}};
     if (ImGui::BeginTable("keys", 2)) {
       for (const auto& key : keys) {
         ImGui::TableNextRow();
@@ -843,6 +868,9 @@ int GuiApp::run(render::GlfwWindow& window, std::vector<gui::ScriptAction> scrip
   io.IniFilename = nullptr;
   if (fs::exists(render::kDejaVuSans)) io.Fonts->AddFontFromFileTTF(render::kDejaVuSans, 15.0f);
   ImGui::StyleColorsLight();
+  // Our key callback first: ImGui's callbacks chain to the one installed before them.
+  glfwSetWindowUserPointer(window.handle(), this);
+  glfwSetKeyCallback(window.handle(), &GuiApp::key_event);
   ImGui_ImplGlfw_InitForOpenGL(window.handle(), true);
   ImGui_ImplOpenGL3_Init("#version 330 core");
   glfwSwapInterval(args_.bench > 0 ? 0 : 1);
@@ -881,7 +909,6 @@ int GuiApp::run(render::GlfwWindow& window, std::vector<gui::ScriptAction> scrip
     const int view_x = static_cast<int>(kPanelWidth);
     const int view_width = std::max(16, fb_width - view_x);
     const int view_height = std::max(16, fb_height);
-    keys();
     mouse(static_cast<float>(view_x), static_cast<float>(view_width),
           static_cast<float>(view_height));
     if (scripted) run_script(script, next_action, now, script_failed);
