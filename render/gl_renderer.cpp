@@ -98,7 +98,8 @@ GlRenderer::GlRenderer(GlContext& context, const FontAtlas& font) : context_(con
                GL_RGBA, GL_UNSIGNED_BYTE, font_.texture_rgba());
   GLint max_samples = 0;
   glGetIntegerv(GL_MAX_SAMPLES, &max_samples);
-  samples_ = std::min(4, static_cast<int>(max_samples));
+  max_samples_ = std::max(1, static_cast<int>(max_samples));
+  samples_ = std::min(4, max_samples_);
   check("while setting up the renderer");
 }
 
@@ -108,6 +109,14 @@ GlRenderer::~GlRenderer() {
   glDeleteBuffers(1, &vbo_);
   glDeleteVertexArrays(1, &vao_);
   glDeleteProgram(program_);
+}
+
+void GlRenderer::set_samples(int samples) {
+  samples = std::clamp(samples, 1, max_samples_);
+  if (samples == samples_) return;
+  context_.make_current();
+  samples_ = samples;
+  release_targets();  // resize() makes them again
 }
 
 void GlRenderer::release_targets() {

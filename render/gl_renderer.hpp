@@ -37,6 +37,9 @@ class GlRenderer {
   int width() const { return width_; }
   int height() const { return height_; }
   int samples() const { return samples_; }
+  // Samples per pixel of the next draws (1 .. the GL maximum, at most 4 by default): an
+  // interactive window may draw with 1 while the user drags and 4 when the picture rests.
+  void set_samples(int samples);
 
  private:
   void resize(int width, int height);
@@ -48,7 +51,7 @@ class GlRenderer {
   unsigned program_ = 0, vao_ = 0, vbo_ = 0, texture_ = 0;
   unsigned msaa_fbo_ = 0, msaa_color_ = 0, resolve_fbo_ = 0, resolve_color_ = 0;
   int viewport_location_ = -1;
-  int width_ = 0, height_ = 0, samples_ = 0;
+  int width_ = 0, height_ = 0, samples_ = 0, max_samples_ = 1;
   std::vector<TexturedVertex> vertices_;
 };
 

@@ -54,6 +54,8 @@ using gui::RequestKind;
 namespace fs = std::filesystem;
 
 constexpr float kPanelWidth = 330.0f;  // ImGui panel on the left; the picture fills the rest
+// How long the sync point waits for a quick solve to finish within the frame.
+constexpr std::chrono::microseconds kQuickSolve{5000};
 
 struct GuiArgs {
   std::string scene;
@@ -167,6 +169,7 @@ class GuiApp {
   double shown_magnification_ = 0.0;
   bool subdomains_ = true, stress_ = false, forces_ = true, gaps_ = true, show_overlay_ = true;
   bool help_ = false;
+  bool dragging_slider_ = false, draft_ = false;
   float zoom_ = 1.0f;
   render::Point pan_{0.0f, 0.0f};
   render::Point base_center_{0.0f, 0.0f};
@@ -197,7 +200,7 @@ class GuiApp {
   struct Bench {
     int phase = 0;  // 0 drag, 1 settle, 2 isolated changes, 3 done
     int k = 0;
-    std::vector<double> frame_ms;
+    std::vector<double> frame_ms, draw_ms, lists_ms, swap_ms;
     std::vector<double> solved_latency_ms, first_latency_ms, solve_ms;
     std::vector<int> iterations;
     Clock::time_point last_frame{};
@@ -382,10 +385,19 @@ void GuiApp::reload() {
 }
 
 void GuiApp::sync() {
+  const std::uint64_t sent_before = requests_sent_;
   for (std::size_t i = 0; i < queue_.size(); ++i)  // apply() may queue more
     apply(queue_[i]);
   queue_.clear();
-  auto latest = worker_.latest();
+  // A solve that is quick (the last one took less than the budget) lands in this very
+  // frame: wait for it a little rather than show it one frame later. Slow solves are not
+  // waited for; their iterates appear as they come.
+  std::shared_ptr<const gui::SolveState> latest;
+  if (requests_sent_ != sent_before && shown_ && shown_->finished &&
+      shown_->solve_seconds < kQuickSolve.count() * 1e-6)
+    latest = worker_.wait_for(requests_sent_, kQuickSolve);
+  else
+    latest = worker_.latest();
   if (latest != shown_) {
     shown_ = std::move(latest);
     redraw_ = true;
@@ -415,6 +427,7 @@ void GuiApp::draw_picture(int width, int height) {
     renderer_->draw(width, height, {&empty}, render::palette::background);
     return;
   }
+  const auto lists_start = Clock::now();
   const int index = shown_index();
   const solver::Snapshot& snapshot = *shown_->iterates[static_cast<std::size_t>(index)];
   const std::vector<solver::HistoryEntry> history(
@@ -438,6 +451,9 @@ void GuiApp::draw_picture(int width, int height) {
       info.method += std::string(" (") + solver::to_string(shown_->preconditioner) + ")";
     overlay = render::draw_overlay(info, *shown_->model, snapshot, history, *shown_->extent, v);
   }
+  if (args_.bench > 0 && bench_.phase == 0)
+    bench_.lists_ms.push_back(
+        std::chrono::duration<double, std::milli>(Clock::now() - lists_start).count());
   renderer_->draw(width, height, {&scene, &overlay}, render::palette::background);
 }
 
@@ -616,6 +632,7 @@ void GuiApp::panels(float height) {
   ImGui::SetNextItemWidth(-1);
   if (ImGui::SliderScalar("##load", ImGuiDataType_Double, &load, &zero, &target_.max_load, "%.4f"))
     push({RequestKind::SetLoad, load, {}});
+  dragging_slider_ = ImGui::IsItemActive();
   const ImVec2 lo = ImGui::GetItemRectMin(), hi = ImGui::GetItemRectMax();
   slider_[0] = lo.x, slider_[1] = lo.y, slider_[2] = hi.x, slider_[3] = hi.y;
   static double typed = 1.0;
@@ -922,8 +939,22 @@ int GuiApp::run(render::GlfwWindow& window, std::vector<gui::ScriptAction> scrip
       redraw_ = true;
     }
     step_recording();
+    // Draft quality (no multisampling) while the slider is dragged: the picture follows
+    // the pointer at a higher frame rate; full quality again as soon as it rests.
+    const bool draft = dragging_slider_ || (args_.bench > 0 && bench_.phase == 0);
+    if (draft != draft_) {
+      draft_ = draft;
+      renderer.set_samples(draft ? 1 : 4);
+      redraw_ = true;
+    }
     if (redraw_) {
+      const auto draw_start = Clock::now();
       draw_picture(view_width_, view_height_);
+      if (args_.bench > 0 && bench_.phase == 0) {
+        glFinish();  // the benchmark times the GL work too, not just its submission
+        bench_.draw_ms.push_back(
+            std::chrono::duration<double, std::milli>(Clock::now() - draw_start).count());
+      }
       redraw_ = false;
     }
     if (screenshot_requested_) {
@@ -938,7 +969,11 @@ int GuiApp::run(render::GlfwWindow& window, std::vector<gui::ScriptAction> scrip
     glClear(GL_COLOR_BUFFER_BIT);
     renderer.blit_to_default(view_x, 0, fb_height);
     ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+    const auto swap_start = Clock::now();
     glfwSwapBuffers(window.handle());
+    if (args_.bench > 0 && bench_.phase == 0)
+      bench_.swap_ms.push_back(
+          std::chrono::duration<double, std::milli>(Clock::now() - swap_start).count());
     ++frames;
     report_frame();
     if (!ready_reported_ && frames >= 2) {
@@ -972,6 +1007,10 @@ int GuiApp::run(render::GlfwWindow& window, std::vector<gui::ScriptAction> scrip
         b.drag_frames, b.drag_seconds > 0 ? b.drag_frames / b.drag_seconds : 0.0,
         median(b.frame_ms),
         b.frame_ms.empty() ? 0.0 : *std::max_element(b.frame_ms.begin(), b.frame_ms.end()));
+    std::printf(
+        "per frame      picture median %.2f ms (draw lists %.2f ms, the rest GL until "
+        "finished); ImGui + blit + swap median %.2f ms\n",
+        median(b.draw_ms), median(b.lists_ms), median(b.swap_ms));
     std::printf(
         "latency        load change -> frame with the converged solve: median %.2f ms, "
         "max %.2f ms (%zu changes)\n",

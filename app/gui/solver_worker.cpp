@@ -2,9 +2,17 @@
 
 #include <chrono>
 
+#include <omp.h>
+
 #include "solver/load_sweep.hpp"
 
 namespace fetic::app::gui {
+namespace {
+
+// Unknowns from which the solver thread uses an OpenMP team (one thread a core).
+constexpr long kParallelFrom = 200000;
+
+}  // namespace
 
 SolverWorker::SolverWorker(std::function<void()> wake) : wake_(std::move(wake)) {
   thread_ = std::thread([this] { run(); });
@@ -44,11 +52,20 @@ bool SolverWorker::superseded() const {
   return stop_ || version_ != seen_;
 }
 
+std::shared_ptr<const SolveState> SolverWorker::wait_for(std::uint64_t request,
+                                                         std::chrono::microseconds budget) const {
+  std::unique_lock lock(mutex_);
+  published_.wait_for(lock, budget,
+                      [&] { return latest_ && latest_->request >= request && latest_->finished; });
+  return latest_;
+}
+
 void SolverWorker::publish(std::shared_ptr<const SolveState> state) {
   {
     std::lock_guard lock(mutex_);
     latest_ = std::move(state);
   }
+  published_.notify_all();
   if (wake_) wake_();
 }
 
@@ -91,6 +108,9 @@ void SolverWorker::run() {
         setup_error.clear();
         older.reset();
         newer.reset();
+        // Small models solve fastest on one thread: an OpenMP team's start-up and spinning
+        // cost more than the work and take the cores the window renders on (llvmpipe).
+        omp_set_num_threads(target.model->dof_count() < kParallelFrom ? 1 : omp_get_num_procs());
         try {
           made_model = target.model;
           method = solver::make_method(target.method, *made_model, target.options);

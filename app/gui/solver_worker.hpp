@@ -4,6 +4,7 @@
 // immutable SolveState after every iteration. A newer request abandons the current solve
 // between two iterations, so dragging the load slider never waits for a solve to finish.
 
+#include <chrono>
 #include <condition_variable>
 #include <cstdint>
 #include <functional>
@@ -62,6 +63,10 @@ class SolverWorker {
   std::shared_ptr<const SolveState> latest() const;
   // True while a request has not been answered by a finished solve.
   bool busy() const;
+  // Waits at most `budget` for a finished solve answering `request` (or a later one);
+  // returns it, or the newest state when the time is up.
+  std::shared_ptr<const SolveState> wait_for(std::uint64_t request,
+                                             std::chrono::microseconds budget) const;
 
  private:
   void run();
@@ -71,6 +76,7 @@ class SolverWorker {
   std::function<void()> wake_;
   mutable std::mutex mutex_;
   std::condition_variable changed_;
+  mutable std::condition_variable published_;
   SolverTarget target_;
   std::uint64_t version_ = 0;  // bumped by every request()
   std::uint64_t seen_ = 0;     // version the worker works on
