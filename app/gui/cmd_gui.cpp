@@ -170,6 +170,8 @@ class GuiApp {
   bool subdomains_ = true, stress_ = false, forces_ = true, gaps_ = true, show_overlay_ = true;
   bool help_ = false;
   bool dragging_slider_ = false, draft_ = false;
+  bool typing_load_ = false;
+  double typed_load_ = 0.0;
   float zoom_ = 1.0f;
   render::Point pan_{0.0f, 0.0f};
   render::Point base_center_{0.0f, 0.0f};
@@ -635,11 +637,13 @@ void GuiApp::panels(float height) {
   dragging_slider_ = ImGui::IsItemActive();
   const ImVec2 lo = ImGui::GetItemRectMin(), hi = ImGui::GetItemRectMax();
   slider_[0] = lo.x, slider_[1] = lo.y, slider_[2] = hi.x, slider_[3] = hi.y;
-  static double typed = 1.0;
+  // The typed value shows the current load factor unless the user is typing.
+  if (!typing_load_) typed_load_ = target_.load_factor;
   ImGui::SetNextItemWidth(120);
-  if (ImGui::InputDouble("type + Enter", &typed, 0.0, 0.0, "%.4f",
+  if (ImGui::InputDouble("type + Enter", &typed_load_, 0.0, 0.0, "%.4f",
                          ImGuiInputTextFlags_EnterReturnsTrue))
-    push({RequestKind::SetLoad, typed, {}});
+    push({RequestKind::SetLoad, typed_load_, {}});
+  typing_load_ = ImGui::IsItemActive();
 
   ImGui::Separator();
   static const char* methods[] = {"feti-c", "active-set", "feti", "cg", "sd"};

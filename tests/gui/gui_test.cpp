@@ -13,6 +13,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
@@ -300,6 +301,35 @@ TEST_CASE("a script drives the same requests: load, wait, step, screenshot, quit
   CHECK(shots[3]["iteration"].get<int>() == solved[2]["iterations"].get<int>());
   require_golden("gui_script_thesis_load1", dir / "one.png");
   require_golden("gui_script_thesis_stress", dir / "stress.png");
+}
+
+TEST_CASE("a load sweep is recorded as frames through the request path", "[script]") {
+  REQUIRE(have_display());
+  const fs::path dir = fresh_directory("fetic_gui_record");
+  const fs::path state = dir / "state.jsonl";
+  const fs::path script = dir / "script.txt";
+  std::ofstream(script) << "wait\nrecord-sweep 3\nwait\nrecord-iterations\nwait\nquit\n";
+  App app({scene("two_bars.toml"), "--state-file", state.string(), "--script", script.string(),
+           "--record-dir", (dir / "rec").string()});
+  const auto status = app.wait(90.0);
+  REQUIRE(status);
+  CHECK(*status == 0);
+  std::vector<json> recorded, solved;
+  for (const json& e : events(state)) {
+    if (is(e, "recorded")) recorded.push_back(e);
+    if (is(e, "solved")) solved.push_back(e);
+  }
+  REQUIRE(recorded.size() == 2);
+  CHECK(recorded[0]["frames"].get<int>() == 3);
+  for (int i = 0; i < 3; ++i)
+    CHECK(fs::exists(dir / "rec" / "sweep_001" / ("frame_000" + std::to_string(i) + ".png")));
+  // The sweep solved 0, 1 and 2 (the slider's range), one after the other.
+  std::vector<double> loads;
+  for (const json& e : solved)
+    loads.push_back(e["load_factor"].get<double>());
+  CHECK(std::find(loads.begin(), loads.end(), 0.0) != loads.end());
+  CHECK(std::find(loads.begin(), loads.end(), 2.0) != loads.end());
+  CHECK(recorded[1]["frames"].get<int>() >= 1);
 }
 
 TEST_CASE("a changed scene file is reloaded, keeping the app running", "[script]") {
