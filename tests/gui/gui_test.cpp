@@ -217,6 +217,7 @@ TEST_CASE("dragging the load slider with the mouse re-solves and redraws", "[e2e
   const auto at_max = wait_for(state, [&](const json& e) {
     return is(e, "solved") && e["load_factor"].get<double>() == max_load;
   });
+  INFO("reported state:\n" << read_text(state));
   REQUIRE(at_max);
   CHECK((*at_max)["converged"].get<bool>());
   const std::vector<int> active = (*at_max)["active_contacts"].get<std::vector<int>>();
@@ -279,6 +280,7 @@ TEST_CASE("a script drives the same requests: load, wait, step, screenshot, quit
   App app({scene("thesis.toml"), "--load", "0", "--no-overlay", "--size", "1280x800",
            "--state-file", state.string(), "--script", script.string()});
   const auto status = app.wait(90.0);
+  INFO("reported state:\n" << read_text(state));
   REQUIRE(status);
   CHECK(*status == 0);
 
@@ -312,6 +314,7 @@ TEST_CASE("a load sweep is recorded as frames through the request path", "[scrip
   App app({scene("two_bars.toml"), "--state-file", state.string(), "--script", script.string(),
            "--record-dir", (dir / "rec").string()});
   const auto status = app.wait(90.0);
+  INFO("reported state:\n" << read_text(state));
   REQUIRE(status);
   CHECK(*status == 0);
   std::vector<json> recorded, solved;
