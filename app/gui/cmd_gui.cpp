@@ -154,7 +154,8 @@ class GuiApp {
 
   // What is on screen.
   std::shared_ptr<const gui::SolveState> shown_;
-  bool follow_ = true;  // show the newest iterate
+  std::shared_ptr<const gui::SolveState> error_;  // the newest request could not be solved
+  bool follow_ = true;                            // show the newest iterate
   bool playing_ = false;
   int cursor_ = 0;
   double play_rate_ = 4.0;  // iterations per second
@@ -403,8 +404,12 @@ void GuiApp::sync() {
     latest = worker_.wait_for(requests_sent_, kQuickSolve);
   else
     latest = worker_.latest();
-  if (latest != shown_) {
+  if (latest && latest->iterates.empty() && latest->finished) {
+    // The method cannot solve this scene: say so, keep the last picture.
+    error_ = std::move(latest);
+  } else if (latest != shown_) {
     shown_ = std::move(latest);
+    if (shown_ && error_ && shown_->request > error_->request) error_.reset();
     redraw_ = true;
   }
   // Playback of the iterations of the current solve.
@@ -722,11 +727,13 @@ void GuiApp::panels(float height) {
   ImGui::SliderInt("##steps", &sweep_steps_, 2, 200, "%d steps");
 
   ImGui::Separator();
-  if (shown_) {
-    if (!shown_->error.empty()) {
-      ImGui::TextColored(ImVec4(0.9f, 0.2f, 0.2f, 1), "cannot solve:");
-      ImGui::TextWrapped("%s", shown_->error.c_str());
-    } else {
+  if (error_) {
+    ImGui::TextColored(ImVec4(0.8f, 0.1f, 0.1f, 1),
+                       "%s cannot solve this scene:", solver::to_string(error_->method));
+    ImGui::TextWrapped("%s", error_->error.c_str());
+    ImGui::TextWrapped("(the picture is the last solve; choose another method)");
+  } else if (shown_) {
+    {
       const bool busy = !shown_->finished || shown_->request != requests_sent_;
       const int active = shown_->iterates.empty() ? 0 : shown_->iterates.back()->active_set_size();
       ImGui::Text("%s at load %.4f", busy ? "solving" : solver::to_string(shown_->status),
@@ -800,7 +807,22 @@ void GuiApp::run_script(std::vector<gui::ScriptAction>& script, std::size_t& nex
 
 void GuiApp::report_frame() {
   // Called after a swap: the shown state is on screen now.
-  if (!shown_) return;
+  if (error_ && error_->request > reported_request_) {
+    reported_request_ = error_->request;
+    log_.write({{"event", "solved"},
+                {"request", error_->request},
+                {"load_factor", error_->load_factor},
+                {"method", solver::to_string(error_->method)},
+                {"converged", false},
+                {"status", "failed"},
+                {"message", error_->message},
+                {"active", 0},
+                {"active_contacts", std::vector<int>{}}});
+  }
+  if (!shown_) {
+    solved_on_screen_ = error_ && error_->request == requests_sent_;
+    return;
+  }
   const auto now = Clock::now();
   if (shown_->request != first_frame_request_) {
     first_frame_request_ = shown_->request;
@@ -809,8 +831,9 @@ void GuiApp::report_frame() {
       bench_.first_latency_ms.push_back(
           std::chrono::duration<double, std::milli>(now - it->second).count());
   }
-  solved_on_screen_ = shown_->finished && shown_->request == requests_sent_ && follow_;
-  if (!shown_->finished || shown_->request == reported_request_ || shown_->iterates.empty()) return;
+  solved_on_screen_ = (shown_->finished && shown_->request == requests_sent_ && follow_) ||
+                      (error_ && error_->request == requests_sent_);
+  if (!shown_->finished || shown_->request <= reported_request_ || shown_->iterates.empty()) return;
   reported_request_ = shown_->request;
   const solver::Snapshot& final_state = *shown_->iterates.back();
   double latency = 0.0;

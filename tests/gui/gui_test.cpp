@@ -305,12 +305,14 @@ TEST_CASE("a script drives the same requests: load, wait, step, screenshot, quit
   require_golden("gui_script_thesis_stress", dir / "stress.png");
 }
 
-TEST_CASE("a load sweep is recorded as frames through the request path", "[script]") {
+TEST_CASE("a load sweep is recorded as frames; a method that cannot solve is reported",
+          "[script]") {
   REQUIRE(have_display());
   const fs::path dir = fresh_directory("fetic_gui_record");
   const fs::path state = dir / "state.jsonl";
   const fs::path script = dir / "script.txt";
-  std::ofstream(script) << "wait\nrecord-sweep 3\nwait\nrecord-iterations\nwait\nquit\n";
+  std::ofstream(script)
+      << "wait\nrecord-sweep 3\nwait\nrecord-iterations\nwait\nmethod cg\nwait\nquit\n";
   App app({scene("two_bars.toml"), "--state-file", state.string(), "--script", script.string(),
            "--record-dir", (dir / "rec").string()});
   const auto status = app.wait(90.0);
@@ -323,6 +325,12 @@ TEST_CASE("a load sweep is recorded as frames through the request path", "[scrip
     if (is(e, "solved")) solved.push_back(e);
   }
   REQUIRE(recorded.size() == 2);
+  // Encoding finishes off the window's thread: the events may come in either order.
+  std::sort(recorded.begin(), recorded.end(), [](const json& a, const json& b) {
+    return a["directory"].get<std::string>().find("sweep_") != std::string::npos &&
+           b["directory"].get<std::string>().find("sweep_") == std::string::npos;
+  });
+  CHECK(recorded[0]["directory"].get<std::string>().find("sweep_001") != std::string::npos);
   CHECK(recorded[0]["frames"].get<int>() == 3);
   for (int i = 0; i < 3; ++i)
     CHECK(fs::exists(dir / "rec" / "sweep_001" / ("frame_000" + std::to_string(i) + ".png")));
@@ -333,6 +341,11 @@ TEST_CASE("a load sweep is recorded as frames through the request path", "[scrip
   CHECK(std::find(loads.begin(), loads.end(), 0.0) != loads.end());
   CHECK(std::find(loads.begin(), loads.end(), 2.0) != loads.end());
   CHECK(recorded[1]["frames"].get<int>() >= 1);
+  // CG cannot solve a scene with contacts: reported as a failed solve, the app goes on.
+  REQUIRE(!solved.empty());
+  CHECK(solved.back()["method"] == "cg");
+  CHECK(!solved.back()["converged"].get<bool>());
+  CHECK(solved.back()["message"].get<std::string>().find("contact") != std::string::npos);
 }
 
 TEST_CASE("a changed scene file is reloaded, keeping the app running", "[script]") {
