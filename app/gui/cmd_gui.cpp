@@ -62,7 +62,7 @@ struct GuiArgs {
   std::string method = "feti-c";
   std::string preconditioner = "dirichlet";
   double load = 1.0;
-  double max_load = 0.0;  // 0: twice the scene's loads
+  double max_load = 0.0;  // 0: chosen from the scene (solver::automatic_max_load)
   double magnification = 0.0;
   std::string size = "1280x800";
   std::string state_file;
@@ -110,8 +110,9 @@ class GuiApp {
     target_.model_generation = 1;
     target_.method = *solver::parse_method(args.method);
     target_.options.preconditioner = *solver::parse_preconditioner(args.preconditioner);
-    target_.max_load = args.max_load > 0.0 ? args.max_load : 2.0;
-    target_.load_factor = std::clamp(args.load, 0.0, target_.max_load);
+    target_.max_load = args.max_load;  // 0: the worker chooses from the scene
+    slider_max_ = args.max_load > 0.0 ? args.max_load : 2.0;
+    target_.load_factor = args.max_load > 0.0 ? std::min(args.load, args.max_load) : args.load;
     magnification_ = args.magnification;
     show_overlay_ = !args.no_overlay;
     std::error_code ignored;
@@ -173,6 +174,7 @@ class GuiApp {
   bool dragging_slider_ = false, draft_ = false;
   bool typing_load_ = false;
   std::uint64_t drafted_request_ = 0;
+  double slider_max_ = 2.0;  // top of the load slider
   double last_picture_ms_ = 0.0;
   Clock::time_point last_picture_end_{};
   double typed_load_ = 0.0;
@@ -241,7 +243,7 @@ void GuiApp::apply(const Request& r) {
   const bool finished = shown_ && shown_->finished;
   switch (r.kind) {
     case RequestKind::SetLoad: {
-      const double t = std::clamp(r.value, 0.0, target_.max_load);
+      const double t = std::clamp(r.value, 0.0, slider_max_);
       if (t == target_.load_factor && requests_sent_ > 0) break;
       target_.load_factor = t;
       follow_ = true;
@@ -348,7 +350,7 @@ void GuiApp::apply(const Request& r) {
       if (rec->sweep) {
         const int n = r.value >= 2 ? static_cast<int>(r.value) : sweep_steps_;
         for (int i = 0; i < n; ++i)
-          rec->loads.push_back(target_.max_load * i / (n - 1));
+          rec->loads.push_back(slider_max_ * i / (n - 1));
       } else {
         if (!shown_ || shown_->iterates.empty()) {
           status_line_ = "nothing to record yet";
@@ -409,6 +411,7 @@ void GuiApp::sync() {
     error_ = std::move(latest);
   } else if (latest != shown_) {
     shown_ = std::move(latest);
+    if (shown_ && shown_->max_load > 0.0) slider_max_ = shown_->max_load;
     if (shown_ && error_ && shown_->request > error_->request) error_.reset();
     redraw_ = true;
   }
@@ -636,11 +639,11 @@ void GuiApp::panels(float height) {
   ImGui::TextWrapped("%s", title_.c_str());
   ImGui::Separator();
 
-  ImGui::Text("Load factor (0 .. %.3g)", target_.max_load);
+  ImGui::Text("Load factor (0 .. %.3g)", slider_max_);
   double load = target_.load_factor;
   const double zero = 0.0;
   ImGui::SetNextItemWidth(-1);
-  if (ImGui::SliderScalar("##load", ImGuiDataType_Double, &load, &zero, &target_.max_load, "%.4f"))
+  if (ImGui::SliderScalar("##load", ImGuiDataType_Double, &load, &zero, &slider_max_, "%.4f"))
     push({RequestKind::SetLoad, load, {}});
   dragging_slider_ = ImGui::IsItemActive();
   const ImVec2 lo = ImGui::GetItemRectMin(), hi = ImGui::GetItemRectMax();
@@ -882,7 +885,7 @@ void GuiApp::bench_step(double /*now*/) {
     const double elapsed = std::chrono::duration<double>(now - b.drag_start).count();
     if (b.k < args_.bench) {
       if (elapsed >= b.k / 60.0) {
-        push({RequestKind::SetLoad, target_.max_load * b.k / std::max(1, args_.bench - 1), {}});
+        push({RequestKind::SetLoad, slider_max_ * b.k / std::max(1, args_.bench - 1), {}});
         ++b.k;
       }
     } else {
@@ -902,7 +905,7 @@ void GuiApp::bench_step(double /*now*/) {
       quit_ = true;
       return;
     }
-    const double t = target_.max_load * (0.5 + 0.01 * ((b.k % 2) ? b.k : -b.k));
+    const double t = slider_max_ * (0.5 + 0.01 * ((b.k % 2) ? b.k : -b.k));
     push({RequestKind::SetLoad, t, {}});
     b.waiting = requests_sent_ + 1;
     solved_on_screen_ = false;
@@ -1032,13 +1035,13 @@ int GuiApp::run(render::GlfwWindow& window, std::vector<gui::ScriptAction> scrip
           std::chrono::duration<double, std::milli>(Clock::now() - swap_start).count());
     ++frames;
     report_frame();
-    if (!ready_reported_ && frames >= 2) {
+    if (!ready_reported_ && frames >= 2 && shown_) {
       ready_reported_ = true;
       log_.write({{"event", "ready"},
                   {"window", {fb_width, fb_height}},
                   {"view", {view_x, 0, view_width_, view_height_}},
                   {"slider", {slider_[0], slider_[1], slider_[2], slider_[3]}},
-                  {"max_load", target_.max_load},
+                  {"max_load", slider_max_},
                   {"renderer", window.description()}});
     }
   }

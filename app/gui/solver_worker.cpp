@@ -1,6 +1,9 @@
 #include "app/gui/solver_worker.hpp"
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <limits>
 
 #include <omp.h>
 
@@ -13,6 +16,25 @@ namespace {
 constexpr long kParallelFrom = 200000;
 
 }  // namespace
+
+double automatic_max_load(const solver::Model& model, const solver::Snapshot& at_one) {
+  if (at_one.status != solver::Status::Converged || at_one.active_set_size() > 0) return 2.0;
+  const auto u = solver::strut_displacements(model, at_one);
+  double first_close = std::numeric_limits<double>::infinity();
+  for (const solver::ContactPair& pair : model.pairs) {
+    const solver::Vec2 relative =
+        u[static_cast<std::size_t>(pair.strut_a)][static_cast<std::size_t>(pair.node_a)] -
+        u[static_cast<std::size_t>(pair.strut_b)][static_cast<std::size_t>(pair.node_b)];
+    const double closing = relative.dot(pair.normal);  // row: (u_a - u_b) . n <= gap
+    if (closing > 0.0 && pair.gap > 0.0) first_close = std::min(first_close, pair.gap / closing);
+  }
+  if (!std::isfinite(first_close) || 2.0 * first_close <= 2.0) return 2.0;
+  const double raw = 2.0 * first_close;
+  const double decade = std::pow(10.0, std::floor(std::log10(raw)));
+  for (const double step : {1.0, 2.0, 5.0, 10.0})
+    if (step * decade >= raw) return step * decade;
+  return 10.0 * decade;
+}
 
 SolverWorker::SolverWorker(std::function<void()> wake) : wake_(std::move(wake)) {
   thread_ = std::thread([this] { run(); });
@@ -79,6 +101,7 @@ void SolverWorker::run() {
   solver::SolveOptions made_options;
   double made_max_load = -1.0;
   std::shared_ptr<const render::RunExtent> extent;
+  double slider_max = 2.0;
   std::string setup_error;
   // The last two finished solves (secant warm start), or an abandoned iterate.
   std::unique_ptr<solver::Snapshot> older, newer;
@@ -123,10 +146,20 @@ void SolverWorker::run() {
       }
       // Fixed scales for the slider range: every iteration of the solve at its top.
       made_max_load = target.max_load;
+      slider_max = target.max_load > 0.0 ? target.max_load : 2.0;
       auto survey = std::make_shared<render::RunExtent>();
+      if (method && target.max_load <= 0.0) {
+        method->start(1.0);
+        solver::run_to_end(*method, [&] { return !superseded(); });
+        if (superseded()) {
+          made_max_load = -1.0;
+          continue;
+        }
+        slider_max = automatic_max_load(*target.model, method->snapshot());
+      }
       if (method) {
         render::FramePlan plan;
-        plan.load_factors = {target.max_load};
+        plan.load_factors = {slider_max};
         *survey = render::survey(*target.model, *method, plan, [&] { return !superseded(); });
         if (superseded()) {
           made_max_load = -1.0;  // survey again with the newer request
@@ -144,6 +177,9 @@ void SolverWorker::run() {
     state->method = target.method;
     state->preconditioner = target.options.preconditioner;
     state->extent = extent;
+    state->max_load = slider_max;
+    target.load_factor = std::min(target.load_factor, slider_max);
+    state->load_factor = target.load_factor;
     if (!method) {
       state->finished = true;
       state->status = solver::Status::Failed;

@@ -36,7 +36,8 @@ struct SolveState {
   double solve_seconds = 0.0;
   // Scales for the whole slider range: a survey of the solve at the largest load factor.
   std::shared_ptr<const render::RunExtent> extent;
-  std::string error;  // the method could not be set up for this model
+  double max_load = 2.0;  // top of the load slider (the target's, or chosen from the scene)
+  std::string error;      // the method could not be set up for this model
 };
 
 struct SolverTarget {
@@ -44,10 +45,16 @@ struct SolverTarget {
   std::uint64_t model_generation = 0;
   solver::MethodKind method = solver::MethodKind::FetiC;
   solver::SolveOptions options;
-  double max_load = 2.0;
+  double max_load = 0.0;  // top of the load slider; 0: automatic_max_load()
   double load_factor = 1.0;
   std::uint64_t request = 0;
 };
+
+// The top of the load slider when none is given: twice the scene's loads; when nothing
+// touches at the scene's loads (`at_one`: converged solve at load factor 1 with an empty
+// working set, so displacements grow linearly with the load), twice the load factor at
+// which the first contact closes, rounded up to 1, 2 or 5 x 10^k.
+double automatic_max_load(const solver::Model& model, const solver::Snapshot& at_one);
 
 class SolverWorker {
  public:
