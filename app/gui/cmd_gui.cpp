@@ -645,7 +645,10 @@ void GuiApp::panels(float height) {
   ImGui::SetNextItemWidth(-1);
   if (ImGui::SliderScalar("##load", ImGuiDataType_Double, &load, &zero, &slider_max_, "%.4f"))
     push({RequestKind::SetLoad, load, {}});
-  dragging_slider_ = ImGui::IsItemActive();
+  if (ImGui::IsItemActive() != dragging_slider_) {
+    dragging_slider_ = ImGui::IsItemActive();
+    log_.write({{"event", "slider"}, {"held", dragging_slider_}, {"load_factor", load}});
+  }
   const ImVec2 lo = ImGui::GetItemRectMin(), hi = ImGui::GetItemRectMax();
   slider_[0] = lo.x, slider_[1] = lo.y, slider_[2] = hi.x, slider_[3] = hi.y;
   // The typed value shows the current load factor unless the user is typing.

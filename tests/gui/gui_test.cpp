@@ -205,14 +205,21 @@ TEST_CASE("dragging the load slider with the mouse re-solves and redraws", "[e2e
   REQUIRE(shot0);
   require_golden("gui_thesis_load0", (*shot0)["path"].get<std::string>());
 
-  // Drag the slider from 0 to past its right end with real pointer events.
-  std::string drag = "mousemove --window " + wid + " " + std::to_string(x0) + " " +
-                     std::to_string(y) + " mousedown 1";
+  // Drag the slider from 0 to past its right end with real pointer events. The app says
+  // when it sees the slider held, so a slow frame cannot merge the press with the moves.
+  xdotool("mousemove --window " + wid + " " + std::to_string(x0) + " " + std::to_string(y) +
+          " mousedown 1");
+  REQUIRE(wait_for(state, [](const json& e) { return is(e, "slider") && e["held"].get<bool>(); }));
+  std::string drag;
   for (int i = 1; i <= 12; ++i)
-    drag += " sleep 0.03 mousemove --window " + wid + " " +
-            std::to_string(x0 + (x1 - x0) * i / 12) + " " + std::to_string(y);
-  drag += " sleep 0.05 mouseup 1";
+    drag += " mousemove --window " + wid + " " + std::to_string(x0 + (x1 - x0) * i / 12) + " " +
+            std::to_string(y) + " sleep 0.03";
   xdotool(drag);
+  xdotool("mouseup 1");
+  const auto released =
+      wait_for(state, [](const json& e) { return is(e, "slider") && !e["held"].get<bool>(); });
+  REQUIRE(released);
+  CHECK((*released)["load_factor"].get<double>() == max_load);
 
   const auto at_max = wait_for(state, [&](const json& e) {
     return is(e, "solved") && e["load_factor"].get<double>() == max_load;
