@@ -467,7 +467,13 @@ void GuiApp::draw_picture(int width, int height) {
   if (args_.bench > 0 && bench_.phase == 0)
     bench_.lists_ms.push_back(
         std::chrono::duration<double, std::milli>(Clock::now() - lists_start).count());
-  renderer_->draw(width, height, {&scene, &overlay}, render::palette::background);
+  // Panned or zoomed, the scene may reach under the information panel: mask it there.
+  render::DrawList mask;
+  if (v.show_overlay)
+    mask.rect(
+        {render::scene_region(v).x1, 0.0f, static_cast<float>(width), static_cast<float>(height)},
+        render::palette::background);
+  renderer_->draw(width, height, {&scene, &mask, &overlay}, render::palette::background);
 }
 
 void GuiApp::screenshot(const std::string& requested) {
