@@ -249,6 +249,21 @@ TEST_CASE("dragging the load slider with the mouse re-solves and redraws", "[e2e
   const auto b = fetic::testing::read_png((*shot1)["path"].get<std::string>());
   CHECK(fetic::testing::compare(b, a).fraction > 0.01);
 
+  // Keys: R back to iteration 0, Right twice, S: the screenshot is of iteration 2; Left
+  // once: iteration 1.
+  const std::size_t before = events(state).size();
+  xdotool("key r key Right key Right key s");
+  const auto stepped = wait_for(
+      state, [](const json& e) { return is(e, "screenshot"); }, 60.0, before);
+  REQUIRE(stepped);
+  CHECK((*stepped)["iteration"].get<int>() == 2);
+  const std::size_t before_left = events(state).size();
+  xdotool("key Left key s");
+  const auto back = wait_for(
+      state, [](const json& e) { return is(e, "screenshot"); }, 60.0, before_left);
+  REQUIRE(back);
+  CHECK((*back)["iteration"].get<int>() == 1);
+
   xdotool("key q");
   const auto status = app.wait(20.0);
   REQUIRE(status);
