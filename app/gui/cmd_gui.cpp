@@ -200,6 +200,7 @@ class GuiApp {
 
   render::GlRenderer* renderer_ = nullptr;
   bool quit_ = false;
+  double wait_started_ = -1.0;  // when the script's current "wait" began
   float slider_[4] = {0, 0, 0, 0};
   bool ready_reported_ = false;
   Clock::time_point start_ = Clock::now();
@@ -793,14 +794,13 @@ void GuiApp::panels(float height) {
 
 void GuiApp::run_script(std::vector<gui::ScriptAction>& script, std::size_t& next, double now,
                         bool& failed) {
-  static double wait_started = -1.0;
   while (next < script.size()) {
     const gui::ScriptAction& action = script[next];
     if (action.at >= 0 && now < action.at) return;
     if (action.wait) {
-      if (wait_started < 0) wait_started = now;
+      if (wait_started_ < 0) wait_started_ = now;
       if (!solved_on_screen_ || worker_.busy() || recording_ || !queue_.empty()) {
-        if (now - wait_started > 120.0) {
+        if (now - wait_started_ > 120.0) {
           std::cerr << args_.script << ":" << action.line
                     << ": wait: the solve did not finish within 120 s\n";
           failed = true;
@@ -808,7 +808,7 @@ void GuiApp::run_script(std::vector<gui::ScriptAction>& script, std::size_t& nex
         }
         return;
       }
-      wait_started = -1.0;
+      wait_started_ = -1.0;
     } else {
       push(action.request);
     }
