@@ -20,8 +20,10 @@ struct Run {
 };
 
 Run run(const std::string& arguments) {
-  const std::string log =
-      (std::filesystem::temp_directory_path() / "fetic_test_output.txt").string();
+  // One file per process: ctest -j runs several test cases of this binary at once.
+  const std::string log = (std::filesystem::temp_directory_path() /
+                           ("fetic_test_output_" + std::to_string(::getpid()) + ".txt"))
+                              .string();
   const std::string command =
       std::string(FETIC_EXECUTABLE) + " " + arguments + " > " + log + " 2>&1";
   const int raw = std::system(command.c_str());
