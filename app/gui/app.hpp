@@ -72,7 +72,14 @@ class App {
   void draw_picture(int width, int height);
 
   // panels.cpp
-  void panels(float height);
+  void panels(float height);  // the panel on the left, the help window when asked for
+  void load_controls();
+  void solver_controls();
+  void history_controls();
+  void display_toggles();
+  void output_buttons();
+  void status_text();
+  void help_window();
 
   // input.cpp
   static void key_event(GLFWwindow* window, int key, int scancode, int action, int mods);
@@ -80,17 +87,20 @@ class App {
   void run_script(std::vector<ScriptAction>& script, std::size_t& next, double now, bool& failed);
 
   // recording.cpp
+  void start_recording(const Request& request);
   void screenshot(const std::string& path);
   void step_recording();
 
   // scene_file.cpp
   void reload();
+  void watch_scene_file(double now);
 
   // state_reports.cpp
   void report_frame();
 
   // bench.cpp
   void bench_step(double now);
+  void print_bench(const render::GlfwWindow& window) const;
 
   const Options& args_;
   std::string title_;

@@ -3,10 +3,23 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
+#include <vector>
 
 #include "app/gui/app.hpp"
+#include "render/glfw_window.hpp"
 
 namespace fetic::app::gui {
+namespace {
+
+double median(std::vector<double> values) {
+  if (values.empty()) return 0.0;
+  std::sort(values.begin(), values.end());
+  const std::size_t n = values.size();
+  return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
+}
+
+}  // namespace
 
 void App::bench_step(double /*now*/) {
   BenchMeasurement& b = bench_;
@@ -54,6 +67,37 @@ void App::bench_step(double /*now*/) {
     solved_on_screen_ = false;
     ++b.k;
   }
+}
+
+void App::print_bench(const render::GlfwWindow& window) const {
+  const BenchMeasurement& b = bench_;
+  std::printf("scene          %s (%zu struts, %zu contact pairs)\n", args_.scene.c_str(),
+              target_.model->struts.size(), target_.model->pairs.size());
+  std::printf("renderer       %s, window %dx%d\n", window.description().c_str(),
+              view_width_ + static_cast<int>(kPanelWidth), view_height_);
+  std::printf(
+      "drag           %d load changes at 60 per second: %.1f frames/s (frame time median "
+      "%.2f ms, max %.2f ms)\n",
+      args_.bench, b.drag_seconds > 0 ? b.drag_frames / b.drag_seconds : 0.0, median(b.frame_ms),
+      b.frame_ms.empty() ? 0.0 : *std::max_element(b.frame_ms.begin(), b.frame_ms.end()));
+  std::printf(
+      "per frame      picture median %.2f ms (draw lists %.2f ms, the rest GL until "
+      "finished; %zu of the %d frames drew a new picture); ImGui + blit + swap median "
+      "%.2f ms\n",
+      median(b.draw_ms), median(b.lists_ms), b.draw_ms.size(), b.drag_frames, median(b.swap_ms));
+  std::printf(
+      "latency        load change -> frame with the converged solve: median %.2f ms, "
+      "max %.2f ms (%zu changes)\n",
+      median(b.solved_latency_ms),
+      b.solved_latency_ms.empty()
+          ? 0.0
+          : *std::max_element(b.solved_latency_ms.begin(), b.solved_latency_ms.end()),
+      b.solved_latency_ms.size());
+  std::printf("               load change -> first frame at the new load: median %.2f ms\n",
+              median(b.first_latency_ms));
+  std::printf("solve          median %.2f ms, median %.0f iterations (warm-started FETI-C)\n",
+              median(b.solve_ms),
+              median(std::vector<double>(b.iterations.begin(), b.iterations.end())));
 }
 
 }  // namespace fetic::app::gui

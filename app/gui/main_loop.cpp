@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <chrono>
-#include <cstdio>
 #include <filesystem>
 #include <iostream>
 #include <thread>
@@ -29,13 +28,6 @@ namespace fetic::app::gui {
 namespace {
 
 namespace fs = std::filesystem;
-
-double median(std::vector<double> values) {
-  if (values.empty()) return 0.0;
-  std::sort(values.begin(), values.end());
-  const std::size_t n = values.size();
-  return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
-}
 
 }  // namespace
 
@@ -76,16 +68,7 @@ int App::run(render::GlfwWindow& window, std::vector<ScriptAction> script) {
       glfwWaitEventsTimeout(0.25);
     if (glfwWindowShouldClose(window.handle()) || interrupted()) push({RequestKind::Quit, 0.0, {}});
 
-    // Scene file changed on disk: reload, keeping the view.
-    if (now >= next_file_check_) {
-      next_file_check_ = now + 0.5;
-      std::error_code error;
-      const auto time = fs::last_write_time(args_.scene, error);
-      if (!error && time != scene_time_) {
-        scene_time_ = time;
-        push({RequestKind::Reload, 0.0, {}});
-      }
-    }
+    watch_scene_file(now);
 
     ImGui_ImplOpenGL3_NewFrame();
     ImGui_ImplGlfw_NewFrame();
@@ -180,36 +163,7 @@ int App::run(render::GlfwWindow& window, std::vector<ScriptAction> script) {
   ImGui_ImplGlfw_Shutdown();
   ImGui::DestroyContext();
 
-  if (args_.bench > 0) {
-    const BenchMeasurement& b = bench_;
-    std::printf("scene          %s (%zu struts, %zu contact pairs)\n", args_.scene.c_str(),
-                target_.model->struts.size(), target_.model->pairs.size());
-    std::printf("renderer       %s, window %dx%d\n", window.description().c_str(),
-                view_width_ + static_cast<int>(kPanelWidth), view_height_);
-    std::printf(
-        "drag           %d load changes at 60 per second: %.1f frames/s (frame time median "
-        "%.2f ms, max %.2f ms)\n",
-        args_.bench, b.drag_seconds > 0 ? b.drag_frames / b.drag_seconds : 0.0, median(b.frame_ms),
-        b.frame_ms.empty() ? 0.0 : *std::max_element(b.frame_ms.begin(), b.frame_ms.end()));
-    std::printf(
-        "per frame      picture median %.2f ms (draw lists %.2f ms, the rest GL until "
-        "finished; %zu of the %d frames drew a new picture); ImGui + blit + swap median "
-        "%.2f ms\n",
-        median(b.draw_ms), median(b.lists_ms), b.draw_ms.size(), b.drag_frames, median(b.swap_ms));
-    std::printf(
-        "latency        load change -> frame with the converged solve: median %.2f ms, "
-        "max %.2f ms (%zu changes)\n",
-        median(b.solved_latency_ms),
-        b.solved_latency_ms.empty()
-            ? 0.0
-            : *std::max_element(b.solved_latency_ms.begin(), b.solved_latency_ms.end()),
-        b.solved_latency_ms.size());
-    std::printf("               load change -> first frame at the new load: median %.2f ms\n",
-                median(b.first_latency_ms));
-    std::printf("solve          median %.2f ms, median %.0f iterations (warm-started FETI-C)\n",
-                median(b.solve_ms),
-                median(std::vector<double>(b.iterations.begin(), b.iterations.end())));
-  }
+  if (args_.bench > 0) print_bench(window);
   if (script_failed) return kExitNotConverged;
   return kExitOk;
 }

@@ -20,7 +20,23 @@ void App::panels(float height) {
                    ImGuiWindowFlags_NoSavedSettings);
   ImGui::TextWrapped("%s", title_.c_str());
   ImGui::Separator();
+  load_controls();
+  ImGui::Separator();
+  solver_controls();
+  ImGui::Separator();
+  history_controls();
+  ImGui::Separator();
+  display_toggles();
+  ImGui::Separator();
+  output_buttons();
+  ImGui::Separator();
+  status_text();
+  ImGui::End();
+  if (help_) help_window();
+}
 
+// The load factor: slider (reported when taken and let go) and a typed value.
+void App::load_controls() {
   ImGui::Text("Load factor (0 .. %.3g)", slider_max_);
   double load = target_.load_factor;
   const double zero = 0.0;
@@ -40,8 +56,10 @@ void App::panels(float height) {
                          ImGuiInputTextFlags_EnterReturnsTrue))
     push({RequestKind::SetLoad, typed_load_, {}});
   typing_load_ = ImGui::IsItemActive();
+}
 
-  ImGui::Separator();
+// Method, preconditioner and magnification (automatic or locked).
+void App::solver_controls() {
   static const char* methods[] = {"feti-c", "active-set", "feti", "cg", "sd"};
   static const char* preconditioners[] = {"dirichlet", "lumped", "none"};
   int method = 0;
@@ -70,8 +88,10 @@ void App::panels(float height) {
   } else {
     ImGui::Text("auto: %g", shown_magnification_);
   }
+}
 
-  ImGui::Separator();
+// Playback of the iterations of the shown solve.
+void App::history_controls() {
   ImGui::Text("Iterations of this solve");
   if (ImGui::Button(playing_ ? "Pause" : "Play")) push({RequestKind::TogglePlay, 0.0, {}});
   ImGui::SameLine();
@@ -87,8 +107,10 @@ void App::panels(float height) {
   ImGui::SetNextItemWidth(-1);
   if (ImGui::SliderInt("##history", &iteration, 0, last, "iteration %d"))
     push({RequestKind::Scrub, static_cast<double>(iteration), {}});
+}
 
-  ImGui::Separator();
+// What the picture shows.
+void App::display_toggles() {
   bool value = subdomains_;
   if (ImGui::Checkbox("subdomains", &value)) push({RequestKind::Toggle, 0.0, "subdomains"});
   ImGui::SameLine();
@@ -102,8 +124,10 @@ void App::panels(float height) {
   ImGui::SameLine();
   value = show_overlay_;
   if (ImGui::Checkbox("info", &value)) push({RequestKind::Toggle, 0.0, "overlay"});
+}
 
-  ImGui::Separator();
+// Screenshots, reload and recordings.
+void App::output_buttons() {
   if (ImGui::Button("Screenshot (S)")) push({RequestKind::Screenshot, 0.0, {}});
   ImGui::SameLine();
   if (ImGui::Button("Reload (F5)")) push({RequestKind::Reload, 0.0, {}});
@@ -113,58 +137,56 @@ void App::panels(float height) {
   ImGui::SameLine();
   ImGui::SetNextItemWidth(-1);
   ImGui::SliderInt("##steps", &sweep_steps_, 2, 200, "%d steps");
+}
 
-  ImGui::Separator();
+// What the solver is doing, or why it cannot.
+void App::status_text() {
   if (error_) {
     ImGui::TextColored(ImVec4(0.8f, 0.1f, 0.1f, 1),
                        "%s cannot solve this scene:", solver::to_string(error_->method));
     ImGui::TextWrapped("%s", error_->error.c_str());
     ImGui::TextWrapped("(the picture is the last solve; choose another method)");
   } else if (shown_) {
-    {
-      const bool busy = !shown_->finished || shown_->request != requests_sent_;
-      const int active = shown_->iterates.empty() ? 0 : shown_->iterates.back()->active_set_size();
-      ImGui::Text("%s at load %.4f", busy ? "solving" : solver::to_string(shown_->status),
-                  shown_->load_factor);
-      ImGui::Text("%d iterations, %.2f ms", static_cast<int>(shown_->iterates.size()) - 1,
-                  shown_->solve_seconds * 1e3);
-      ImGui::Text("active contacts: %d of %d", active,
-                  static_cast<int>(shown_->model->pairs.size()));
-      if (!shown_->message.empty() && shown_->status == solver::Status::Failed)
-        ImGui::TextWrapped("%s", shown_->message.c_str());
-    }
+    const bool busy = !shown_->finished || shown_->request != requests_sent_;
+    const int active = shown_->iterates.empty() ? 0 : shown_->iterates.back()->active_set_size();
+    ImGui::Text("%s at load %.4f", busy ? "solving" : solver::to_string(shown_->status),
+                shown_->load_factor);
+    ImGui::Text("%d iterations, %.2f ms", static_cast<int>(shown_->iterates.size()) - 1,
+                shown_->solve_seconds * 1e3);
+    ImGui::Text("active contacts: %d of %d", active, static_cast<int>(shown_->model->pairs.size()));
+    if (!shown_->message.empty() && shown_->status == solver::Status::Failed)
+      ImGui::TextWrapped("%s", shown_->message.c_str());
   } else {
     ImGui::Text("setting up the solver ...");
   }
   if (!status_line_.empty()) ImGui::TextWrapped("%s", status_line_.c_str());
   ImGui::TextDisabled("H: keys   drag: pan   wheel: zoom");
-  ImGui::End();
+}
 
-  if (help_) {
-    ImGui::SetNextWindowPos(ImVec2(kPanelWidth + 40, 40));
-    ImGui::Begin("Keys", &help_,
-                 ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoSavedSettings);
-    static const char* keys[][2] = {{"Space", "play / pause the iterations"},
-                                    {"Right, Left", "one iteration forward / back"},
-                                    {"R", "reset to iteration 0"},
-                                    {"S", "screenshot (PNG of the picture)"},
-                                    {"F5", "reload the scene file"},
-                                    {"Home", "reset pan and zoom (or double-click)"},
-                                    {"mouse drag", "pan the picture; wheel: zoom"},
-                                    {"H, F1", "this help"},
-                                    {"Q, Esc", "quit"}};
-    if (ImGui::BeginTable("keys", 2)) {
-      for (const auto& key : keys) {
-        ImGui::TableNextRow();
-        ImGui::TableSetColumnIndex(0);
-        ImGui::TextUnformatted(key[0]);
-        ImGui::TableSetColumnIndex(1);
-        ImGui::TextUnformatted(key[1]);
-      }
-      ImGui::EndTable();
+void App::help_window() {
+  ImGui::SetNextWindowPos(ImVec2(kPanelWidth + 40, 40));
+  ImGui::Begin("Keys", &help_,
+               ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoSavedSettings);
+  static const char* keys[][2] = {{"Space", "play / pause the iterations"},
+                                  {"Right, Left", "one iteration forward / back"},
+                                  {"R", "reset to iteration 0"},
+                                  {"S", "screenshot (PNG of the picture)"},
+                                  {"F5", "reload the scene file"},
+                                  {"Home", "reset pan and zoom (or double-click)"},
+                                  {"mouse drag", "pan the picture; wheel: zoom"},
+                                  {"H, F1", "this help"},
+                                  {"Q, Esc", "quit"}};
+  if (ImGui::BeginTable("keys", 2)) {
+    for (const auto& key : keys) {
+      ImGui::TableNextRow();
+      ImGui::TableSetColumnIndex(0);
+      ImGui::TextUnformatted(key[0]);
+      ImGui::TableSetColumnIndex(1);
+      ImGui::TextUnformatted(key[1]);
     }
-    ImGui::End();
+    ImGui::EndTable();
   }
+  ImGui::End();
 }
 
 }  // namespace fetic::app::gui

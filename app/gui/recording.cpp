@@ -19,6 +19,40 @@ namespace fetic::app::gui {
 
 namespace fs = std::filesystem;
 
+// Record buttons, record-iterations and record-sweep N: a numbered directory under
+// --record-dir; step_recording then renders one frame per UI frame.
+void App::start_recording(const Request& r) {
+  if (recording_) {
+    status_line_ = "a recording is already running";
+    return;
+  }
+  auto rec = std::make_unique<Recording>();
+  rec->sweep = r.kind == RequestKind::RecordSweep;
+  char name[64];
+  std::snprintf(name, sizeof name, "%s_%03d", rec->sweep ? "sweep" : "iterations", ++recordings_);
+  rec->directory = fs::path(args_.record_dir) / name;
+  std::error_code error;
+  fs::create_directories(rec->directory, error);
+  if (error) {
+    status_line_ = rec->directory.string() + ": " + error.message();
+    return;
+  }
+  rec->pool = std::make_unique<render::PngEncoderPool>(default_encoder_threads(), 8);
+  if (rec->sweep) {
+    const int n = r.value >= 2 ? static_cast<int>(r.value) : sweep_steps_;
+    for (int i = 0; i < n; ++i)
+      rec->loads.push_back(slider_max_ * i / (n - 1));
+  } else {
+    if (!shown_ || shown_->iterates.empty()) {
+      status_line_ = "nothing to record yet";
+      return;
+    }
+    rec->iterations = shown_;
+  }
+  status_line_ = "recording into " + rec->directory.string();
+  recording_ = std::move(rec);
+}
+
 void App::screenshot(const std::string& requested) {
   std::string path = requested;
   if (path.empty()) {

@@ -2,6 +2,7 @@
 // model for the solver; the view, the method and the load factor stay.
 
 #include <exception>
+#include <filesystem>
 #include <memory>
 #include <string>
 
@@ -9,6 +10,8 @@
 #include "scenes/load_scene.hpp"
 
 namespace fetic::app::gui {
+
+namespace fs = std::filesystem;
 
 void App::reload() {
   try {
@@ -23,6 +26,18 @@ void App::reload() {
   } catch (const std::exception& error) {
     status_line_ = std::string("reload failed: ") + error.what();
     log_.write({{"event", "error"}, {"message", status_line_}});
+  }
+}
+
+// A change of the scene file on disk (checked twice a second) reloads it, keeping the view.
+void App::watch_scene_file(double now) {
+  if (now < next_file_check_) return;
+  next_file_check_ = now + 0.5;
+  std::error_code error;
+  const auto time = fs::last_write_time(args_.scene, error);
+  if (!error && time != scene_time_) {
+    scene_time_ = time;
+    push({RequestKind::Reload, 0.0, {}});
   }
 }
 

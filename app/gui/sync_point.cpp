@@ -3,7 +3,6 @@
 // applies all queued requests and takes the newest state the solver published.
 
 #include <algorithm>
-#include <cstdio>
 #include <filesystem>
 #include <memory>
 #include <string>
@@ -12,7 +11,6 @@
 #include <GLFW/glfw3.h>
 
 #include "app/gui/app.hpp"
-#include "app/render_output.hpp"
 #include "solver/method.hpp"
 
 namespace fetic::app::gui {
@@ -143,39 +141,9 @@ void App::apply(const Request& r) {
       pending_screenshot_ = r.text;
       break;
     case RequestKind::RecordIterations:
-    case RequestKind::RecordSweep: {
-      if (recording_) {
-        status_line_ = "a recording is already running";
-        break;
-      }
-      auto rec = std::make_unique<Recording>();
-      rec->sweep = r.kind == RequestKind::RecordSweep;
-      char name[64];
-      std::snprintf(name, sizeof name, "%s_%03d", rec->sweep ? "sweep" : "iterations",
-                    ++recordings_);
-      rec->directory = fs::path(args_.record_dir) / name;
-      std::error_code error;
-      fs::create_directories(rec->directory, error);
-      if (error) {
-        status_line_ = rec->directory.string() + ": " + error.message();
-        break;
-      }
-      rec->pool = std::make_unique<render::PngEncoderPool>(default_encoder_threads(), 8);
-      if (rec->sweep) {
-        const int n = r.value >= 2 ? static_cast<int>(r.value) : sweep_steps_;
-        for (int i = 0; i < n; ++i)
-          rec->loads.push_back(slider_max_ * i / (n - 1));
-      } else {
-        if (!shown_ || shown_->iterates.empty()) {
-          status_line_ = "nothing to record yet";
-          break;
-        }
-        rec->iterations = shown_;
-      }
-      status_line_ = "recording into " + rec->directory.string();
-      recording_ = std::move(rec);
+    case RequestKind::RecordSweep:
+      start_recording(r);
       break;
-    }
     case RequestKind::Reload:
       reload();
       break;
