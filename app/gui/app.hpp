@@ -32,6 +32,7 @@
 #include "app/gui/solver_worker.hpp"
 #include "app/gui/state_log.hpp"
 #include "render/draw_list.hpp"
+#include "render/frame_sequence.hpp"
 #include "render/png_writer.hpp"
 #include "render/view.hpp"
 #include "solver/model.hpp"
@@ -70,6 +71,7 @@ class App {
   // picture.cpp
   render::View view(int width, int height) const;
   void draw_picture(int width, int height);
+  render::RunExtent plot_extent();  // the survey's scales, the iteration axis widened
 
   // panels.cpp
   void panels(float height);  // the panel on the left, the help window when asked for
@@ -140,6 +142,8 @@ class App {
   render::Point pan_{0.0f, 0.0f};
   render::Point base_center_{0.0f, 0.0f};
   int view_width_ = 0, view_height_ = 0;
+  std::shared_ptr<const render::RunExtent> axis_survey_;  // the survey longest_history_ is for
+  int longest_history_ = 0;  // iterations of the longest solve drawn with it
 
   // Scene file.
   std::filesystem::file_time_type scene_time_{};

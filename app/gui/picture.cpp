@@ -29,6 +29,22 @@ render::View App::view(int width, int height) const {
   return v;
 }
 
+// The survey (a solve at the top of the slider) fixes the plots' iteration axis, so that
+// frames line up. A solve shown since that needs more iterations (another load, a poorer
+// warm start) widens the axis rather than run off its end; it stays that wide for as long
+// as the survey holds, so scrubbing or moving the slider does not rescale it.
+render::RunExtent App::plot_extent() {
+  if (shown_->extent != axis_survey_) {
+    axis_survey_ = shown_->extent;
+    longest_history_ = 0;
+  }
+  if (!shown_->history.empty())
+    longest_history_ = std::max(longest_history_, shown_->history.back().iteration);
+  render::RunExtent extent = *shown_->extent;
+  extent.largest_iteration = std::max(extent.largest_iteration, longest_history_);
+  return extent;
+}
+
 void App::draw_picture(int width, int height) {
   if (!shown_ || !shown_->extent || shown_->iterates.empty()) {
     const render::DrawList empty;
@@ -57,7 +73,7 @@ void App::draw_picture(int width, int height) {
     info.method = solver::to_string(shown_->method);
     if (shown_->method == solver::MethodKind::Feti || shown_->method == solver::MethodKind::FetiC)
       info.method += std::string(" (") + solver::to_string(shown_->preconditioner) + ")";
-    overlay = render::draw_overlay(info, *shown_->model, snapshot, history, *shown_->extent, v);
+    overlay = render::draw_overlay(info, *shown_->model, snapshot, history, plot_extent(), v);
   }
   if (args_.bench > 0 && bench_.phase == 0)
     bench_.lists_ms.push_back(
