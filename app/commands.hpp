@@ -12,5 +12,6 @@ void register_generate(CLI::App& app, int& exit_code);
 void register_render(CLI::App& app, int& exit_code);
 void register_figures(CLI::App& app, int& exit_code);
 void register_bench_render(CLI::App& app, int& exit_code);
+void register_gui(CLI::App& app, int& exit_code);
 
 }  // namespace fetic::app

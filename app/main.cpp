@@ -21,6 +21,7 @@ int main(int argc, char** argv) {
   fetic::app::register_render(app, exit_code);
   fetic::app::register_figures(app, exit_code);
   fetic::app::register_bench_render(app, exit_code);
+  fetic::app::register_gui(app, exit_code);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {

@@ -1,11 +1,23 @@
 #include "app/render_output.hpp"
 
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <csignal>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <iostream>
 #include <thread>
+#include <vector>
 
 #include "app/atomic_file.hpp"
+#include "app/exit_codes.hpp"
+#include "app/interrupt.hpp"
+
+extern char** environ;
 
 namespace fetic::app {
 std::optional<ImageSize> parse_image_size(const std::string& text) {
@@ -77,6 +89,91 @@ bool make_output_directory(const std::string& directory) {
     return false;
   }
   return true;
+}
+
+bool program_on_path(const std::string& name) {
+  const char* path = std::getenv("PATH");
+  if (!path) return false;
+  std::string directories = path;
+  std::size_t start = 0;
+  while (start <= directories.size()) {
+    const std::size_t end = std::min(directories.find(':', start), directories.size());
+    const std::filesystem::path candidate =
+        std::filesystem::path(directories.substr(start, end - start)) / name;
+    if (::access(candidate.c_str(), X_OK) == 0) return true;
+    start = end + 1;
+  }
+  return false;
+}
+
+// Runs ffmpeg on frames 0 .. count-1 of `directory`; the movie appears atomically.
+int assemble_movie(const std::string& directory, int count, int fps, const std::string& movie) {
+  if (!program_on_path("ffmpeg")) {
+    std::cerr << movie << ": ffmpeg is not installed, so no movie was made; the " << count
+              << " frames are in " << directory << " (apt-get install ffmpeg)\n";
+    return kExitOutput;
+  }
+  // frame_0000.png -> frame_%04d.png
+  const std::string name = frame_name(0, count);
+  const std::string digits = std::to_string(name.size() - std::string("frame_.png").size());
+  const std::string input =
+      (std::filesystem::path(directory) / ("frame_%0" + digits + "d.png")).string();
+  try {
+    write_via_temporary(movie, [&](const std::string& temporary) {
+      std::vector<std::string> arguments{"ffmpeg",
+                                         "-y",
+                                         "-loglevel",
+                                         "error",
+                                         "-framerate",
+                                         std::to_string(fps),
+                                         "-start_number",
+                                         "0",
+                                         "-i",
+                                         input,
+                                         "-frames:v",
+                                         std::to_string(count),
+                                         "-c:v",
+                                         "libx264",
+                                         "-pix_fmt",
+                                         "yuv420p",
+                                         "-vf",
+                                         "pad=ceil(iw/2)*2:ceil(ih/2)*2",
+                                         "-f",
+                                         "mp4",
+                                         temporary};
+      std::vector<char*> argv;
+      for (std::string& argument : arguments)
+        argv.push_back(argument.data());
+      argv.push_back(nullptr);
+      pid_t child = 0;
+      if (posix_spawnp(&child, "ffmpeg", nullptr, nullptr, argv.data(), environ) != 0) return false;
+      // SIGINT/SIGTERM interrupt waitpid (no SA_RESTART): stop ffmpeg then, and wait for
+      // it, so that its temporary file is removed only once nobody writes it any more.
+      int status = 0;
+      bool stopped = false;
+      while (waitpid(child, &status, 0) < 0) {
+        if (errno != EINTR) return false;
+        if (interrupted() && !stopped) {
+          ::kill(child, SIGTERM);
+          stopped = true;
+        }
+      }
+      errno = 0;
+      return !interrupted() && WIFEXITED(status) && WEXITSTATUS(status) == 0;
+    });
+  } catch (const OutputError& error) {
+    if (interrupted()) {
+      std::cerr << movie << ": interrupted by " << interrupt_name()
+                << " while ffmpeg was assembling the movie; no movie written, the " << count
+                << " frames are complete\n";
+      return kExitInterrupted;
+    }
+    std::cerr << error.what() << " (ffmpeg failed)\n";
+    return kExitOutput;
+  }
+  std::cout << "movie        " << movie << " (" << count << " frames at " << fps
+            << " per second)\n";
+  return kExitOk;
 }
 
 }  // namespace fetic::app

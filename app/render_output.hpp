@@ -47,4 +47,12 @@ std::optional<Headless> open_headless(const std::string& output);
 // Creates the directory (and parents); prints the problem and returns false on failure.
 bool make_output_directory(const std::string& directory);
 
+// True when an executable `name` is on PATH.
+bool program_on_path(const std::string& name);
+
+// Runs ffmpeg on frames 0 .. count-1 of `directory` (frame_0000.png, ...): an H.264 mp4 at
+// `fps` appears atomically as `movie`. Returns an exit status (kExitOutput when ffmpeg is
+// missing or fails, saying so).
+int assemble_movie(const std::string& directory, int count, int fps, const std::string& movie);
+
 }  // namespace fetic::app

@@ -98,7 +98,8 @@ GlRenderer::GlRenderer(GlContext& context, const FontAtlas& font) : context_(con
                GL_RGBA, GL_UNSIGNED_BYTE, font_.texture_rgba());
   GLint max_samples = 0;
   glGetIntegerv(GL_MAX_SAMPLES, &max_samples);
-  samples_ = std::min(4, static_cast<int>(max_samples));
+  max_samples_ = std::max(1, static_cast<int>(max_samples));
+  samples_ = std::min(4, max_samples_);
   check("while setting up the renderer");
 }
 
@@ -108,6 +109,14 @@ GlRenderer::~GlRenderer() {
   glDeleteBuffers(1, &vbo_);
   glDeleteVertexArrays(1, &vao_);
   glDeleteProgram(program_);
+}
+
+void GlRenderer::set_samples(int samples) {
+  samples = std::clamp(samples, 1, max_samples_);
+  if (samples == samples_) return;
+  context_.make_current();
+  samples_ = samples;
+  release_targets();  // resize() makes them again
 }
 
 void GlRenderer::release_targets() {
@@ -160,6 +169,12 @@ void GlRenderer::append(const DrawList& list, std::vector<TexturedVertex>& out) 
 
 Image GlRenderer::render(int width, int height, const std::vector<const DrawList*>& layers,
                          Color background) {
+  draw(width, height, layers, background);
+  return read_back();
+}
+
+void GlRenderer::draw(int width, int height, const std::vector<const DrawList*>& layers,
+                      Color background) {
   context_.make_current();
   resize(width, height);
   vertices_.clear();
@@ -189,22 +204,40 @@ Image GlRenderer::render(int width, int height, const std::vector<const DrawList
   glBindFramebuffer(GL_READ_FRAMEBUFFER, msaa_fbo_);
   glBindFramebuffer(GL_DRAW_FRAMEBUFFER, resolve_fbo_);
   glBlitFramebuffer(0, 0, width, height, 0, 0, width, height, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  check("while drawing a frame");
+}
+
+Image GlRenderer::read_back() {
+  context_.make_current();
   glBindFramebuffer(GL_READ_FRAMEBUFFER, resolve_fbo_);
   Image image;
-  image.width = width;
-  image.height = height;
-  image.rgba.resize(static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * 4);
+  image.width = width_;
+  image.height = height_;
+  image.rgba.resize(static_cast<std::size_t>(width_) * static_cast<std::size_t>(height_) * 4);
   std::vector<std::uint8_t> bottom_up(image.rgba.size());
   glPixelStorei(GL_PACK_ALIGNMENT, 1);
-  glReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, bottom_up.data());
-  check("while drawing a frame");
-  const std::size_t row = static_cast<std::size_t>(width) * 4;
-  for (int y = 0; y < height; ++y)
+  glReadPixels(0, 0, width_, height_, GL_RGBA, GL_UNSIGNED_BYTE, bottom_up.data());
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+  check("while reading a frame back");
+  const std::size_t row = static_cast<std::size_t>(width_) * 4;
+  for (int y = 0; y < height_; ++y)
     std::memcpy(image.rgba.data() + static_cast<std::size_t>(y) * row,
-                bottom_up.data() + static_cast<std::size_t>(height - 1 - y) * row, row);
+                bottom_up.data() + static_cast<std::size_t>(height_ - 1 - y) * row, row);
   for (std::size_t i = 3; i < image.rgba.size(); i += 4)
     image.rgba[i] = 255;
   return image;
+}
+
+void GlRenderer::blit_to_default(int x, int y, int target_height) {
+  context_.make_current();
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, resolve_fbo_);
+  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
+  const int bottom = target_height - y - height_;
+  glBlitFramebuffer(0, 0, width_, height_, x, bottom, x + width_, bottom + height_,
+                    GL_COLOR_BUFFER_BIT, GL_NEAREST);
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  check("while showing a frame");
 }
 
 }  // namespace fetic::render

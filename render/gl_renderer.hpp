@@ -22,9 +22,24 @@ class GlRenderer {
   GlRenderer(const GlRenderer&) = delete;
   GlRenderer& operator=(const GlRenderer&) = delete;
 
-  // Draws the layers in order over the background and reads the pixels back (alpha 255).
+  // Draws the layers in order over the background and reads the pixels back (alpha 255):
+  // draw() then read_back().
   Image render(int width, int height, const std::vector<const DrawList*>& layers, Color background);
+  // Draws the layers into the multisampled buffer and resolves it; the picture stays in
+  // the renderer until the next draw (a window re-shows it without drawing again).
+  void draw(int width, int height, const std::vector<const DrawList*>& layers, Color background);
+  // The last drawn picture, rows top to bottom, alpha 255.
+  Image read_back();
+  // Copies the last drawn picture into the default frame buffer (a window's back buffer)
+  // with its top-left corner at pixel (x, y) from the top-left of a frame buffer
+  // `target_height` pixels high.
+  void blit_to_default(int x, int y, int target_height);
+  int width() const { return width_; }
+  int height() const { return height_; }
   int samples() const { return samples_; }
+  // Samples per pixel of the next draws (1 .. the GL maximum, at most 4 by default): an
+  // interactive window may draw with 1 while the user drags and 4 when the picture rests.
+  void set_samples(int samples);
 
  private:
   void resize(int width, int height);
@@ -36,7 +51,7 @@ class GlRenderer {
   unsigned program_ = 0, vao_ = 0, vbo_ = 0, texture_ = 0;
   unsigned msaa_fbo_ = 0, msaa_color_ = 0, resolve_fbo_ = 0, resolve_color_ = 0;
   int viewport_location_ = -1;
-  int width_ = 0, height_ = 0, samples_ = 0;
+  int width_ = 0, height_ = 0, samples_ = 0, max_samples_ = 1;
   std::vector<TexturedVertex> vertices_;
 };
 

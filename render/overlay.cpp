@@ -69,7 +69,11 @@ DrawList draw_overlay(const OverlayInfo& info, const solver::Model& model,
                              : snapshot.status == solver::Status::Converged ? Color{0, 130, 70, 255}
                                                                             : palette::ink;
   row("status", solver::to_string(snapshot.status), status_color);
-  row("colour", view.color_by == ColorBy::Stress ? "axial stress" : "subdomains", palette::ink);
+  row("colour",
+      view.color_by == ColorBy::Stress  ? "axial stress"
+      : view.color_by == ColorBy::Strut ? "struts"
+                                        : "subdomains",
+      palette::ink);
   y += 0.4f * t;
 
   // Plots: iteration on x, fixed to the whole run so that frames line up.

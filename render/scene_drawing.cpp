@@ -282,8 +282,9 @@ DrawList draw_scene(const solver::Model& model, const solver::Snapshot& snapshot
                              ? piece.box.i1 - piece.box.i0
                              : (piece.box.i1 - piece.box.i0) * (piece.box.k1 - piece.box.k0);
     if (elements <= 0) continue;
-    std::vector<Color> fills(static_cast<std::size_t>(elements),
-                             subdomain_color(piece.strut, ranks[p]));
+    std::vector<Color> fills(
+        static_cast<std::size_t>(elements),
+        subdomain_color(piece.strut, view.color_by == ColorBy::Strut ? 0 : ranks[p]));
     if (by_stress)
       for (int e = 0; e < elements; ++e)
         fills[static_cast<std::size_t>(e)] =

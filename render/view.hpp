@@ -4,7 +4,8 @@
 
 namespace fetic::render {
 
-enum class ColorBy { Subdomain, Stress };
+// Subdomain: each FETI piece its own colour; Strut: one colour per strut (subdomains hidden).
+enum class ColorBy { Subdomain, Stress, Strut };
 
 struct View {
   int width = 1280;

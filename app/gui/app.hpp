@@ -1,0 +1,173 @@
+#pragma once
+// The window of `fetic gui`: its state and what changes it. Mouse, keyboard, --script and
+// --bench only queue requests (push); once per frame sync() applies them all, so the
+// inputs cannot disagree. The solver runs on its own thread (SolverWorker) and publishes
+// immutable states, so the window never waits for a solve.
+//
+// The members are defined by purpose, one file each:
+//   sync_point.cpp     applying requests, taking the newest solve
+//   main_loop.cpp      the frame loop: input, panels, sync, picture, swap
+//   picture.cpp        the scene and information panel drawn for the shown iterate
+//   panels.cpp         the ImGui controls and the help window
+//   input.cpp          keys, mouse pan and zoom, the script runner
+//   recording.cpp      screenshots and recordings
+//   scene_file.cpp     reloading the scene file
+//   state_reports.cpp  the "solved" events of the state file after each swap
+//   bench.cpp          the --bench measurement
+
+#include <chrono>
+#include <cstdint>
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "app/gui/bench.hpp"
+#include "app/gui/options.hpp"
+#include "app/gui/recording.hpp"
+#include "app/gui/requests.hpp"
+#include "app/gui/script.hpp"
+#include "app/gui/solver_worker.hpp"
+#include "app/gui/state_log.hpp"
+#include "render/draw_list.hpp"
+#include "render/frame_sequence.hpp"
+#include "render/png_writer.hpp"
+#include "render/view.hpp"
+#include "solver/model.hpp"
+
+struct GLFWwindow;
+
+namespace fetic::render {
+class GlRenderer;
+class GlfwWindow;
+}  // namespace fetic::render
+
+namespace fetic::app::gui {
+
+using Clock = std::chrono::steady_clock;
+
+constexpr float kPanelWidth = 330.0f;  // ImGui panel on the left; the picture fills the rest
+
+inline double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+class App {
+ public:
+  App(const Options& args, std::shared_ptr<const solver::Model> model, std::string title);
+
+  int run(render::GlfwWindow& window, std::vector<ScriptAction> script);
+
+ private:
+  // sync_point.cpp
+  void push(Request request) { queue_.push_back(std::move(request)); }
+  void send_to_worker();
+  void apply(const Request& request);
+  void sync();  // the sync point: applies the queued requests, takes the newest state
+  int shown_index() const;
+
+  // picture.cpp
+  render::View view(int width, int height) const;
+  void draw_picture(int width, int height);
+  render::RunExtent plot_extent();  // the survey's scales, the iteration axis widened
+
+  // panels.cpp
+  void panels(float height);  // the panel on the left, the help window when asked for
+  void load_controls();
+  void solver_controls();
+  void history_controls();
+  void display_toggles();
+  void output_buttons();
+  void status_text();
+  void help_window();
+
+  // input.cpp
+  static void key_event(GLFWwindow* window, int key, int scancode, int action, int mods);
+  void mouse(float view_x, float view_width, float view_height);
+  void run_script(std::vector<ScriptAction>& script, std::size_t& next, double now, bool& failed);
+
+  // recording.cpp
+  void start_recording(const Request& request);
+  void screenshot(const std::string& path);
+  void step_recording();
+
+  // scene_file.cpp
+  void reload();
+  void watch_scene_file(double now);
+
+  // state_reports.cpp
+  void report_frame();
+
+  // bench.cpp
+  void bench_step(double now);
+  void print_bench(const render::GlfwWindow& window) const;
+
+  const Options& args_;
+  std::string title_;
+  SolverWorker worker_;
+  SolverTarget target_;
+  RequestQueue queue_;
+  StateLog log_;
+  std::uint64_t requests_sent_ = 0;
+  std::map<std::uint64_t, Clock::time_point> requested_at_;
+
+  // What is on screen.
+  std::shared_ptr<const SolveState> shown_;
+  std::shared_ptr<const SolveState> error_;  // the newest request could not be solved
+  bool follow_ = true;                       // show the newest iterate
+  bool playing_ = false;
+  int cursor_ = 0;
+  double play_rate_ = 4.0;  // iterations per second
+  double next_tick_ = 0.0;
+  bool redraw_ = true;
+  std::uint64_t reported_request_ = 0;     // last "solved" event
+  std::uint64_t first_frame_request_ = 0;  // last request seen in a frame
+  bool solved_on_screen_ = false;          // newest request finished and swapped
+
+  // View settings.
+  double magnification_ = 0.0;  // 0: automatic
+  double shown_magnification_ = 0.0;
+  bool subdomains_ = true, stress_ = false, forces_ = true, gaps_ = true, show_overlay_ = true;
+  bool help_ = false;
+  bool dragging_slider_ = false, draft_ = false;
+  bool typing_load_ = false;
+  std::uint64_t drafted_request_ = 0;
+  double slider_max_ = 2.0;  // top of the load slider
+  double last_picture_ms_ = 0.0;
+  Clock::time_point last_picture_end_{};
+  double typed_load_ = 0.0;
+  float zoom_ = 1.0f;
+  render::Point pan_{0.0f, 0.0f};
+  render::Point base_center_{0.0f, 0.0f};
+  int view_width_ = 0, view_height_ = 0;
+  std::shared_ptr<const render::RunExtent> axis_survey_;  // the survey longest_history_ is for
+  int longest_history_ = 0;  // iterations of the longest solve drawn with it
+
+  // Scene file.
+  std::filesystem::file_time_type scene_time_{};
+  double next_file_check_ = 0.0;
+  std::string status_line_;
+
+  // Screenshots and recordings.
+  std::unique_ptr<render::PngEncoderPool> screenshot_pool_;
+  int screenshot_count_ = 0;
+  std::string pending_screenshot_;
+  bool screenshot_requested_ = false;
+  std::unique_ptr<Recording> recording_;
+  std::vector<std::thread> finishers_;
+  int recordings_ = 0;
+  int sweep_steps_ = 20;
+
+  render::GlRenderer* renderer_ = nullptr;
+  bool quit_ = false;
+  double wait_started_ = -1.0;  // when the script's current "wait" began
+  float slider_[4] = {0, 0, 0, 0};
+  bool ready_reported_ = false;
+  Clock::time_point start_ = Clock::now();
+
+  BenchMeasurement bench_;
+};
+
+}  // namespace fetic::app::gui

@@ -1,0 +1,25 @@
+#pragma once
+// What `fetic gui --bench N` measures: a slider drag over N load changes at a pointer's
+// pace (frame rate, cost of a picture), then 30 isolated load changes (latency to the
+// converged frame). Driven by App::bench_step, printed by App::print_bench.
+
+#include <chrono>
+#include <cstdint>
+#include <vector>
+
+namespace fetic::app::gui {
+
+struct BenchMeasurement {
+  int phase = -1;  // -1 first solve, 0 drag, 1 settle, 2 isolated changes, 3 done
+  int k = 0;
+  std::vector<double> frame_ms, draw_ms, lists_ms, swap_ms;  // during the drag
+  std::vector<double> solved_latency_ms, first_latency_ms, solve_ms;
+  std::vector<int> iterations;
+  std::chrono::steady_clock::time_point last_frame{};
+  std::chrono::steady_clock::time_point drag_start{};
+  double drag_seconds = 0.0;
+  int drag_frames = 0;
+  std::uint64_t waiting = 0;
+};
+
+}  // namespace fetic::app::gui

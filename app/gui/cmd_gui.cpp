@@ -1,0 +1,113 @@
+// fetic gui SCENE: the command line of the interactive window. Reads the script and the
+// scene, opens the window (or explains how to do without a display) and runs gui::App
+// (app/gui/app.hpp), which is the window itself.
+
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "app/commands.hpp"
+#include "app/exit_codes.hpp"
+#include "app/gui/app.hpp"
+#include "app/gui/options.hpp"
+#include "app/gui/script.hpp"
+#include "app/render_output.hpp"
+#include "app/scene_input.hpp"
+#include "render/glfw_window.hpp"
+#include "scenes/load_scene.hpp"
+
+namespace fetic::app {
+namespace {
+
+namespace fs = std::filesystem;
+
+int run_gui(const gui::Options& args) {
+  if (!parse_image_size(args.size)) {
+    std::cerr << "--size: expected WxH\n";
+    return kExitUsage;
+  }
+  std::vector<gui::ScriptAction> script;
+  if (!args.script.empty()) {
+    std::ifstream in(args.script);
+    if (!in) {
+      std::cerr << args.script << ": cannot read the script\n";
+      return kExitUsage;
+    }
+    std::stringstream text;
+    text << in.rdbuf();
+    std::vector<gui::ScriptError> errors;
+    script = gui::parse_script(text.str(), errors);
+    for (const gui::ScriptError& error : errors)
+      std::cerr << args.script << ":" << error.line << ": " << error.message << '\n';
+    if (!errors.empty()) return kExitUsage;
+  }
+  const auto scene = load_scene_or_report(args.scene);
+  if (!scene) return kExitInvalidScene;
+  auto model = std::make_shared<const solver::Model>(solver::build_model(*scene));
+  const std::string title =
+      model->title.empty() ? fs::path(args.scene).filename().string() : model->title;
+  const ImageSize size = *parse_image_size(args.size);
+  std::unique_ptr<render::GlfwWindow> window;
+  try {
+    window = std::make_unique<render::GlfwWindow>(size.width, size.height, "fetic - " + title);
+  } catch (const render::NoDisplayError& error) {
+    std::cerr << "fetic gui: no display: " << error.what()
+              << ".\nThe window needs an X server: run it in a desktop session, or under a "
+                 "virtual one (xvfb-run -a fetic gui "
+              << args.scene << ").\nWithout a display, render the same pictures to PNG files: "
+              << "fetic render " << args.scene << " --out DIR\n";
+    return kExitNoDisplay;
+  } catch (const render::RenderError& error) {
+    std::cerr << "fetic gui: " << error.what() << '\n';
+    return kExitNoDisplay;
+  }
+  gui::App app(args, std::move(model), title);
+  return app.run(*window, std::move(script));
+}
+
+}  // namespace
+
+void register_gui(CLI::App& app, int& exit_code) {
+  auto args = std::make_shared<gui::Options>();
+  CLI::App* command = app.add_subcommand(
+      "gui", "Interactive window: load slider, live warm-started FETI-C, iteration history");
+  command->add_option("scene", args->scene, "Scene file (TOML, see README)")->required();
+  command->add_option("--method", args->method, "Method to start with")
+      ->check(CLI::IsMember({"sd", "cg", "active-set", "feti", "feti-c"}))
+      ->capture_default_str();
+  command->add_option("--preconditioner", args->preconditioner, "FETI preconditioner")
+      ->check(CLI::IsMember({"dirichlet", "lumped", "none"}))
+      ->capture_default_str();
+  command->add_option("--load", args->load, "Load factor to start at")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  command
+      ->add_option("--max-load", args->max_load,
+                   "Top of the load slider (0: 2, twice the scene's loads)")
+      ->check(CLI::NonNegativeNumber);
+  command->add_option("--magnification", args->magnification, "Lock the magnification (0: auto)")
+      ->check(CLI::NonNegativeNumber);
+  command->add_option("--size", args->size, "Window size in pixels")
+      ->check(image_size_check())
+      ->capture_default_str();
+  command->add_option("--state-file", args->state_file,
+                      "Write what the app does as JSON lines to this file (- for stdout)");
+  command->add_option("--script", args->script, "Run timed actions from this file (see README)");
+  command->add_option("--screenshot-dir", args->screenshot_dir, "Where S saves screenshots")
+      ->capture_default_str();
+  command->add_option("--record-dir", args->record_dir, "Where recordings go")
+      ->capture_default_str();
+  command->add_flag("--no-overlay", args->no_overlay, "Start without the information panel");
+  command
+      ->add_option("--bench", args->bench,
+                   "Benchmark: drag the slider over N load changes, then time 30 isolated "
+                   "changes; print latency and frame rate, quit")
+      ->check(CLI::Range(2, 100000));
+  command->callback([args, &exit_code] { exit_code = run_gui(*args); });
+}
+
+}  // namespace fetic::app

@@ -1,0 +1,171 @@
+// The frame loop of the window: events, input, panels, the sync point, the picture
+// (drawn only when something changed, and at most as often as it can be afforded), the
+// ImGui pass and the swap.
+
+#include <algorithm>
+#include <chrono>
+#include <filesystem>
+#include <iostream>
+#include <thread>
+#include <vector>
+
+#define GL_GLEXT_PROTOTYPES
+#include <GL/glcorearb.h>
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
+#include <backends/imgui_impl_glfw.h>
+#include <backends/imgui_impl_opengl3.h>
+#include <imgui.h>
+
+#include "app/exit_codes.hpp"
+#include "app/gui/app.hpp"
+#include "app/interrupt.hpp"
+#include "render/font.hpp"
+#include "render/gl_renderer.hpp"
+#include "render/glfw_window.hpp"
+
+namespace fetic::app::gui {
+namespace {
+
+namespace fs = std::filesystem;
+
+}  // namespace
+
+int App::run(render::GlfwWindow& window, std::vector<ScriptAction> script) {
+  if (!log_.open(args_.state_file)) {
+    std::cerr << args_.state_file << ": cannot write the state file\n";
+    return kExitOutput;
+  }
+  render::FontAtlas font;
+  render::GlRenderer renderer(window, font);
+  renderer_ = &renderer;
+
+  IMGUI_CHECKVERSION();
+  ImGui::CreateContext();
+  ImGuiIO& io = ImGui::GetIO();
+  io.IniFilename = nullptr;
+  if (fs::exists(render::kDejaVuSans)) io.Fonts->AddFontFromFileTTF(render::kDejaVuSans, 15.0f);
+  ImGui::StyleColorsLight();
+  // Our key callback first: ImGui's callbacks chain to the one installed before them.
+  glfwSetWindowUserPointer(window.handle(), this);
+  glfwSetKeyCallback(window.handle(), &App::key_event);
+  ImGui_ImplGlfw_InitForOpenGL(window.handle(), true);
+  ImGui_ImplOpenGL3_Init("#version 330 core");
+  glfwSwapInterval(args_.bench > 0 ? 0 : 1);
+
+  send_to_worker();  // the first solve
+  std::size_t next_action = 0;
+  bool script_failed = false;
+  const bool scripted = !script.empty();
+  int frames = 0;
+  while (!quit_) {
+    const double now = seconds_since(start_);
+    const bool busy = worker_.busy() || playing_ || recording_ || scripted || args_.bench > 0 ||
+                      ImGui::IsAnyMouseDown() || !queue_.empty();
+    if (busy)
+      glfwPollEvents();
+    else
+      glfwWaitEventsTimeout(0.25);
+    if (glfwWindowShouldClose(window.handle()) || interrupted()) push({RequestKind::Quit, 0.0, {}});
+
+    watch_scene_file(now);
+
+    ImGui_ImplOpenGL3_NewFrame();
+    ImGui_ImplGlfw_NewFrame();
+    ImGui::NewFrame();
+    int fb_width = 0, fb_height = 0;
+    glfwGetFramebufferSize(window.handle(), &fb_width, &fb_height);
+    const int view_x = static_cast<int>(kPanelWidth);
+    const int view_width = std::max(16, fb_width - view_x);
+    const int view_height = std::max(16, fb_height);
+    mouse(static_cast<float>(view_x), static_cast<float>(view_width),
+          static_cast<float>(view_height));
+    if (scripted) run_script(script, next_action, now, script_failed);
+    if (args_.bench > 0) bench_step(now);
+    panels(static_cast<float>(fb_height));
+
+    sync();  // the one place where requests change the state
+    if (view_width != view_width_ || view_height != view_height_) {
+      view_width_ = view_width;
+      view_height_ = view_height;
+      redraw_ = true;
+    }
+    step_recording();
+    // Draft quality (no multisampling) while the slider is dragged: the picture follows
+    // the pointer at a higher frame rate; full quality again as soon as it rests.
+    // The first picture of a new load factor is a draft too (it appears a few ms sooner);
+    // the next frame refines it. Screenshots are always taken at full quality.
+    const bool fresh = shown_ && shown_->request != drafted_request_ && shown_->finished;
+    if (fresh) drafted_request_ = shown_->request;
+    const bool draft = (dragging_slider_ || (args_.bench > 0 && bench_.phase == 0) || fresh) &&
+                       !screenshot_requested_ && !recording_;
+    if (draft != draft_) {
+      draft_ = draft;
+      renderer.set_samples(draft ? 1 : 4);
+      redraw_ = true;
+    }
+    // Bounded work per frame: a picture that costs more than a frame (a huge scene on a
+    // software renderer) is redrawn at most every other such period, so the panels and
+    // the slider keep answering between pictures.
+    const bool picture_due =
+        last_picture_ms_ < 16.0 || screenshot_requested_ || recording_ ||
+        std::chrono::duration<double, std::milli>(Clock::now() - last_picture_end_).count() >=
+            last_picture_ms_;
+    if (redraw_ && picture_due) {
+      const auto draw_start = Clock::now();
+      draw_picture(view_width_, view_height_);
+      if (last_picture_ms_ >= 16.0 || args_.bench > 0) glFinish();  // true cost, not submission
+      last_picture_end_ = Clock::now();
+      last_picture_ms_ =
+          std::chrono::duration<double, std::milli>(last_picture_end_ - draw_start).count();
+      if (args_.bench > 0 && bench_.phase == 0) {
+        glFinish();  // the benchmark times the GL work too, not just its submission
+        bench_.draw_ms.push_back(
+            std::chrono::duration<double, std::milli>(Clock::now() - draw_start).count());
+      }
+      redraw_ = false;
+    }
+    if (screenshot_requested_) {
+      screenshot(pending_screenshot_);
+      screenshot_requested_ = false;
+    }
+
+    ImGui::Render();
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glViewport(0, 0, fb_width, fb_height);
+    glClearColor(0.94f, 0.94f, 0.94f, 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT);
+    renderer.blit_to_default(view_x, 0, fb_height);
+    ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+    const auto swap_start = Clock::now();
+    glfwSwapBuffers(window.handle());
+    if (args_.bench > 0 && bench_.phase == 0)
+      bench_.swap_ms.push_back(
+          std::chrono::duration<double, std::milli>(Clock::now() - swap_start).count());
+    ++frames;
+    report_frame();
+    if (!ready_reported_ && frames >= 2 && shown_) {
+      ready_reported_ = true;
+      log_.write({{"event", "ready"},
+                  {"window", {fb_width, fb_height}},
+                  {"view", {view_x, 0, view_width_, view_height_}},
+                  {"slider", {slider_[0], slider_[1], slider_[2], slider_[3]}},
+                  {"max_load", slider_max_},
+                  {"renderer", window.description()}});
+    }
+  }
+
+  if (screenshot_pool_) screenshot_pool_->finish();
+  for (std::thread& t : finishers_)
+    t.join();
+  log_.write({{"event", "quit"}, {"frames", frames}});
+  ImGui_ImplOpenGL3_Shutdown();
+  ImGui_ImplGlfw_Shutdown();
+  ImGui::DestroyContext();
+
+  if (args_.bench > 0) print_bench(window);
+  if (script_failed) return kExitNotConverged;
+  return kExitOk;
+}
+
+}  // namespace fetic::app::gui

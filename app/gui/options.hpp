@@ -1,0 +1,24 @@
+#pragma once
+// The command line of `fetic gui` (registered in cmd_gui.cpp).
+
+#include <string>
+
+namespace fetic::app::gui {
+
+struct Options {
+  std::string scene;
+  std::string method = "feti-c";
+  std::string preconditioner = "dirichlet";
+  double load = 1.0;
+  double max_load = 0.0;  // 0: chosen from the scene (solver::automatic_max_load)
+  double magnification = 0.0;
+  std::string size = "1280x800";
+  std::string state_file;
+  std::string script;
+  std::string screenshot_dir = ".";
+  std::string record_dir = "fetic-recordings";
+  bool no_overlay = false;
+  int bench = 0;  // load changes of the benchmark drag; 0: no benchmark
+};
+
+}  // namespace fetic::app::gui

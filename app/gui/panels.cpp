@@ -1,0 +1,192 @@
+// The ImGui panel on the left (load slider, method, iteration history, display toggles,
+// recordings, status) and the help window. Widgets only push requests; what they show
+// is the state the last sync point left.
+
+#include <algorithm>
+#include <string>
+
+#include <imgui.h>
+
+#include "app/gui/app.hpp"
+#include "solver/method.hpp"
+
+namespace fetic::app::gui {
+
+void App::panels(float height) {
+  ImGui::SetNextWindowPos(ImVec2(0, 0));
+  ImGui::SetNextWindowSize(ImVec2(kPanelWidth, height));
+  ImGui::Begin("fetic", nullptr,
+               ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse |
+                   ImGuiWindowFlags_NoSavedSettings);
+  ImGui::TextWrapped("%s", title_.c_str());
+  ImGui::Separator();
+  load_controls();
+  ImGui::Separator();
+  solver_controls();
+  ImGui::Separator();
+  history_controls();
+  ImGui::Separator();
+  display_toggles();
+  ImGui::Separator();
+  output_buttons();
+  ImGui::Separator();
+  status_text();
+  ImGui::End();
+  if (help_) help_window();
+}
+
+// The load factor: slider (reported when taken and let go) and a typed value.
+void App::load_controls() {
+  ImGui::Text("Load factor (0 .. %.3g)", slider_max_);
+  double load = target_.load_factor;
+  const double zero = 0.0;
+  ImGui::SetNextItemWidth(-1);
+  if (ImGui::SliderScalar("##load", ImGuiDataType_Double, &load, &zero, &slider_max_, "%.4f"))
+    push({RequestKind::SetLoad, load, {}});
+  if (ImGui::IsItemActive() != dragging_slider_) {
+    dragging_slider_ = ImGui::IsItemActive();
+    log_.write({{"event", "slider"}, {"held", dragging_slider_}, {"load_factor", load}});
+  }
+  const ImVec2 lo = ImGui::GetItemRectMin(), hi = ImGui::GetItemRectMax();
+  slider_[0] = lo.x, slider_[1] = lo.y, slider_[2] = hi.x, slider_[3] = hi.y;
+  // The typed value shows the current load factor unless the user is typing.
+  if (!typing_load_) typed_load_ = target_.load_factor;
+  ImGui::SetNextItemWidth(120);
+  if (ImGui::InputDouble("type + Enter", &typed_load_, 0.0, 0.0, "%.4f",
+                         ImGuiInputTextFlags_EnterReturnsTrue))
+    push({RequestKind::SetLoad, typed_load_, {}});
+  typing_load_ = ImGui::IsItemActive();
+}
+
+// Method, preconditioner and magnification (automatic or locked).
+void App::solver_controls() {
+  static const char* methods[] = {"feti-c", "active-set", "feti", "cg", "sd"};
+  static const char* preconditioners[] = {"dirichlet", "lumped", "none"};
+  int method = 0;
+  for (int i = 0; i < 5; ++i)
+    if (solver::to_string(target_.method) == std::string(methods[i])) method = i;
+  ImGui::SetNextItemWidth(140);
+  if (ImGui::Combo("method", &method, methods, 5))
+    push({RequestKind::SetMethod, 0.0, methods[method]});
+  int pre =
+      static_cast<int>(target_.options.preconditioner == solver::Preconditioner::Dirichlet ? 0
+                       : target_.options.preconditioner == solver::Preconditioner::Lumped  ? 1
+                                                                                           : 2);
+  ImGui::SetNextItemWidth(140);
+  if (ImGui::Combo("preconditioner", &pre, preconditioners, 3))
+    push({RequestKind::SetPreconditioner, 0.0, preconditioners[pre]});
+  bool locked = magnification_ > 0.0;
+  if (ImGui::Checkbox("lock magnification", &locked))
+    push({RequestKind::SetMagnification, locked ? shown_magnification_ : 0.0, {}});
+  ImGui::SameLine();
+  if (locked) {
+    double m = magnification_;
+    ImGui::SetNextItemWidth(90);
+    if (ImGui::InputDouble("##mag", &m, 0.0, 0.0, "%.3g", ImGuiInputTextFlags_EnterReturnsTrue) &&
+        m > 0.0)
+      push({RequestKind::SetMagnification, m, {}});
+  } else {
+    ImGui::Text("auto: %g", shown_magnification_);
+  }
+}
+
+// Playback of the iterations of the shown solve.
+void App::history_controls() {
+  ImGui::Text("Iterations of this solve");
+  if (ImGui::Button(playing_ ? "Pause" : "Play")) push({RequestKind::TogglePlay, 0.0, {}});
+  ImGui::SameLine();
+  if (ImGui::Button("Step")) push({RequestKind::Step, 0.0, {}});
+  ImGui::SameLine();
+  if (ImGui::Button("Reset")) push({RequestKind::Reset, 0.0, {}});
+  ImGui::SameLine();
+  float rate = static_cast<float>(play_rate_);
+  ImGui::SetNextItemWidth(-1);
+  if (ImGui::SliderFloat("##rate", &rate, 1.0f, 30.0f, "%.0f it/s")) play_rate_ = rate;
+  const int last = shown_ ? std::max(0, static_cast<int>(shown_->iterates.size()) - 1) : 0;
+  int iteration = shown_index();
+  ImGui::SetNextItemWidth(-1);
+  if (ImGui::SliderInt("##history", &iteration, 0, last, "iteration %d"))
+    push({RequestKind::Scrub, static_cast<double>(iteration), {}});
+}
+
+// What the picture shows.
+void App::display_toggles() {
+  bool value = subdomains_;
+  if (ImGui::Checkbox("subdomains", &value)) push({RequestKind::Toggle, 0.0, "subdomains"});
+  ImGui::SameLine();
+  value = stress_;
+  if (ImGui::Checkbox("stress colours", &value)) push({RequestKind::Toggle, 0.0, "stress"});
+  value = forces_;
+  if (ImGui::Checkbox("forces", &value)) push({RequestKind::Toggle, 0.0, "forces"});
+  ImGui::SameLine();
+  value = gaps_;
+  if (ImGui::Checkbox("gaps", &value)) push({RequestKind::Toggle, 0.0, "gaps"});
+  ImGui::SameLine();
+  value = show_overlay_;
+  if (ImGui::Checkbox("info", &value)) push({RequestKind::Toggle, 0.0, "overlay"});
+}
+
+// Screenshots, reload and recordings.
+void App::output_buttons() {
+  if (ImGui::Button("Screenshot (S)")) push({RequestKind::Screenshot, 0.0, {}});
+  ImGui::SameLine();
+  if (ImGui::Button("Reload (F5)")) push({RequestKind::Reload, 0.0, {}});
+  if (ImGui::Button("Record iterations")) push({RequestKind::RecordIterations, 0.0, {}});
+  if (ImGui::Button("Record load sweep"))
+    push({RequestKind::RecordSweep, static_cast<double>(sweep_steps_), {}});
+  ImGui::SameLine();
+  ImGui::SetNextItemWidth(-1);
+  ImGui::SliderInt("##steps", &sweep_steps_, 2, 200, "%d steps");
+}
+
+// What the solver is doing, or why it cannot.
+void App::status_text() {
+  if (error_) {
+    ImGui::TextColored(ImVec4(0.8f, 0.1f, 0.1f, 1),
+                       "%s cannot solve this scene:", solver::to_string(error_->method));
+    ImGui::TextWrapped("%s", error_->error.c_str());
+    ImGui::TextWrapped("(the picture is the last solve; choose another method)");
+  } else if (shown_) {
+    const bool busy = !shown_->finished || shown_->request != requests_sent_;
+    const int active = shown_->iterates.empty() ? 0 : shown_->iterates.back()->active_set_size();
+    ImGui::Text("%s at load %.4f", busy ? "solving" : solver::to_string(shown_->status),
+                shown_->load_factor);
+    ImGui::Text("%d iterations, %.2f ms", static_cast<int>(shown_->iterates.size()) - 1,
+                shown_->solve_seconds * 1e3);
+    ImGui::Text("active contacts: %d of %d", active, static_cast<int>(shown_->model->pairs.size()));
+    if (!shown_->message.empty() && shown_->status == solver::Status::Failed)
+      ImGui::TextWrapped("%s", shown_->message.c_str());
+  } else {
+    ImGui::Text("setting up the solver ...");
+  }
+  if (!status_line_.empty()) ImGui::TextWrapped("%s", status_line_.c_str());
+  ImGui::TextDisabled("H: keys   drag: pan   wheel: zoom");
+}
+
+void App::help_window() {
+  ImGui::SetNextWindowPos(ImVec2(kPanelWidth + 40, 40));
+  ImGui::Begin("Keys", &help_,
+               ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoSavedSettings);
+  static const char* keys[][2] = {{"Space", "play / pause the iterations"},
+                                  {"Right, Left", "one iteration forward / back"},
+                                  {"R", "reset to iteration 0"},
+                                  {"S", "screenshot (PNG of the picture)"},
+                                  {"F5", "reload the scene file"},
+                                  {"Home", "reset pan and zoom (or double-click)"},
+                                  {"mouse drag", "pan the picture; wheel: zoom"},
+                                  {"H, F1", "this help"},
+                                  {"Q, Esc", "quit"}};
+  if (ImGui::BeginTable("keys", 2)) {
+    for (const auto& key : keys) {
+      ImGui::TableNextRow();
+      ImGui::TableSetColumnIndex(0);
+      ImGui::TextUnformatted(key[0]);
+      ImGui::TableSetColumnIndex(1);
+      ImGui::TextUnformatted(key[1]);
+    }
+    ImGui::EndTable();
+  }
+  ImGui::End();
+}
+
+}  // namespace fetic::app::gui

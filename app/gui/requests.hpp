@@ -1,0 +1,40 @@
+#pragma once
+// What the mouse, the keyboard and scripts may ask of `fetic gui`. They only queue
+// requests; the frame loop applies them all at one sync point per frame, so the three
+// inputs cannot disagree and a script drives exactly what a user drives.
+
+#include <string>
+#include <vector>
+
+namespace fetic::app::gui {
+
+enum class RequestKind {
+  SetLoad,            // value: load factor (clamped to 0 .. the slider's maximum)
+  SetMethod,          // text: "feti-c", "active-set", ...
+  SetPreconditioner,  // text: "dirichlet", "lumped", "none"
+  SetMagnification,   // value: factor; 0 = automatic
+  TogglePlay,
+  Play,
+  Pause,
+  Step,              // one iteration forward in the history of the current solve
+  StepBack,          // one iteration back
+  Reset,             // back to iteration 0, paused
+  Scrub,             // value: iteration to show
+  Toggle,            // text: subdomains | forces | gaps | stress | overlay | help
+  Screenshot,        // text: file (empty: next name in the screenshot directory)
+  RecordIterations,  // every iteration of the current solve as frames
+  RecordSweep,       // value: steps; a load sweep 0 .. maximum as frames
+  Reload,            // reload the scene file, keeping the view
+  ResetView,         // undo pan and zoom
+  Quit,
+};
+
+struct Request {
+  RequestKind kind = RequestKind::Quit;
+  double value = 0.0;
+  std::string text;
+};
+
+using RequestQueue = std::vector<Request>;
+
+}  // namespace fetic::app::gui

@@ -1,0 +1,44 @@
+// Reloading the scene file (F5, the "reload" script action, or a change on disk): a new
+// model for the solver; the view, the method and the load factor stay.
+
+#include <exception>
+#include <filesystem>
+#include <memory>
+#include <string>
+
+#include "app/gui/app.hpp"
+#include "scenes/load_scene.hpp"
+
+namespace fetic::app::gui {
+
+namespace fs = std::filesystem;
+
+void App::reload() {
+  try {
+    scenes::Scene scene = scenes::load_scene_file(args_.scene);
+    auto model = std::make_shared<const solver::Model>(solver::build_model(scene));
+    target_.model = std::move(model);
+    ++target_.model_generation;
+    follow_ = true;
+    send_to_worker();
+    status_line_ = "reloaded " + args_.scene;
+    log_.write({{"event", "reloaded"}, {"scene", args_.scene}});
+  } catch (const std::exception& error) {
+    status_line_ = std::string("reload failed: ") + error.what();
+    log_.write({{"event", "error"}, {"message", status_line_}});
+  }
+}
+
+// A change of the scene file on disk (checked twice a second) reloads it, keeping the view.
+void App::watch_scene_file(double now) {
+  if (now < next_file_check_) return;
+  next_file_check_ = now + 0.5;
+  std::error_code error;
+  const auto time = fs::last_write_time(args_.scene, error);
+  if (!error && time != scene_time_) {
+    scene_time_ = time;
+    push({RequestKind::Reload, 0.0, {}});
+  }
+}
+
+}  // namespace fetic::app::gui

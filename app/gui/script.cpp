@@ -1,0 +1,133 @@
+#include "app/gui/script.hpp"
+
+#include <cmath>
+#include <cstdlib>
+#include <sstream>
+
+namespace fetic::app::gui {
+namespace {
+
+std::optional<double> number(const std::string& text) {
+  if (text.empty()) return std::nullopt;
+  char* end = nullptr;
+  const double value = std::strtod(text.c_str(), &end);
+  if (end != text.c_str() + text.size() || !std::isfinite(value)) return std::nullopt;
+  return value;
+}
+
+}  // namespace
+
+std::vector<ScriptAction> parse_script(const std::string& text, std::vector<ScriptError>& errors) {
+  std::vector<ScriptAction> actions;
+  std::istringstream in(text);
+  std::string raw;
+  int line = 0;
+  while (std::getline(in, raw)) {
+    ++line;
+    if (const auto hash = raw.find('#'); hash != std::string::npos) raw.resize(hash);
+    std::istringstream words(raw);
+    std::vector<std::string> w;
+    for (std::string word; words >> word;)
+      w.push_back(word);
+    if (w.empty()) continue;
+    ScriptAction action;
+    action.line = line;
+    std::size_t i = 0;
+    if (const auto time = number(w[0])) {
+      if (*time < 0) {
+        errors.push_back({line, "the time must not be negative"});
+        continue;
+      }
+      action.at = *time;
+      ++i;
+    }
+    if (i >= w.size()) {
+      errors.push_back({line, "a time without an action"});
+      continue;
+    }
+    const std::string verb = w[i];
+    const std::string argument = i + 1 < w.size() ? w[i + 1] : "";
+    if (i + 2 < w.size()) {
+      errors.push_back({line, "too many words after '" + verb + "'"});
+      continue;
+    }
+    Request& r = action.request;
+    const auto need_number = [&](RequestKind kind, double low, double high) {
+      const auto value = number(argument);
+      if (!value || *value < low || *value > high) {
+        errors.push_back({line, "'" + verb + "' needs a number" +
+                                    (argument.empty() ? "" : ", not '" + argument + "'")});
+        return false;
+      }
+      r.kind = kind;
+      r.value = *value;
+      return true;
+    };
+    const auto no_argument = [&](RequestKind kind) {
+      if (!argument.empty()) {
+        errors.push_back({line, "'" + verb + "' takes no argument"});
+        return false;
+      }
+      r.kind = kind;
+      return true;
+    };
+    bool ok = false;
+    if (verb == "load") {
+      ok = need_number(RequestKind::SetLoad, 0.0, 1e300);
+    } else if (verb == "method" || verb == "preconditioner") {
+      ok = !argument.empty();
+      if (!ok) errors.push_back({line, "'" + verb + "' needs a name"});
+      r.kind = verb == "method" ? RequestKind::SetMethod : RequestKind::SetPreconditioner;
+      r.text = argument;
+    } else if (verb == "magnification") {
+      if (argument == "auto") {
+        r.kind = RequestKind::SetMagnification;
+        r.value = 0.0;
+        ok = true;
+      } else {
+        ok = need_number(RequestKind::SetMagnification, 1e-300, 1e300);
+      }
+    } else if (verb == "play") {
+      ok = no_argument(RequestKind::Play);
+    } else if (verb == "pause") {
+      ok = no_argument(RequestKind::Pause);
+    } else if (verb == "step") {
+      ok = no_argument(RequestKind::Step);
+    } else if (verb == "back") {
+      ok = no_argument(RequestKind::StepBack);
+    } else if (verb == "reset") {
+      ok = no_argument(RequestKind::Reset);
+    } else if (verb == "scrub") {
+      ok = need_number(RequestKind::Scrub, 0.0, 1e9);
+    } else if (verb == "toggle") {
+      ok = argument == "subdomains" || argument == "forces" || argument == "gaps" ||
+           argument == "stress" || argument == "overlay" || argument == "help";
+      if (!ok)
+        errors.push_back(
+            {line, "'toggle' needs subdomains, forces, gaps, stress, overlay or help"});
+      r.kind = RequestKind::Toggle;
+      r.text = argument;
+    } else if (verb == "screenshot") {
+      r.kind = RequestKind::Screenshot;
+      r.text = argument;
+      ok = true;
+    } else if (verb == "record-iterations") {
+      ok = no_argument(RequestKind::RecordIterations);
+    } else if (verb == "record-sweep") {
+      ok = need_number(RequestKind::RecordSweep, 2.0, 10000.0);
+    } else if (verb == "reload") {
+      ok = no_argument(RequestKind::Reload);
+    } else if (verb == "wait") {
+      action.wait = no_argument(RequestKind::Quit);
+      ok = action.wait;
+    } else if (verb == "quit") {
+      ok = no_argument(RequestKind::Quit);
+    } else {
+      errors.push_back({line, "unknown action '" + verb + "'"});
+    }
+    if (ok) actions.push_back(action);
+  }
+  return actions;
+}
+
+}  // namespace fetic::app::gui

@@ -1,0 +1,35 @@
+#pragma once
+// Scripted runs of `fetic gui` (--script FILE), for tests and demos. One action a line:
+//
+//   [TIME] ACTION [ARGUMENT]     # TIME: seconds after the window opened (optional)
+//
+// Actions run in order; one with a TIME waits until then. Actions: load T, method NAME,
+// preconditioner NAME, magnification M|auto, play, pause, step, back, reset, scrub I,
+// toggle subdomains|forces|gaps|stress|overlay|help, screenshot [FILE], record-iterations,
+// record-sweep N, reload, wait (until the current solve has finished and is on screen),
+// quit. Each becomes the same request a key or a panel widget makes.
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "app/gui/requests.hpp"
+
+namespace fetic::app::gui {
+
+struct ScriptAction {
+  int line = 0;
+  double at = -1.0;   // seconds after start; < 0: as soon as the previous one is done
+  bool wait = false;  // "wait": until the solver is idle and its state is shown
+  Request request;    // otherwise
+};
+
+struct ScriptError {
+  int line = 0;
+  std::string message;
+};
+
+// Parses a script; on errors returns them all (file:line: message style, without file).
+std::vector<ScriptAction> parse_script(const std::string& text, std::vector<ScriptError>& errors);
+
+}  // namespace fetic::app::gui

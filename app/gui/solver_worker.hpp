@@ -1,0 +1,96 @@
+#pragma once
+// The solver thread of `fetic gui`. The UI never touches a method: it states what it wants
+// (model, method, load factor) and the worker re-solves, warm-started, publishing an
+// immutable SolveState after every iteration. A newer request abandons the current solve
+// between two iterations, so dragging the load slider never waits for a solve to finish.
+
+#include <chrono>
+#include <condition_variable>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "render/frame_sequence.hpp"
+#include "solver/method.hpp"
+#include "solver/model.hpp"
+
+namespace fetic::app::gui {
+
+// What one solve has produced so far; never changed once published.
+struct SolveState {
+  std::shared_ptr<const solver::Model> model;
+  std::uint64_t model_generation = 0;
+  std::uint64_t request = 0;  // the load request this solve answers
+  double load_factor = 0.0;
+  solver::MethodKind method = solver::MethodKind::FetiC;
+  solver::Preconditioner preconditioner = solver::Preconditioner::Dirichlet;
+  std::vector<std::shared_ptr<const solver::Snapshot>> iterates;  // iteration 0 .. now
+  std::vector<solver::HistoryEntry> history;
+  bool finished = false;  // converged or failed
+  solver::Status status = solver::Status::Running;
+  std::string message;
+  double solve_seconds = 0.0;
+  // Scales for the whole slider range: a survey of the solve at the largest load factor.
+  std::shared_ptr<const render::RunExtent> extent;
+  double max_load = 2.0;  // top of the load slider (the target's, or chosen from the scene)
+  std::string error;      // the method could not be set up for this model
+};
+
+struct SolverTarget {
+  std::shared_ptr<const solver::Model> model;
+  std::uint64_t model_generation = 0;
+  solver::MethodKind method = solver::MethodKind::FetiC;
+  solver::SolveOptions options;
+  double max_load = 0.0;  // top of the load slider; 0: automatic_max_load()
+  double load_factor = 1.0;
+  std::uint64_t request = 0;
+};
+
+// The top of the load slider when none is given: twice the scene's loads; when nothing
+// touches at the scene's loads (`at_one`: converged solve at load factor 1 with an empty
+// working set, so displacements grow linearly with the load), twice the load factor at
+// which the first contact closes, rounded up to 1, 2 or 5 x 10^k.
+double automatic_max_load(const solver::Model& model, const solver::Snapshot& at_one);
+
+class SolverWorker {
+ public:
+  // `wake` is called (from the worker thread) after each publication, e.g. to wake the UI.
+  explicit SolverWorker(std::function<void()> wake);
+  ~SolverWorker();
+  SolverWorker(const SolverWorker&) = delete;
+  SolverWorker& operator=(const SolverWorker&) = delete;
+
+  // Replaces what is to be solved; cheap, returns at once.
+  void request(const SolverTarget& target);
+  // The newest published state (null before the first).
+  std::shared_ptr<const SolveState> latest() const;
+  // True while a request has not been answered by a finished solve.
+  bool busy() const;
+  // Waits at most `budget` for a finished solve answering `request` (or a later one);
+  // returns it, or the newest state when the time is up.
+  std::shared_ptr<const SolveState> wait_for(std::uint64_t request,
+                                             std::chrono::microseconds budget) const;
+
+ private:
+  void run();
+  bool superseded() const;
+  void publish(std::shared_ptr<const SolveState> state);
+
+  std::function<void()> wake_;
+  mutable std::mutex mutex_;
+  std::condition_variable changed_;
+  mutable std::condition_variable published_;
+  SolverTarget target_;
+  std::uint64_t version_ = 0;  // bumped by every request()
+  std::uint64_t seen_ = 0;     // version the worker works on
+  bool idle_ = true;
+  bool stop_ = false;
+  std::shared_ptr<const SolveState> latest_;
+  std::thread thread_;
+};
+
+}  // namespace fetic::app::gui

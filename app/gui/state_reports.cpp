@@ -1,0 +1,80 @@
+// After each swap: what is on screen now, for the state file ("solved" events) and the
+// script's "wait"; the benchmark's latencies are taken here too.
+
+#include <chrono>
+#include <iterator>
+#include <vector>
+
+#include "app/gui/app.hpp"
+#include "solver/method.hpp"
+
+namespace fetic::app::gui {
+namespace {
+
+std::vector<int> active_contacts(const solver::Snapshot& snapshot) {
+  std::vector<int> active;
+  for (std::size_t i = 0; i < snapshot.in_working_set.size(); ++i)
+    if (snapshot.in_working_set[i]) active.push_back(static_cast<int>(i));
+  return active;
+}
+
+}  // namespace
+
+void App::report_frame() {
+  // Called after a swap: the shown state is on screen now.
+  if (error_ && error_->request > reported_request_) {
+    reported_request_ = error_->request;
+    log_.write({{"event", "solved"},
+                {"request", error_->request},
+                {"load_factor", error_->load_factor},
+                {"method", solver::to_string(error_->method)},
+                {"converged", false},
+                {"status", "failed"},
+                {"message", error_->message},
+                {"active", 0},
+                {"active_contacts", std::vector<int>{}}});
+  }
+  if (!shown_) {
+    solved_on_screen_ = error_ && error_->request == requests_sent_;
+    return;
+  }
+  const auto now = Clock::now();
+  if (shown_->request != first_frame_request_) {
+    first_frame_request_ = shown_->request;
+    if (const auto it = requested_at_.find(shown_->request);
+        it != requested_at_.end() && args_.bench > 0 && bench_.phase == 2)
+      bench_.first_latency_ms.push_back(
+          std::chrono::duration<double, std::milli>(now - it->second).count());
+  }
+  solved_on_screen_ = (shown_->finished && shown_->request == requests_sent_ && follow_) ||
+                      (error_ && error_->request == requests_sent_);
+  if (!shown_->finished || shown_->request <= reported_request_ || shown_->iterates.empty()) return;
+  reported_request_ = shown_->request;
+  const solver::Snapshot& final_state = *shown_->iterates.back();
+  double latency = 0.0;
+  if (const auto it = requested_at_.find(shown_->request); it != requested_at_.end()) {
+    latency = std::chrono::duration<double, std::milli>(now - it->second).count();
+    requested_at_.erase(requested_at_.begin(), std::next(it));
+  }
+  if (args_.bench > 0 && bench_.phase == 2 && shown_->request == bench_.waiting) {
+    bench_.solved_latency_ms.push_back(latency);
+    bench_.solve_ms.push_back(shown_->solve_seconds * 1e3);
+    bench_.iterations.push_back(static_cast<int>(shown_->iterates.size()) - 1);
+  }
+  const std::vector<int> active = active_contacts(final_state);
+  log_.write({{"event", "solved"},
+              {"request", shown_->request},
+              {"load_factor", shown_->load_factor},
+              {"method", solver::to_string(shown_->method)},
+              {"preconditioner", solver::to_string(shown_->preconditioner)},
+              {"iterations", static_cast<int>(shown_->iterates.size()) - 1},
+              {"converged", shown_->status == solver::Status::Converged},
+              {"status", solver::to_string(shown_->status)},
+              {"message", shown_->message},
+              {"active", static_cast<int>(active.size())},
+              {"active_contacts", active},
+              {"solve_ms", shown_->solve_seconds * 1e3},
+              {"latency_ms", latency}});
+}
+
+}  // namespace fetic::app::gui

@@ -1,0 +1,203 @@
+// The state of the window changes here only: App::apply turns one request into state
+// (and into a solver request when the solve's input changed); App::sync, once per frame,
+// applies all queued requests and takes the newest state the solver published.
+
+#include <algorithm>
+#include <filesystem>
+#include <memory>
+#include <string>
+
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
+
+#include "app/gui/app.hpp"
+#include "solver/method.hpp"
+
+namespace fetic::app::gui {
+namespace {
+
+namespace fs = std::filesystem;
+
+// How long the sync point waits for a quick solve to finish within the frame.
+constexpr std::chrono::microseconds kQuickSolve{5000};
+
+}  // namespace
+
+App::App(const Options& args, std::shared_ptr<const solver::Model> model, std::string title)
+    : args_(args), title_(std::move(title)), worker_([] { glfwPostEmptyEvent(); }) {
+  target_.model = std::move(model);
+  target_.model_generation = 1;
+  target_.method = *solver::parse_method(args.method);
+  target_.options.preconditioner = *solver::parse_preconditioner(args.preconditioner);
+  target_.max_load = args.max_load;  // 0: the worker chooses from the scene
+  slider_max_ = args.max_load > 0.0 ? args.max_load : 2.0;
+  target_.load_factor = args.max_load > 0.0 ? std::min(args.load, args.max_load) : args.load;
+  magnification_ = args.magnification;
+  show_overlay_ = !args.no_overlay;
+  std::error_code ignored;
+  scene_time_ = fs::last_write_time(args.scene, ignored);
+}
+
+void App::send_to_worker() {
+  target_.request = ++requests_sent_;
+  requested_at_[target_.request] = Clock::now();
+  worker_.request(target_);
+}
+
+int App::shown_index() const {
+  if (!shown_ || shown_->iterates.empty()) return 0;
+  const int last = static_cast<int>(shown_->iterates.size()) - 1;
+  return follow_ ? last : std::clamp(cursor_, 0, last);
+}
+
+void App::apply(const Request& r) {
+  const int last = shown_ ? std::max(0, static_cast<int>(shown_->iterates.size()) - 1) : 0;
+  const bool finished = shown_ && shown_->finished;
+  switch (r.kind) {
+    case RequestKind::SetLoad: {
+      const double t = std::clamp(r.value, 0.0, slider_max_);
+      if (t == target_.load_factor && requests_sent_ > 0) break;
+      target_.load_factor = t;
+      follow_ = true;
+      playing_ = false;
+      send_to_worker();
+      break;
+    }
+    case RequestKind::SetMethod:
+      if (const auto kind = solver::parse_method(r.text)) {
+        target_.method = *kind;
+        follow_ = true;
+        send_to_worker();
+      } else {
+        status_line_ = "unknown method " + r.text;
+      }
+      break;
+    case RequestKind::SetPreconditioner:
+      if (const auto p = solver::parse_preconditioner(r.text)) {
+        target_.options.preconditioner = *p;
+        follow_ = true;
+        send_to_worker();
+      } else {
+        status_line_ = "unknown preconditioner " + r.text;
+      }
+      break;
+    case RequestKind::SetMagnification:
+      magnification_ = r.value;
+      redraw_ = true;
+      break;
+    case RequestKind::TogglePlay:
+      apply(Request{playing_ ? RequestKind::Pause : RequestKind::Play, 0.0, {}});
+      break;
+    case RequestKind::Play:
+      if (shown_index() >= last)
+        cursor_ = 0;  // like a video player: from the start again
+      else
+        cursor_ = shown_index();
+      follow_ = false;
+      playing_ = true;
+      next_tick_ = seconds_since(start_) + 1.0 / play_rate_;
+      redraw_ = true;
+      break;
+    case RequestKind::Pause:
+      cursor_ = shown_index();
+      playing_ = false;
+      follow_ = false;
+      break;
+    case RequestKind::Step:
+      cursor_ = std::min(shown_index() + 1, last);
+      playing_ = false;
+      follow_ = cursor_ == last && finished;
+      redraw_ = true;
+      break;
+    case RequestKind::StepBack:
+      cursor_ = std::max(shown_index() - 1, 0);
+      playing_ = false;
+      follow_ = false;
+      redraw_ = true;
+      break;
+    case RequestKind::Reset:
+      cursor_ = 0;
+      playing_ = false;
+      follow_ = false;
+      redraw_ = true;
+      break;
+    case RequestKind::Scrub:
+      cursor_ = std::clamp(static_cast<int>(r.value), 0, last);
+      playing_ = false;
+      follow_ = cursor_ == last && finished;
+      redraw_ = true;
+      break;
+    case RequestKind::Toggle:
+      if (r.text == "subdomains") subdomains_ = !subdomains_;
+      if (r.text == "forces") forces_ = !forces_;
+      if (r.text == "gaps") gaps_ = !gaps_;
+      if (r.text == "stress") stress_ = !stress_;
+      if (r.text == "overlay") show_overlay_ = !show_overlay_;
+      if (r.text == "help") help_ = !help_;
+      redraw_ = true;
+      break;
+    case RequestKind::Screenshot:
+      screenshot_requested_ = true;
+      pending_screenshot_ = r.text;
+      break;
+    case RequestKind::RecordIterations:
+    case RequestKind::RecordSweep:
+      start_recording(r);
+      break;
+    case RequestKind::Reload:
+      reload();
+      break;
+    case RequestKind::ResetView:
+      zoom_ = 1.0f;
+      pan_ = {0.0f, 0.0f};
+      redraw_ = true;
+      break;
+    case RequestKind::Quit:
+      quit_ = true;
+      break;
+  }
+}
+
+void App::sync() {
+  const std::uint64_t sent_before = requests_sent_;
+  for (std::size_t i = 0; i < queue_.size(); ++i)  // apply() may queue more
+    apply(queue_[i]);
+  queue_.clear();
+  // A solve that is quick (the last one took less than the budget) lands in this very
+  // frame: wait for it a little rather than show it one frame later. Slow solves are not
+  // waited for; their iterates appear as they come.
+  std::shared_ptr<const SolveState> latest;
+  if (requests_sent_ != sent_before && shown_ && shown_->finished &&
+      shown_->solve_seconds < kQuickSolve.count() * 1e-6)
+    latest = worker_.wait_for(requests_sent_, kQuickSolve);
+  else
+    latest = worker_.latest();
+  if (latest && latest->iterates.empty() && latest->finished) {
+    // The method cannot solve this scene: say so, keep the last picture.
+    error_ = std::move(latest);
+  } else if (latest != shown_) {
+    shown_ = std::move(latest);
+    if (shown_ && shown_->max_load > 0.0) slider_max_ = shown_->max_load;
+    if (shown_ && error_ && shown_->request > error_->request) error_.reset();
+    redraw_ = true;
+  }
+  // Playback of the iterations of the current solve.
+  if (playing_ && shown_) {
+    const double now = seconds_since(start_);
+    const int last = static_cast<int>(shown_->iterates.size()) - 1;
+    while (now >= next_tick_ && playing_) {
+      next_tick_ += 1.0 / play_rate_;
+      if (cursor_ < last) {
+        ++cursor_;
+        redraw_ = true;
+      } else if (shown_->finished) {
+        playing_ = false;
+        follow_ = true;
+      } else {
+        break;  // wait for the solver
+      }
+    }
+  }
+}
+
+}  // namespace fetic::app::gui

@@ -1,0 +1,403 @@
+// `fetic gui` end to end, in a real X server (CTest runs this under xvfb-run): real pointer
+// events (xdotool) drag the load slider, and the app's reported state (--state-file JSON
+// lines) and its screenshots must change accordingly: the active contacts must be those
+// `fetic solve` finds at the same load factor, and the pictures must match the goldens
+// (tests/golden/gui_*.png, the golden tolerance of the render tests). The scripted mode,
+// the reload on a changed file and the no-display message have their own cases.
+// Every wait has a deadline; nothing sleeps for a fixed long time.
+
+#include <catch2/catch.hpp>
+
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <iterator>
+#include <optional>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "render/golden.hpp"
+
+extern char** environ;
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+std::string scene(const std::string& name) {
+  return std::string(FETIC_BUNDLED_SCENES_DIR) + "/" + name;
+}
+
+fs::path fresh_directory(const std::string& name) {
+  const fs::path directory = fs::temp_directory_path() / (name + "_" + std::to_string(::getpid()));
+  fs::remove_all(directory);
+  fs::create_directories(directory);
+  return directory;
+}
+
+std::string read_text(const fs::path& path) {
+  std::ifstream in(path);
+  return {std::istreambuf_iterator<char>(in), {}};
+}
+
+// Runs a shell command, returns its exit status and output.
+std::pair<int, std::string> shell(const std::string& command) {
+  const fs::path log = fs::temp_directory_path() / ("fetic_gui_test_" + std::to_string(::getpid()));
+  const int raw = std::system((command + " > " + log.string() + " 2>&1").c_str());
+  return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, read_text(log)};
+}
+
+// The app, running in the background.
+class App {
+ public:
+  explicit App(std::vector<std::string> arguments) {
+    arguments.insert(arguments.begin(), {FETIC_EXECUTABLE, "gui"});
+    std::vector<char*> argv;
+    for (std::string& a : arguments)
+      argv.push_back(a.data());
+    argv.push_back(nullptr);
+    REQUIRE(posix_spawn(&pid_, FETIC_EXECUTABLE, nullptr, nullptr, argv.data(), environ) == 0);
+  }
+  ~App() {
+    if (pid_ > 0) {
+      ::kill(pid_, SIGTERM);
+      int status = 0;
+      ::waitpid(pid_, &status, 0);
+    }
+  }
+  // Exit status, or nullopt when it has not exited within `seconds`.
+  std::optional<int> wait(double seconds) {
+    const auto deadline = Clock::now() + std::chrono::duration<double>(seconds);
+    while (Clock::now() < deadline) {
+      int status = 0;
+      if (::waitpid(pid_, &status, WNOHANG) == pid_) {
+        pid_ = 0;
+        return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+    return std::nullopt;
+  }
+  bool running() {
+    int status = 0;
+    return pid_ > 0 && ::waitpid(pid_, &status, WNOHANG) == 0;
+  }
+
+ private:
+  pid_t pid_ = 0;
+};
+
+std::vector<json> events(const fs::path& state_file) {
+  std::vector<json> out;
+  std::ifstream in(state_file);
+  for (std::string line; std::getline(in, line);) {
+    const json event = json::parse(line, nullptr, false);
+    if (!event.is_discarded()) out.push_back(event);
+  }
+  return out;
+}
+
+// Waits (at most `seconds`) for an event that satisfies `match`, after the first `skip`.
+std::optional<json> wait_for(const fs::path& state_file,
+                             const std::function<bool(const json&)>& match, double seconds = 60.0,
+                             std::size_t skip = 0) {
+  const auto deadline = Clock::now() + std::chrono::duration<double>(seconds);
+  while (Clock::now() < deadline) {
+    const auto all = events(state_file);
+    for (std::size_t i = skip; i < all.size(); ++i)
+      if (match(all[i])) return all[i];
+    std::this_thread::sleep_for(std::chrono::milliseconds(25));
+  }
+  return std::nullopt;
+}
+
+bool is(const json& e, const std::string& name) {
+  return e.value("event", "") == name;
+}
+
+// Active contact pairs `fetic solve` finds at this load factor.
+std::vector<int> solve_active(const std::string& scene_file, double load) {
+  const fs::path out =
+      fs::temp_directory_path() / ("fetic_gui_solve_" + std::to_string(::getpid()) + ".json");
+  const auto [status, output] =
+      shell(std::string(FETIC_EXECUTABLE) + " solve " + scene_file + " --load-factor " +
+            std::to_string(load) + " --json " + out.string() + " --quiet");
+  INFO(output);
+  REQUIRE(status == 0);
+  const json result = json::parse(read_text(out));
+  std::vector<int> active;
+  int k = 0;
+  for (const json& contact : result["contacts"])
+    for (const json& pair : contact["pairs"]) {
+      if (pair["active"].get<bool>()) active.push_back(k);
+      ++k;
+    }
+  return active;
+}
+
+void require_golden(const std::string& name, const fs::path& png) {
+  const fetic::render::Image image = fetic::testing::read_png(png.string());
+  REQUIRE(image.width > 0);
+  const std::string mismatch = fetic::testing::check_golden(name, image);
+  INFO(mismatch);
+  CHECK(mismatch.empty());
+}
+
+std::string xdotool(const std::string& arguments) {
+  const auto [status, output] = shell("xdotool " + arguments);
+  INFO("xdotool " << arguments << ": " << output);
+  REQUIRE(status == 0);
+  return output;
+}
+
+bool have_display() {
+  const char* display = std::getenv("DISPLAY");
+  return display && *display;
+}
+
+}  // namespace
+
+TEST_CASE("dragging the load slider with the mouse re-solves and redraws", "[e2e]") {
+  REQUIRE(have_display());
+  const fs::path dir = fresh_directory("fetic_gui_e2e");
+  const fs::path state = dir / "state.jsonl";
+  App app({scene("thesis.toml"), "--load", "0", "--no-overlay", "--size", "1280x800",
+           "--state-file", state.string(), "--screenshot-dir", dir.string()});
+
+  const auto ready = wait_for(state, [](const json& e) { return is(e, "ready"); });
+  REQUIRE(ready);
+  const std::vector<float> slider = (*ready)["slider"].get<std::vector<float>>();
+  const double max_load = (*ready)["max_load"].get<double>();
+  REQUIRE(max_load == 2.0);
+  const auto at_zero = wait_for(state, [](const json& e) {
+    return is(e, "solved") && e["load_factor"].get<double>() == 0.0;
+  });
+  REQUIRE(at_zero);
+  CHECK((*at_zero)["converged"].get<bool>());
+  CHECK((*at_zero)["active"].get<int>() == 0);
+
+  const std::string window =
+      xdotool("search --sync --onlyvisible --name 'fetic - '").substr(0, std::string::npos);
+  const std::string wid = window.substr(0, window.find('\n'));
+  REQUIRE(!wid.empty());
+  const int y = static_cast<int>((slider[1] + slider[3]) / 2);
+  const int x0 = static_cast<int>(slider[0]) + 2;
+  const int x1 = static_cast<int>(slider[2]) + 30;  // past the end: the slider's maximum
+
+  // Screenshot at load 0 (key S, pointer over the picture so that the window has focus).
+  xdotool("mousemove --window " + wid + " 800 400 key s");
+  const auto shot0 = wait_for(state, [](const json& e) { return is(e, "screenshot"); });
+  REQUIRE(shot0);
+  require_golden("gui_thesis_load0", (*shot0)["path"].get<std::string>());
+
+  // Drag the slider from 0 to past its right end with real pointer events. The app says
+  // when it sees the slider held, so a slow frame cannot merge the press with the moves.
+  xdotool("mousemove --window " + wid + " " + std::to_string(x0) + " " + std::to_string(y) +
+          " mousedown 1");
+  REQUIRE(wait_for(state, [](const json& e) { return is(e, "slider") && e["held"].get<bool>(); }));
+  std::string drag;
+  for (int i = 1; i <= 12; ++i)
+    drag += " mousemove --window " + wid + " " + std::to_string(x0 + (x1 - x0) * i / 12) + " " +
+            std::to_string(y) + " sleep 0.03";
+  xdotool(drag);
+  xdotool("mouseup 1");
+  const auto released =
+      wait_for(state, [](const json& e) { return is(e, "slider") && !e["held"].get<bool>(); });
+  REQUIRE(released);
+  CHECK((*released)["load_factor"].get<double>() == max_load);
+
+  const auto at_max = wait_for(state, [&](const json& e) {
+    return is(e, "solved") && e["load_factor"].get<double>() == max_load;
+  });
+  INFO("reported state:\n" << read_text(state));
+  REQUIRE(at_max);
+  CHECK((*at_max)["converged"].get<bool>());
+  const std::vector<int> active = (*at_max)["active_contacts"].get<std::vector<int>>();
+  CHECK(!active.empty());
+  CHECK(active == solve_active(scene("thesis.toml"), max_load));
+  // The drag went through intermediate load factors, each a solve of its own.
+  int intermediate = 0;
+  for (const json& e : events(state))
+    if (is(e, "solved") && e["load_factor"].get<double>() > 0.0 &&
+        e["load_factor"].get<double>() < max_load)
+      ++intermediate;
+  CHECK(intermediate >= 1);
+
+  xdotool("mousemove --window " + wid + " 800 400 key s");
+  const auto shot1 = wait_for(state, [](const json& e) {
+    return is(e, "screenshot") && e["load_factor"].get<double>() == 2.0;
+  });
+  REQUIRE(shot1);
+  require_golden("gui_thesis_load2", (*shot1)["path"].get<std::string>());
+  // The two pictures differ by far more than the golden tolerance.
+  const auto a = fetic::testing::read_png((*shot0)["path"].get<std::string>());
+  const auto b = fetic::testing::read_png((*shot1)["path"].get<std::string>());
+  CHECK(fetic::testing::compare(b, a).fraction > 0.01);
+
+  // Keys: R back to iteration 0, Right twice, S: the screenshot is of iteration 2; Left
+  // once: iteration 1.
+  const std::size_t before = events(state).size();
+  xdotool("key r key Right key Right key s");
+  const auto stepped = wait_for(
+      state, [](const json& e) { return is(e, "screenshot"); }, 60.0, before);
+  REQUIRE(stepped);
+  CHECK((*stepped)["iteration"].get<int>() == 2);
+  const std::size_t before_left = events(state).size();
+  xdotool("key Left key s");
+  const auto back = wait_for(
+      state, [](const json& e) { return is(e, "screenshot"); }, 60.0, before_left);
+  REQUIRE(back);
+  CHECK((*back)["iteration"].get<int>() == 1);
+
+  xdotool("key q");
+  const auto status = app.wait(20.0);
+  REQUIRE(status);
+  CHECK(*status == 0);
+}
+
+TEST_CASE("a script drives the same requests: load, wait, step, screenshot, quit", "[script]") {
+  REQUIRE(have_display());
+  const fs::path dir = fresh_directory("fetic_gui_script");
+  const fs::path state = dir / "state.jsonl";
+  const fs::path script = dir / "script.txt";
+  std::ofstream(script) << "# load 0.5, then 1 (the scene's loads), step through the history\n"
+                           "wait\n"
+                           "load 0.5\n"
+                           "wait\n"
+                           "screenshot "
+                        << (dir / "half.png").string()
+                        << "\n"
+                           "load 1\n"
+                           "wait\n"
+                           "screenshot "
+                        << (dir / "one.png").string()
+                        << "\n"
+                           "reset\n"
+                           "step\n"
+                           "step\n"
+                           "screenshot "
+                        << (dir / "step2.png").string()
+                        << "\n"
+                           "toggle stress\n"
+                           "scrub 1000\n"
+                           "screenshot "
+                        << (dir / "stress.png").string()
+                        << "\n"
+                           "0.2 quit\n";
+  App app({scene("thesis.toml"), "--load", "0", "--no-overlay", "--size", "1280x800",
+           "--state-file", state.string(), "--script", script.string()});
+  const auto status = app.wait(90.0);
+  INFO("reported state:\n" << read_text(state));
+  REQUIRE(status);
+  CHECK(*status == 0);
+
+  const auto all = events(state);
+  std::vector<json> solved, shots;
+  for (const json& e : all) {
+    if (is(e, "solved")) solved.push_back(e);
+    if (is(e, "screenshot")) shots.push_back(e);
+  }
+  REQUIRE(solved.size() == 3);  // 0 (start), 0.5, 1
+  CHECK(solved[1]["load_factor"].get<double>() == 0.5);
+  CHECK(solved[2]["load_factor"].get<double>() == 1.0);
+  CHECK(solved[1]["active_contacts"].get<std::vector<int>>() ==
+        solve_active(scene("thesis.toml"), 0.5));
+  CHECK(solved[2]["active_contacts"].get<std::vector<int>>() ==
+        solve_active(scene("thesis.toml"), 1.0));
+  CHECK(solved[2]["active"].get<int>() > solved[1]["active"].get<int>());
+  REQUIRE(shots.size() == 4);
+  CHECK(shots[2]["iteration"].get<int>() == 2);  // reset, step, step
+  CHECK(shots[3]["iteration"].get<int>() == solved[2]["iterations"].get<int>());
+  require_golden("gui_script_thesis_load1", dir / "one.png");
+  require_golden("gui_script_thesis_stress", dir / "stress.png");
+}
+
+TEST_CASE("a load sweep is recorded as frames; a method that cannot solve is reported",
+          "[script]") {
+  REQUIRE(have_display());
+  const fs::path dir = fresh_directory("fetic_gui_record");
+  const fs::path state = dir / "state.jsonl";
+  const fs::path script = dir / "script.txt";
+  std::ofstream(script)
+      << "wait\nrecord-sweep 3\nwait\nrecord-iterations\nwait\nmethod cg\nwait\nquit\n";
+  App app({scene("two_bars.toml"), "--state-file", state.string(), "--script", script.string(),
+           "--record-dir", (dir / "rec").string()});
+  const auto status = app.wait(90.0);
+  INFO("reported state:\n" << read_text(state));
+  REQUIRE(status);
+  CHECK(*status == 0);
+  std::vector<json> recorded, solved;
+  for (const json& e : events(state)) {
+    if (is(e, "recorded")) recorded.push_back(e);
+    if (is(e, "solved")) solved.push_back(e);
+  }
+  REQUIRE(recorded.size() == 2);
+  // Encoding finishes off the window's thread: the events may come in either order.
+  std::sort(recorded.begin(), recorded.end(), [](const json& a, const json& b) {
+    return a["directory"].get<std::string>().find("sweep_") != std::string::npos &&
+           b["directory"].get<std::string>().find("sweep_") == std::string::npos;
+  });
+  CHECK(recorded[0]["directory"].get<std::string>().find("sweep_001") != std::string::npos);
+  CHECK(recorded[0]["frames"].get<int>() == 3);
+  for (int i = 0; i < 3; ++i)
+    CHECK(fs::exists(dir / "rec" / "sweep_001" / ("frame_000" + std::to_string(i) + ".png")));
+  // The sweep solved 0, 1 and 2 (the slider's range), one after the other.
+  std::vector<double> loads;
+  for (const json& e : solved)
+    loads.push_back(e["load_factor"].get<double>());
+  CHECK(std::find(loads.begin(), loads.end(), 0.0) != loads.end());
+  CHECK(std::find(loads.begin(), loads.end(), 2.0) != loads.end());
+  CHECK(recorded[1]["frames"].get<int>() >= 1);
+  // CG cannot solve a scene with contacts: reported as a failed solve, the app goes on.
+  REQUIRE(!solved.empty());
+  CHECK(solved.back()["method"] == "cg");
+  CHECK(!solved.back()["converged"].get<bool>());
+  CHECK(solved.back()["message"].get<std::string>().find("contact") != std::string::npos);
+}
+
+TEST_CASE("a changed scene file is reloaded, keeping the app running", "[script]") {
+  REQUIRE(have_display());
+  const fs::path dir = fresh_directory("fetic_gui_reload");
+  const fs::path state = dir / "state.jsonl";
+  const fs::path copy = dir / "two_bars.toml";
+  fs::copy_file(scene("two_bars.toml"), copy);
+  App app({copy.string(), "--state-file", state.string()});
+  REQUIRE(wait_for(state, [](const json& e) { return is(e, "solved"); }));
+  // A new title: the file changes on disk, the app notices and reloads it.
+  std::string text = read_text(copy);
+  std::ofstream(copy) << "# edited\n" << text;
+  const auto reloaded = wait_for(
+      state, [](const json& e) { return is(e, "reloaded"); }, 30.0);
+  CHECK(reloaded);
+  // A broken file: reported, the app keeps running.
+  std::ofstream(copy) << "this is not toml [";
+  const auto error = wait_for(
+      state, [](const json& e) { return is(e, "error"); }, 30.0);
+  CHECK(error);
+  CHECK(app.running());
+}
+
+TEST_CASE("without a display fetic gui says so and points to fetic render", "[no-display]") {
+  const auto [status, output] =
+      shell("env -u DISPLAY -u WAYLAND_DISPLAY " + std::string(FETIC_EXECUTABLE) + " gui " +
+            scene("thesis.toml"));
+  INFO(output);
+  CHECK(status == 6);
+  CHECK(output.find("no display") != std::string::npos);
+  CHECK(output.find("fetic render") != std::string::npos);
+}

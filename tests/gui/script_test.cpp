@@ -1,0 +1,61 @@
+// The script format of `fetic gui --script`: actions become the same requests as keys and
+// widgets; times are optional; every problem is reported with its line.
+
+#include <catch2/catch.hpp>
+
+#include "app/gui/script.hpp"
+
+using fetic::app::gui::parse_script;
+using fetic::app::gui::RequestKind;
+using fetic::app::gui::ScriptError;
+
+TEST_CASE("script lines become timed requests", "[script]") {
+  std::vector<ScriptError> errors;
+  const auto actions = parse_script(
+      "# a demo\n"
+      "load 0.5\n"
+      "1.5 step   # at 1.5 s\n"
+      "wait\n"
+      "magnification auto\n"
+      "magnification 200\n"
+      "toggle stress\n"
+      "screenshot out.png\n"
+      "screenshot\n"
+      "record-sweep 10\n"
+      "2 quit\n",
+      errors);
+  REQUIRE(errors.empty());
+  REQUIRE(actions.size() == 10);
+  CHECK(actions[0].request.kind == RequestKind::SetLoad);
+  CHECK(actions[0].request.value == 0.5);
+  CHECK(actions[0].at < 0);
+  CHECK(actions[1].request.kind == RequestKind::Step);
+  CHECK(actions[1].at == 1.5);
+  CHECK(actions[1].line == 3);
+  CHECK(actions[2].wait);
+  CHECK(actions[3].request.kind == RequestKind::SetMagnification);
+  CHECK(actions[3].request.value == 0.0);
+  CHECK(actions[4].request.value == 200.0);
+  CHECK(actions[5].request.kind == RequestKind::Toggle);
+  CHECK(actions[5].request.text == "stress");
+  CHECK(actions[6].request.text == "out.png");
+  CHECK(actions[7].request.text.empty());
+  CHECK(actions[8].request.kind == RequestKind::RecordSweep);
+  CHECK(actions[8].request.value == 10.0);
+  CHECK(actions[9].request.kind == RequestKind::Quit);
+  CHECK(actions[9].at == 2.0);
+}
+
+TEST_CASE("script errors name the line and the problem", "[script]") {
+  std::vector<ScriptError> errors;
+  parse_script("load\nload x\njump 3\ntoggle colours\n-1 quit\n1.0\nstep now\n", errors);
+  REQUIRE(errors.size() == 7);
+  CHECK(errors[0].line == 1);
+  CHECK(errors[0].message == "'load' needs a number");
+  CHECK(errors[1].message == "'load' needs a number, not 'x'");
+  CHECK(errors[2].message == "unknown action 'jump'");
+  CHECK(errors[3].line == 4);
+  CHECK(errors[4].message == "the time must not be negative");
+  CHECK(errors[5].message == "a time without an action");
+  CHECK(errors[6].message == "'step' takes no argument");
+}
