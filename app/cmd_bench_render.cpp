@@ -16,6 +16,7 @@
 #include "app/commands.hpp"
 #include "app/exit_codes.hpp"
 #include "app/interrupt.hpp"
+#include "app/method_options.hpp"
 #include "app/render_output.hpp"
 #include "app/scene_input.hpp"
 #include "render/colormap.hpp"
@@ -177,7 +178,7 @@ void register_bench_render(CLI::App& app, int& exit_code) {
       "bench-render", "Measure frames per second of an iteration movie, including PNG writing");
   command->add_option("scene", args->scene, "Scene file")->capture_default_str();
   command->add_option("--method", args->method, "Method")
-      ->check(CLI::IsMember({"sd", "cg", "active-set", "feti", "feti-c"}))
+      ->check(method_name())
       ->capture_default_str();
   command->add_option("--size", args->size, "Image size in pixels")
       ->check(image_size_check())

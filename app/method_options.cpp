@@ -50,14 +50,22 @@ CLI::Validator finite_number() {
       "FINITE");
 }
 
+CLI::Validator method_name() {
+  return CLI::IsMember({"sd", "cg", "active-set", "feti", "feti-c"});
+}
+
+CLI::Validator preconditioner_name() {
+  return CLI::IsMember({"none", "lumped", "dirichlet"});
+}
+
 void add_method_options(CLI::App* command, MethodArgs& args) {
   command->add_option("--method", args.method, "Method: sd, cg, active-set, feti, feti-c")
-      ->check(CLI::IsMember({"sd", "cg", "active-set", "feti", "feti-c"}))
+      ->check(method_name())
       ->capture_default_str();
   command
       ->add_option("--preconditioner", args.preconditioner,
                    "FETI preconditioner: none, lumped, dirichlet")
-      ->check(CLI::IsMember({"none", "lumped", "dirichlet"}))
+      ->check(preconditioner_name())
       ->capture_default_str();
   command->add_flag("--no-scaling", args.no_scaling,
                     "FETI preconditioners without stiffness scaling");

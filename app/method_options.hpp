@@ -39,4 +39,9 @@ std::optional<LoadSteps> parse_load_steps(const std::string& text);
 // A CLI11 check that a value is a finite number.
 CLI::Validator finite_number();
 
+// CLI11 checks that a value names a method / a FETI preconditioner, for every command that
+// lets the user choose one.
+CLI::Validator method_name();
+CLI::Validator preconditioner_name();
+
 }  // namespace fetic::app

@@ -15,6 +15,7 @@
 #include "app/gui/app.hpp"
 #include "app/gui/options.hpp"
 #include "app/gui/script.hpp"
+#include "app/method_options.hpp"
 #include "app/render_output.hpp"
 #include "app/scene_input.hpp"
 #include "render/glfw_window.hpp"
@@ -77,10 +78,10 @@ void register_gui(CLI::App& app, int& exit_code) {
       "gui", "Interactive window: load slider, live warm-started FETI-C, iteration history");
   command->add_option("scene", args->scene, "Scene file (TOML, see README)")->required();
   command->add_option("--method", args->method, "Method to start with")
-      ->check(CLI::IsMember({"sd", "cg", "active-set", "feti", "feti-c"}))
+      ->check(method_name())
       ->capture_default_str();
   command->add_option("--preconditioner", args->preconditioner, "FETI preconditioner")
-      ->check(CLI::IsMember({"dirichlet", "lumped", "none"}))
+      ->check(preconditioner_name())
       ->capture_default_str();
   command->add_option("--load", args->load, "Load factor to start at")
       ->check(CLI::NonNegativeNumber)
