@@ -2,7 +2,6 @@
 // state, or a sequence of load steps), optionally assembled into an mp4 by ffmpeg.
 
 #include <cmath>
-#include <csignal>
 #include <cstdlib>
 #include <filesystem>
 #include <iostream>
