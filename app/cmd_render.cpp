@@ -153,7 +153,7 @@ void register_render(CLI::App& app, int& exit_code) {
   CLI::App* command = app.add_subcommand(
       "render",
       "Render solver states to PNG frames: an iteration movie, the final state or load steps");
-  command->add_option("scene", args->scene, "Scene file (TOML, see README)")->required();
+  command->add_option("scene", args->scene, "Scene file (TOML, see docs/SCENES.md)")->required();
   command->add_option("--out", args->out, "Directory for frame_0000.png, frame_0001.png, ...")
       ->required();
   add_method_options(command, args->method);

@@ -174,7 +174,7 @@ int run_solve(const SolveArgs& args) {
 void register_solve(CLI::App& app, int& exit_code) {
   auto args = std::make_shared<SolveArgs>();
   CLI::App* command = app.add_subcommand("solve", "Solve a scene and report the result");
-  command->add_option("scene", args->scene, "Scene file (TOML, see README)")->required();
+  command->add_option("scene", args->scene, "Scene file (TOML, see docs/SCENES.md)")->required();
   add_method_options(command, args->method);
   command->add_option("--json", args->json, "Write the result file (JSON) here");
   command->add_flag("--reference", args->reference,

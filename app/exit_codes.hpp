@@ -1,5 +1,5 @@
 #pragma once
-// Exit statuses of every fetic command (documented in README.md).
+// Exit statuses of every fetic command (documented in docs/COMMANDS.md).
 
 namespace fetic::app {
 

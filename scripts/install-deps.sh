@@ -12,6 +12,7 @@ packages=(
   coinor-libipopt-dev                       # benchmark: a general-purpose QP solver
   xvfb xauth xdotool                        # window tests
   ffmpeg                                    # movies
+  libopenmpi-dev openmpi-bin                # distributed solves (mpirun -np N fetic solve)
   # scripts/fuzz.sh: clang with libFuzzer and the ASan/UBSan runtimes for clang, and
   # llvm-symbolizer for readable crash stacks (g++'s sanitizers need nothing more)
   clang-14 libclang-rt-14-dev llvm-14

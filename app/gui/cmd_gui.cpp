@@ -76,7 +76,7 @@ void register_gui(CLI::App& app, int& exit_code) {
   auto args = std::make_shared<gui::Options>();
   CLI::App* command = app.add_subcommand(
       "gui", "Interactive window: load slider, live warm-started FETI-C, iteration history");
-  command->add_option("scene", args->scene, "Scene file (TOML, see README)")->required();
+  command->add_option("scene", args->scene, "Scene file (TOML, see docs/SCENES.md)")->required();
   command->add_option("--method", args->method, "Method to start with")
       ->check(method_name())
       ->capture_default_str();
@@ -97,7 +97,7 @@ void register_gui(CLI::App& app, int& exit_code) {
       ->capture_default_str();
   command->add_option("--state-file", args->state_file,
                       "Write what the app does as JSON lines to this file (- for stdout)");
-  command->add_option("--script", args->script, "Run timed actions from this file (see README)");
+  command->add_option("--script", args->script, "Run timed actions from this file (see docs/WINDOW.md)");
   command->add_option("--screenshot-dir", args->screenshot_dir, "Where S saves screenshots")
       ->capture_default_str();
   command->add_option("--record-dir", args->record_dir, "Where recordings go")

@@ -1,7 +1,7 @@
 #pragma once
 // Golden-image comparison for the GL tests. A pixel differs when any channel differs by
 // more than kChannelThreshold; an image matches when at most kMaxDifferingFraction of its
-// pixels differ (README "Rendering": llvmpipe output is byte-identical run to run, the
+// pixels differ (docs/RENDERING.md: llvmpipe output is byte-identical run to run, the
 // tolerance absorbs Mesa/LLVM versions re-rasterizing anti-aliased edges and glyphs).
 // With FETIC_UPDATE_GOLDENS=1 the goldens are rewritten instead of compared. On failure
 // the actual image and an amplified difference image go to FETIC_GOLDEN_OUTPUT_DIR.
