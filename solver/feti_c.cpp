@@ -94,8 +94,9 @@ void FetiC::compute_search_residual() {
 
 void FetiC::record_state() {
   compute_search_residual();
-  const double residual = relative(w_hat_.norm());
-  if (residual <= options_.tolerance || w_hat_.norm() == 0.0)
+  const double norm = space().norm(w_hat_);
+  const double residual = relative(norm);
+  if (residual <= options_.tolerance || norm == 0.0)
     converge();
   else
     watch_stagnation(residual);
@@ -129,7 +130,7 @@ void FetiC::begin(const Snapshot* warm) {
     system_.residual(lambda_, load_factor_, r_);
     set_scale();
     w_hat_ = r_;
-    record(relative(r_.norm()), 0);
+    record(relative(space().norm(r_)), 0);
     fail(unbounded);
     return;
   }
@@ -153,11 +154,11 @@ void FetiC::advance() {
   preconditioner_.apply(w, &face_, y);
   system_.project_onto_range_of_B(y);
   coarse_.project(y);
-  const double yw = y.dot(w);
+  const double yw = space().dot(y, w);
   const double beta = restart_ || !(yw_previous_ > 0.0) ? 0.0 : yw / yw_previous_;
   p_ = restart_ ? y : Eigen::VectorXd(y + beta * p_);
   system_.apply_F(p_, q_);
-  const double pq = p_.dot(q_);
+  const double pq = space().dot(p_, q_);
   ++iteration_;
   if (!(pq > 0.0) || !(yw > 0.0)) {
     fail_breakdown(yw, pq);

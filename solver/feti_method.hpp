@@ -38,7 +38,9 @@ class FetiMethod : public Method {
   // ||d|| alone depends on the generalized inverse: when K^+ f happens to vanish (a load
   // on a fixed DOF) and the gaps are zero, d = 0 and the test would turn absolute;
   // F lambda_0, the interface displacement of multipliers that balance the loads, does not.
-  void set_scale() { scale_ = std::max(d_.norm(), (d_ - r_).norm()); }
+  void set_scale() { scale_ = std::max(space().norm(d_), space().norm(d_ - r_)); }
+  // Scalar products and norms of dual vectors over all rows (of every process).
+  const DualSpace& space() const { return system_.space(); }
   // Force and working-set flags per contact pair from lambda and the active rows.
   void fill_contacts(Snapshot& s) const;
   // r <- r - a q after a step a p (q = F p); every kResidualReplacement iterations r is

@@ -14,7 +14,8 @@ constexpr double kSingularRcond = 1e-15;
 
 }  // namespace
 
-FetiSystem::FetiSystem(const Model& model) : model_(model), decomposition_(decompose(model)) {
+FetiSystem::FetiSystem(const Model& model)
+    : model_(model), decomposition_(decompose(model)), space_(decomposition_) {
   const int count = static_cast<int>(decomposition_.subdomains.size());
   subdomains_.resize(count);
   for (int r = 0; r < decomposition_.row_count(); ++r)

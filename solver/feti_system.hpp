@@ -12,6 +12,7 @@
 #include <Eigen/Core>
 
 #include "solver/decomposition.hpp"
+#include "solver/dual_space.hpp"
 #include "solver/generalized_inverse.hpp"
 #include "solver/method.hpp"
 
@@ -40,6 +41,8 @@ class FetiSystem {
 
   const Model& model() const { return model_; }
   const Decomposition& decomposition() const { return decomposition_; }
+  // The rows this process holds and the reductions over all of them (dual_space.hpp).
+  const DualSpace& space() const { return space_; }
   const std::vector<SubdomainOperator>& subdomains() const { return subdomains_; }
   int rows() const { return decomposition_.row_count(); }
   int modes() const { return decomposition_.total_modes; }
@@ -78,6 +81,7 @@ class FetiSystem {
 
   const Model& model_;
   Decomposition decomposition_;
+  DualSpace space_;
   std::vector<SubdomainOperator> subdomains_;
   Eigen::VectorXd c_;
   SparseMatrix G_;

@@ -40,8 +40,9 @@ void Pcpg::record_residual() {
   w_ = r_;
   coarse_.project(w_);
   system_.project_onto_range_of_B(w_);
-  const double residual = relative(w_.norm());
-  if (residual <= options_.tolerance || w_.norm() == 0.0)
+  const double norm = space().norm(w_);
+  const double residual = relative(norm);
+  if (residual <= options_.tolerance || norm == 0.0)
     converge();
   else
     watch_stagnation(residual);
@@ -53,11 +54,11 @@ void Pcpg::advance() {
   preconditioner_.apply(w_, nullptr, z);
   system_.project_onto_range_of_B(z);
   coarse_.project(z);  // y = P z
-  const double yw = z.dot(w_);
+  const double yw = space().dot(z, w_);
   const double beta = yw_previous_ > 0.0 ? yw / yw_previous_ : 0.0;
   p_ = iteration_ == 0 ? z : Eigen::VectorXd(z + beta * p_);
   system_.apply_F(p_, q_);
-  const double pq = p_.dot(q_);
+  const double pq = space().dot(p_, q_);
   ++iteration_;
   if (!(pq > 0.0) || !(yw > 0.0)) {
     fail_breakdown(yw, pq);
