@@ -24,6 +24,8 @@ nlohmann::json result_json(const solver::Model& model, const solver::Snapshot& f
   result["time_seconds"] = {{"setup", info.setup_seconds}, {"solve", info.solve_seconds}};
 
   const auto displacements = solver::strut_displacements(model, final_state);
+  const auto rotations = model.frame() ? solver::strut_rotations(model, final_state)
+                                       : std::vector<std::vector<double>>{};
   json struts = json::array();
   for (size_t s = 0; s < model.struts.size(); ++s) {
     json nodes = json::array(), moved = json::array();
@@ -31,7 +33,9 @@ nlohmann::json result_json(const solver::Model& model, const solver::Snapshot& f
       nodes.push_back({model.struts[s].nodes[n].x(), model.struts[s].nodes[n].y()});
       moved.push_back({displacements[s][n].x(), displacements[s][n].y()});
     }
-    struts.push_back({{"name", model.strut_names[s]}, {"nodes", nodes}, {"displacements", moved}});
+    json strut = {{"name", model.strut_names[s]}, {"nodes", nodes}, {"displacements", moved}};
+    if (model.frame()) strut["rotations"] = rotations[s];  // frame model: one per node
+    struts.push_back(strut);
   }
   result["struts"] = struts;
 

@@ -19,8 +19,8 @@ namespace {
 constexpr long long kMaxElements = 10'000'000;
 constexpr long long kMaxSubdomains = 1'000'000;
 
-const std::vector<std::string> kTopKeys = {"title", "model", "defaults",
-                                           "strut", "load",  "contact"};
+const std::vector<std::string> kTopKeys = {"title", "model",   "defaults", "strut",
+                                           "load",  "contact", "joint"};
 const std::vector<std::string> kStrutKeys = {"name",
                                              "from",
                                              "to",
@@ -33,9 +33,12 @@ const std::vector<std::string> kStrutKeys = {"name",
                                              "thickness",
                                              "nu",
                                              "elements_across",
-                                             "subdomains_across"};
-const std::vector<std::string> kLoadKeys = {"strut", "at", "force", "per_length"};
-const std::vector<std::string> kContactKeys = {"a", "b"};
+                                             "subdomains_across",
+                                             "inertia",
+                                             "pinned"};
+const std::vector<std::string> kLoadKeys = {"strut", "at", "force", "per_length", "moment"};
+const std::vector<std::string> kContactKeys = {"a", "b", "normal"};
+const std::vector<std::string> kJointKeys = {"ends", "kind"};
 
 int line_of(const toml::node& node) {
   return static_cast<int>(node.source().begin.line);
@@ -230,6 +233,7 @@ class SceneParser {
     parse_struts(root, defaults);
     parse_loads(root);
     parse_contacts(root);
+    parse_joints(root);
   }
 
  private:
@@ -239,7 +243,7 @@ class SceneParser {
     }
     const toml::node* model = root.get("model");
     if (!model) {
-      read_.error(0, "missing key 'model' (\"bar\" or \"plane\")");
+      read_.error(0, "missing key 'model' (\"bar\", \"plane\" or \"frame\")");
       return;
     }
     if (auto text = read_.string(*model, "'model'")) {
@@ -247,8 +251,11 @@ class SceneParser {
         scene_.model = ModelKind::Bar;
       } else if (*text == "plane") {
         scene_.model = ModelKind::Plane;
+      } else if (*text == "frame") {
+        scene_.model = ModelKind::Frame;
       } else {
-        read_.error(line_of(*model), "'model' must be \"bar\" or \"plane\", got \"" + *text + "\"");
+        read_.error(line_of(*model),
+                    "'model' must be \"bar\", \"plane\" or \"frame\", got \"" + *text + "\"");
       }
     }
   }
@@ -346,11 +353,18 @@ class SceneParser {
     }
     if (auto node = keys.find("fixed")) parse_fixed(*node, what("fixed"), strut);
 
-    if (scene_.model == ModelKind::Bar) {
+    if (scene_.model == ModelKind::Plane) {
+      parse_plane_keys(keys, strut, label, required, what);
+    } else {
       if (auto node = required("area"))
         if (auto v = read_.positive(*node, what("area"))) strut.area = *v;
-    } else {
-      parse_plane_keys(keys, strut, label, required, what);
+    }
+    if (scene_.model == ModelKind::Frame) {
+      parse_frame_strut_keys(keys, strut, required, what);
+    } else if (const toml::node* pinned = table.get("pinned")) {
+      read_.error(line_of(*pinned), what("pinned") +
+                                        ": pinned supports exist in the frame model only "
+                                        "(model = \"frame\"); use 'fixed'");
     }
     return strut;
   }
@@ -390,6 +404,11 @@ class SceneParser {
   }
 
   void parse_fixed(const toml::node& node, const std::string& what, Strut& strut) {
+    parse_end_flags(node, what, strut.fixed_from, strut.fixed_to);
+  }
+
+  // A list of strut ends: [], ["from"], ["to"] or ["from", "to"].
+  void parse_end_flags(const toml::node& node, const std::string& what, bool& from, bool& to) {
     const toml::array* array = node.as_array();
     if (!array) {
       read_.error(line_of(node), what +
@@ -401,7 +420,7 @@ class SceneParser {
     for (const toml::node& item : *array) {
       auto end = read_.end(item, what + " entry");
       if (!end) continue;
-      bool& flag = *end == StrutEnd::From ? strut.fixed_from : strut.fixed_to;
+      bool& flag = *end == StrutEnd::From ? from : to;
       if (flag) read_.error(line_of(item), what + " lists \"" + to_string(*end) + "\" twice");
       flag = true;
     }
@@ -446,6 +465,15 @@ class SceneParser {
       const toml::node* at = table.get("at");
       const toml::node* force = table.get("force");
       const toml::node* per_length = table.get("per_length");
+      if (scene_.model == ModelKind::Frame) {
+        const bool parsed = parse_frame_load(table, label, load);
+        if (ok && parsed) scene_.loads.push_back(load);
+        continue;
+      }
+      if (const toml::node* moment = table.get("moment")) {
+        read_.error(line_of(*moment), label + ": 'moment' needs the frame model (model = \"frame\")");
+        ok = false;
+      }
       if (per_length && (at || force)) {
         read_.error(load.line, label +
                                    ": give either 'at' and 'force' (a force at a strut end) "
@@ -483,6 +511,7 @@ class SceneParser {
   std::optional<EndRef> end_reference(const toml::node& node, const std::string& what) {
     auto text = read_.string(node, what);
     if (!text) return std::nullopt;
+    if (scene_.model == ModelKind::Frame) return frame_node_reference(node, *text, what);
     const size_t dot = text->rfind('.');
     const std::string name = dot == std::string::npos ? *text : text->substr(0, dot);
     const std::string end = dot == std::string::npos ? "" : text->substr(dot + 1);
@@ -519,12 +548,257 @@ class SceneParser {
         b = end_reference(*node, label + ": 'b'");
       else
         read_.error(contact.line, label + ": missing key 'b'");
+      if (const toml::node* normal = table.get("normal")) {
+        if (scene_.model != ModelKind::Frame) {
+          read_.error(line_of(*normal), label +
+                                            ": 'normal' needs the frame model (model = "
+                                            "\"frame\"); here the normal follows a's axis");
+          continue;
+        }
+        if (!parse_contact_normal(*normal, label, contact)) continue;
+      }
       if (!a || !b) continue;
       contact.a = *a;
       contact.b = *b;
       scene_.contacts.push_back(contact);
     }
   }
+
+  // ---- Frame model (SCENES.md "Frame model"): its keys, kept apart from the others ----
+
+  template <class Required, class What>
+  void parse_frame_strut_keys(const StrutKeys& keys, Strut& strut, Required required, What what) {
+    if (auto node = required("inertia"))
+      if (auto v = read_.positive(*node, what("inertia"))) strut.inertia = *v;
+    if (auto node = keys.find("pinned")) {
+      parse_end_flags(*node, what("pinned"), strut.pinned_from, strut.pinned_to);
+      for (StrutEnd end : {StrutEnd::From, StrutEnd::To})
+        if (strut.fixed(end) && strut.pinned(end))
+          read_.error(line_of(*node), what("pinned") + ": the end \"" + to_string(end) +
+                                          "\" is already clamped ('fixed'); an end is either "
+                                          "clamped or pinned");
+    }
+  }
+
+  // 'at' of a frame load: "from", "to", or a node index (an integer, or its digits as a
+  // string); the range is checked once the strut is known.
+  std::optional<int> frame_node_index(const toml::node& node, const std::string& what,
+                                      const Strut* strut) {
+    long long index = -1;
+    if (auto v = node.as_integer()) {
+      index = v->get();
+    } else if (auto t = node.as_string()) {
+      const std::string& text = t->get();
+      if (text == "from") return 0;
+      if (text == "to") return strut ? strut->elements : 0;
+      if (text.empty() || text.size() > 18 ||
+          !std::all_of(text.begin(), text.end(), [](char c) { return c >= '0' && c <= '9'; })) {
+        read_.error(line_of(node), what + " must be \"from\", \"to\" or a node index, got \"" +
+                                       text + "\"");
+        return std::nullopt;
+      }
+      index = std::stoll(text);
+    } else {
+      read_.error(line_of(node), what + " must be \"from\", \"to\" or a node index, got " +
+                                     type_name(node));
+      return std::nullopt;
+    }
+    if (strut && strut->elements > 0 && (index < 0 || index > strut->elements)) {
+      read_.error(line_of(node), what + ": node index " + std::to_string(index) +
+                                     " is out of range: strut " + quoted(strut->name) +
+                                     " has nodes 0.." + std::to_string(strut->elements));
+      return std::nullopt;
+    }
+    return static_cast<int>(index);
+  }
+
+  // A frame load: 'at' with 'force' and/or 'moment', or 'per_length'.
+  bool parse_frame_load(const toml::table& table, const std::string& label, Load& load) {
+    const toml::node* at = table.get("at");
+    const toml::node* force = table.get("force");
+    const toml::node* moment = table.get("moment");
+    const toml::node* per_length = table.get("per_length");
+    const Strut* strut = load.strut >= 0 ? &scene_.struts[load.strut] : nullptr;
+    if (per_length && (at || force || moment)) {
+      read_.error(load.line, label +
+                                 ": give either 'at' with 'force' and/or 'moment' (at a node) "
+                                 "or 'per_length' (a force per unit length), not both");
+      return false;
+    }
+    if (per_length) {
+      load.per_length = true;
+      auto p = read_.point(*per_length, label + ": 'per_length'");
+      if (p) load.force = *p;
+      return p.has_value();
+    }
+    if (!at && !force && !moment) {
+      read_.error(load.line, label +
+                                 ": missing the load: give 'at' with 'force' and/or 'moment', "
+                                 "or 'per_length'");
+      return false;
+    }
+    bool ok = true;
+    if (!at) {
+      read_.error(load.line, label + ": missing key 'at' (\"from\", \"to\" or a node index)");
+      ok = false;
+    }
+    if (!force && !moment) {
+      read_.error(load.line, label + ": missing key 'force' ([fx, fy] in N) or 'moment' (N m)");
+      ok = false;
+    }
+    if (at) {
+      auto index = frame_node_index(*at, label + ": 'at'", strut);
+      ok = ok && index.has_value();
+      if (index && strut) {
+        const auto* text = at->as_string();
+        if (text && text->get() == "from") {
+          load.at = StrutEnd::From;
+        } else if (text && text->get() == "to") {
+          load.at = StrutEnd::To;
+        } else {
+          load.node = *index;
+        }
+      }
+    }
+    if (force) {
+      auto p = read_.point(*force, label + ": 'force'");
+      ok = ok && p.has_value();
+      if (p) load.force = *p;
+    }
+    if (moment) {
+      auto m = read_.number(*moment, label + ": 'moment'");
+      ok = ok && m.has_value();
+      if (m) load.moment = *m;
+    }
+    return ok;
+  }
+
+  // "NAME.from", "NAME.to" or "NAME@k".
+  std::optional<EndRef> frame_node_reference(const toml::node& node, const std::string& text,
+                                             const std::string& what) {
+    const size_t at = text.rfind('@');
+    const size_t dot = text.rfind('.');
+    const bool indexed = at != std::string::npos && (dot == std::string::npos || dot < at);
+    const std::string end = dot == std::string::npos ? "" : text.substr(dot + 1);
+    if (!indexed && end != "from" && end != "to") {
+      read_.error(line_of(node), what +
+                                     " must name a strut node as \"NAME.from\", \"NAME.to\" "
+                                     "or \"NAME@k\" (node k), got \"" +
+                                     text + "\"");
+      return std::nullopt;
+    }
+    const std::string name = text.substr(0, indexed ? at : dot);
+    EndRef ref;
+    ref.strut = find_strut(name);
+    if (ref.strut < 0) {
+      read_.error(line_of(node), what + " names an unknown strut " + quoted(name));
+      return std::nullopt;
+    }
+    if (!indexed) {
+      ref.end = end == "from" ? StrutEnd::From : StrutEnd::To;
+      return ref;
+    }
+    const std::string digits = text.substr(at + 1);
+    if (digits.empty() || digits.size() > 18 ||
+        !std::all_of(digits.begin(), digits.end(), [](char c) { return c >= '0' && c <= '9'; })) {
+      read_.error(line_of(node), what + ": \"" + text + "\" must end in a node index, e.g. \"" +
+                                     name + "@0\"");
+      return std::nullopt;
+    }
+    const long long k = std::stoll(digits);
+    const Strut& strut = scene_.struts[ref.strut];
+    if (strut.elements > 0 && k > strut.elements) {
+      read_.error(line_of(node), what + ": node index " + std::to_string(k) +
+                                     " is out of range: strut " + quoted(name) + " has nodes 0.." +
+                                     std::to_string(strut.elements));
+      return std::nullopt;
+    }
+    ref.node = static_cast<int>(k);
+    return ref;
+  }
+
+  bool parse_contact_normal(const toml::node& node, const std::string& label, Contact& contact) {
+    auto n = read_.point(node, label + ": 'normal'");
+    if (!n) return false;
+    const double size = std::hypot((*n)[0], (*n)[1]);
+    // A unit vector as people write it ([0.7071, 0.7071]) is accepted and normalized; a
+    // vector of another length is more likely a mistake than a direction.
+    if (!(std::abs(size - 1.0) <= kUnitTolerance)) {
+      read_.error(line_of(node), label + ": 'normal' must be a unit vector, got length " +
+                                     number_text(size) +
+                                     (size > 0.0 ? " (divide it by its length)" : ""));
+      return false;
+    }
+    contact.has_normal = true;
+    contact.normal = *n;
+    return true;
+  }
+
+  void parse_joints(const toml::table& root) {
+    const toml::array* joints = table_array(root, "joint");
+    if (!joints) return;
+    if (scene_.model != ModelKind::Frame) {
+      read_.error(line_of(*root.get("joint")),
+                  "[[joint]] needs the frame model (model = \"frame\")");
+      return;
+    }
+    for (size_t i = 0; i < joints->size(); ++i) {
+      const toml::table& table = *joints->get(i)->as_table();
+      read_.check_keys(table, kJointKeys, "[[joint]]");
+      Joint joint;
+      joint.line = line_of(table);
+      const std::string label = "joint #" + std::to_string(i + 1);
+      bool ok = true;
+      if (const toml::node* kind = table.get("kind")) {
+        auto text = read_.string(*kind, label + ": 'kind'");
+        if (text && *text == "rigid") {
+          joint.kind = JointKind::Rigid;
+        } else if (text && *text == "pinned") {
+          joint.kind = JointKind::Pinned;
+        } else {
+          if (text)
+            read_.error(line_of(*kind),
+                        label + ": 'kind' must be \"rigid\" or \"pinned\", got \"" + *text + "\"");
+          ok = false;
+        }
+      }
+      const toml::node* ends = table.get("ends");
+      if (!ends) {
+        read_.error(joint.line, label + ": missing key 'ends' (two or more strut ends)");
+        continue;
+      }
+      const toml::array* array = ends->as_array();
+      if (!array || array->size() < 2) {
+        read_.error(line_of(*ends), label + ": 'ends' must be an array of two or more strut ends " +
+                                        "[\"A.to\", \"B.from\", ...], got " +
+                                        (array ? "an array of " + std::to_string(array->size()) +
+                                                     " value" + (array->size() == 1 ? "" : "s")
+                                               : type_name(*ends)));
+        continue;
+      }
+      for (const toml::node& item : *array) {
+        auto text = read_.string(item, label + ": 'ends' entry");
+        if (!text) {
+          ok = false;
+          continue;
+        }
+        auto ref = frame_node_reference(item, *text, label + ": 'ends' entry");
+        if (!ref) {
+          ok = false;
+        } else if (ref->node >= 0) {
+          read_.error(line_of(item), label + ": a joint connects strut ends (\"NAME.from\" or "
+                                             "\"NAME.to\"), got \"" + *text + "\"");
+          ok = false;
+        } else {
+          joint.ends.push_back(*ref);
+        }
+      }
+      if (ok) scene_.joints.push_back(std::move(joint));
+    }
+  }
+
+  // Accepted deviation of a given contact normal from unit length.
+  static constexpr double kUnitTolerance = 1e-4;
 
   Scene& scene_;
   Reader read_;

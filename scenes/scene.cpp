@@ -3,7 +3,19 @@
 namespace fetic::scenes {
 
 const char* to_string(ModelKind model) {
-  return model == ModelKind::Bar ? "bar" : "plane";
+  switch (model) {
+    case ModelKind::Bar:
+      return "bar";
+    case ModelKind::Plane:
+      return "plane";
+    case ModelKind::Frame:
+      return "frame";
+  }
+  return "?";
+}
+
+const char* to_string(JointKind kind) {
+  return kind == JointKind::Rigid ? "rigid" : "pinned";
 }
 
 const char* to_string(StrutEnd end) {
@@ -11,16 +23,24 @@ const char* to_string(StrutEnd end) {
 }
 
 std::string end_label(const Scene& scene, EndRef ref) {
-  return scene.struts.at(ref.strut).name + "." + to_string(ref.end);
+  const std::string& name = scene.struts.at(ref.strut).name;
+  if (ref.node >= 0) return name + "@" + std::to_string(ref.node);
+  return name + "." + to_string(ref.end);
+}
+
+int node_index(const Scene& scene, EndRef ref) {
+  if (ref.node >= 0) return ref.node;
+  return ref.end == StrutEnd::From ? 0 : scene.struts.at(ref.strut).elements;
 }
 
 int nodes_across(const Scene& scene, const Strut& strut) {
-  return scene.model == ModelKind::Bar ? 1 : strut.elements_across + 1;
+  return scene.model == ModelKind::Plane ? strut.elements_across + 1 : 1;
 }
 
 long long unknowns(const Scene& scene) {
   long long total = 0;
-  const long long per_node = scene.model == ModelKind::Bar ? 1 : 2;
+  const long long per_node =
+      scene.model == ModelKind::Bar ? 1 : (scene.model == ModelKind::Plane ? 2 : 3);
   for (const Strut& strut : scene.struts)
     total += per_node * (static_cast<long long>(strut.elements) + 1) * nodes_across(scene, strut);
   return total;

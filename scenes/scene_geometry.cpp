@@ -48,4 +48,34 @@ ContactGeometry contact_geometry(const Scene& scene, const Contact& contact) {
   return g;
 }
 
+Point node_point(const Scene& scene, EndRef ref) {
+  const Strut& strut = scene.struts.at(ref.strut);
+  const int k = node_index(scene, ref);
+  if (k == 0) return strut.from;
+  if (k >= strut.elements) return strut.to;
+  // The same interpolation as the solver's mesh, so that both agree to the last bit.
+  const double s = static_cast<double>(k) / strut.elements;
+  return {(1.0 - s) * strut.from[0] + s * strut.to[0], (1.0 - s) * strut.from[1] + s * strut.to[1]};
+}
+
+FrameContactGeometry frame_contact_geometry(const Scene& scene, const Contact& contact) {
+  FrameContactGeometry g;
+  const Point pa = node_point(scene, contact.a);
+  const Point pb = node_point(scene, contact.b);
+  const double dx = pb[0] - pa[0], dy = pb[1] - pa[1];
+  g.distance = std::hypot(dx, dy);
+  const double scale =
+      std::max(length(scene.struts.at(contact.a.strut)), length(scene.struts.at(contact.b.strut)));
+  g.coincide = g.distance <= kGapRoundingTolerance * scale;
+  if (contact.has_normal) {
+    const double size = std::hypot(contact.normal[0], contact.normal[1]);
+    g.normal = {contact.normal[0] / size, contact.normal[1] / size};
+  } else if (!g.coincide) {
+    g.normal = {dx / g.distance, dy / g.distance};
+  }
+  g.gap = g.coincide ? 0.0 : dx * g.normal[0] + dy * g.normal[1];
+  if (g.gap < 0.0 && g.gap >= -kGapRoundingTolerance * scale) g.gap = 0.0;
+  return g;
+}
+
 }  // namespace fetic::scenes

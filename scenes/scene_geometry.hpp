@@ -26,4 +26,19 @@ struct ContactGeometry {
 };
 ContactGeometry contact_geometry(const Scene& scene, const Contact& contact);
 
+// Reference position of the node a reference names (bar and frame model: along the axis,
+// node k at k / elements of the way from 'from' to 'to', the ends exact).
+Point node_point(const Scene& scene, EndRef ref);
+
+// Frame model (SCENES.md "Frame model"): the contact normal is the given unit vector, or
+// (x_b - x_a) / |x_b - x_a|; the gap g = n.(x_b - x_a), a negative g within
+// kGapRoundingTolerance x the longer strut taken as zero.
+struct FrameContactGeometry {
+  Point normal{};         // unit; (0, 0) when the nodes coincide and no normal is given
+  double gap = 0.0;
+  double distance = 0.0;  // |x_b - x_a|
+  bool coincide = false;  // the nodes are at one point (within the rounding tolerance)
+};
+FrameContactGeometry frame_contact_geometry(const Scene& scene, const Contact& contact);
+
 }  // namespace fetic::scenes

@@ -8,6 +8,7 @@
 
 #include "scenes/load_scene.hpp"
 #include "scenes/scene_geometry.hpp"
+#include "scenes/validate_frame.hpp"
 
 namespace fetic::scenes {
 namespace {
@@ -62,10 +63,10 @@ std::string magnitude_range_text() {
          number_text(1.0 / kMagnitudeLimit) + " to " + number_text(kMagnitudeLimit) + ")";
 }
 
-// Stiffness of one element: E A / h for a bar, E t for a plane element (independent of
-// its size); the displacement scale is force over this.
+// Stiffness of one element: E A / h for a bar (and a beam's axial stiffness), E t for a
+// plane element (independent of its size); the displacement scale is force over this.
 double element_stiffness(const Scene& scene, const Strut& strut) {
-  if (scene.model == ModelKind::Bar) return strut.E * strut.area * strut.elements / length(strut);
+  if (scene.model != ModelKind::Plane) return strut.E * strut.area * strut.elements / length(strut);
   return strut.E * strut.thickness;
 }
 
@@ -79,8 +80,8 @@ void check_magnitudes(const Scene& scene, std::vector<Problem>& problems) {
     if (outside_magnitude_range(k))
       problems.push_back(
           {strut.line, "strut " + quoted(strut.name) + ": element stiffness " +
-                           (scene.model == ModelKind::Bar ? "E * area / element length = "
-                                                          : "E * thickness = ") +
+                           (scene.model != ModelKind::Plane ? "E * area / element length = "
+                                                            : "E * thickness = ") +
                            number_text(k) + " N/m is " + magnitude_range_text()});
   }
   for (const Load& load : scene.loads) {
@@ -221,6 +222,10 @@ std::vector<Problem> validate_scene(Scene& scene) {
   if (!problems.empty()) return problems;
   check_magnitudes(scene, problems);
   if (!problems.empty()) return problems;
+  if (scene.model == ModelKind::Frame) {
+    validate_frame(scene, problems);
+    return problems;
+  }
   check_contacts(scene, problems, scene.warnings);
   check_element_shapes(scene, scene.warnings);
   if (scene.model == ModelKind::Bar)

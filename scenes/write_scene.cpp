@@ -48,6 +48,7 @@ std::string scene_to_toml(const Scene& scene) {
   if (!scene.title.empty()) out << "title = " << quoted(scene.title) << "\n";
   out << "model = \"" << to_string(scene.model) << "\"\n";
   const bool plane = scene.model == ModelKind::Plane;
+  const bool frame = scene.model == ModelKind::Frame;
   for (const Strut& s : scene.struts) {
     out << "\n[[strut]]\nname = " << quoted(s.name) << "\nfrom = " << point(s.from)
         << "\nto = " << point(s.to) << "\nE = " << number(s.E) << "\nelements = " << s.elements
@@ -61,17 +62,37 @@ std::string scene_to_toml(const Scene& scene) {
           << "\nsubdomains_across = " << s.subdomains_across << "\n";
     else
       out << "area = " << number(s.area) << "\n";
+    if (frame) {
+      out << "inertia = " << number(s.inertia) << "\n";
+      if (s.pinned_from || s.pinned_to) {
+        out << "pinned = [";
+        if (s.pinned_from) out << "\"from\"" << (s.pinned_to ? ", " : "");
+        if (s.pinned_to) out << "\"to\"";
+        out << "]\n";
+      }
+    }
+  }
+  for (const Joint& joint : scene.joints) {
+    out << "\n[[joint]]\nends = [";
+    for (size_t e = 0; e < joint.ends.size(); ++e)
+      out << (e ? ", " : "") << quoted(end_label(scene, joint.ends[e]));
+    out << "]\nkind = \"" << to_string(joint.kind) << "\"\n";
   }
   for (const Load& load : scene.loads) {
     out << "\n[[load]]\nstrut = " << quoted(scene.struts.at(load.strut).name) << "\n";
     if (load.per_length)
       out << "per_length = " << point(load.force) << "\n";
+    else if (load.node >= 0)
+      out << "at = " << load.node << "\nforce = " << point(load.force) << "\n";
     else
       out << "at = \"" << to_string(load.at) << "\"\nforce = " << point(load.force) << "\n";
+    if (load.moment != 0.0) out << "moment = " << number(load.moment) << "\n";
   }
-  for (const Contact& contact : scene.contacts)
+  for (const Contact& contact : scene.contacts) {
     out << "\n[[contact]]\na = " << quoted(end_label(scene, contact.a))
         << "\nb = " << quoted(end_label(scene, contact.b)) << "\n";
+    if (contact.has_normal) out << "normal = " << point(contact.normal) << "\n";
+  }
   return out.str();
 }
 

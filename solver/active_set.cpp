@@ -122,7 +122,10 @@ void ActiveSet::solve_subproblem() {
         moving_struts_.clear();
         for (int j = 0; j < modes; ++j)
           if (std::abs(amplitudes(j)) > 1e-12 * amplitudes.lpNorm<Eigen::Infinity>())
-            moving_struts_.push_back(problem_.kernel_struts()[j]);
+            for (int strut : problem_.kernel_struts()[j])
+              if (std::find(moving_struts_.begin(), moving_struts_.end(), strut) ==
+                  moving_struts_.end())
+                moving_struts_.push_back(strut);
         multiplier_.assign(w, 0.0);
         move_ = Move::RigidMotion;
         return;

@@ -1,7 +1,11 @@
 #include "solver/boundedness.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <numeric>
 #include <vector>
+
+#include <Eigen/Dense>
 
 namespace fetic::solver {
 namespace {
@@ -42,10 +46,152 @@ std::string escape_message(const Model& model, const std::vector<int>& struts, d
          names + " held by no support would be pushed away from every contact";
 }
 
+// min |M x - b| subject to x >= 0: Lawson and Hanson's active-set algorithm.
+Eigen::VectorXd nonnegative_least_squares(const Eigen::MatrixXd& M, const Eigen::VectorXd& b) {
+  const int n = static_cast<int>(M.cols());
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(n);
+  std::vector<char> passive(n, 0);
+  const double tolerance = 1e-13 * (M.cwiseAbs().maxCoeff() + 1e-300) * (b.norm() + 1e-300);
+  for (int outer = 0; outer < 3 * n + 10; ++outer) {
+    const Eigen::VectorXd w = M.transpose() * (b - M * x);
+    int best = -1;
+    double largest = tolerance;
+    for (int j = 0; j < n; ++j)
+      if (!passive[j] && w(j) > largest) {
+        largest = w(j);
+        best = j;
+      }
+    if (best < 0) break;
+    passive[best] = 1;
+    for (int inner = 0; inner < 3 * n + 10; ++inner) {
+      std::vector<int> set;
+      for (int j = 0; j < n; ++j)
+        if (passive[j]) set.push_back(j);
+      Eigen::MatrixXd Mp(M.rows(), static_cast<int>(set.size()));
+      for (size_t i = 0; i < set.size(); ++i)
+        Mp.col(static_cast<int>(i)) = M.col(set[i]);
+      const Eigen::VectorXd zp = Mp.colPivHouseholderQr().solve(b);
+      Eigen::VectorXd z = Eigen::VectorXd::Zero(n);
+      for (size_t i = 0; i < set.size(); ++i)
+        z(set[i]) = zp(static_cast<int>(i));
+      double step = 1.0;
+      for (int j : set)
+        if (z(j) <= 0.0) step = std::min(step, x(j) / (x(j) - z(j)));
+      x += step * (z - x);
+      if (step >= 1.0) break;
+      for (int j : set)
+        if (x(j) <= 0.0) {
+          x(j) = 0.0;
+          passive[j] = 0;
+        }
+    }
+  }
+  return x;
+}
+
+// Frame model: the loads' work along the free motions (scenes/frame_kinematics) must be
+// balanced by compressive contact forces: Z'f = (A Z)' lambda for some lambda >= 0
+// (Farkas), cluster by cluster of motions that contacts link. Otherwise the residual
+// y = Z'f - (A Z)' lambda of the closest balance is a motion that opens every contact it
+// touches ((A Z) y <= 0) and along which the loads do work: the struts it moves escape.
+std::string frame_unbounded_struts(const Model& model, double load_factor) {
+  const scenes::FrameKinematics& kinematics = model.kinematics;
+  const auto& motions = kinematics.motions;
+  const int k = static_cast<int>(motions.size());
+  if (k == 0) return {};
+  auto motion_of = [&](int m, int strut, int node) {
+    const Vec2& p = model.struts[strut].nodes[node];
+    return scenes::motion_at(kinematics, motions[m], strut, {p.x(), p.y()});
+  };
+  // Work of the loads per unit of each motion, and their scale.
+  Eigen::VectorXd work = Eigen::VectorXd::Zero(k);
+  double load_scale = 0.0;
+  for (size_t s = 0; s < model.struts.size(); ++s) {
+    const Eigen::VectorXd& f = model.loads[s];
+    load_scale += f.lpNorm<1>();
+    for (int node = 0; node < model.struts[s].node_count(); ++node) {
+      if (f.segment<3>(3 * node).isZero()) continue;
+      for (int m = 0; m < k; ++m) {
+        const auto u = motion_of(m, static_cast<int>(s), node);
+        work(m) += load_factor * (f(3 * node) * u[0] + f(3 * node + 1) * u[1] + f(3 * node + 2) * u[2]);
+      }
+    }
+  }
+  // Change of each contact gap per unit of each motion (A Z).
+  const int pairs = static_cast<int>(model.pairs.size());
+  Eigen::MatrixXd AZ = Eigen::MatrixXd::Zero(pairs, k);
+  for (int p = 0; p < pairs; ++p) {
+    const ContactPair& pair = model.pairs[p];
+    for (int m = 0; m < k; ++m) {
+      const auto ua = motion_of(m, pair.strut_a, pair.node_a);
+      const auto ub = motion_of(m, pair.strut_b, pair.node_b);
+      AZ(p, m) = pair.normal.x() * (ua[0] - ub[0]) + pair.normal.y() * (ua[1] - ub[1]);
+    }
+  }
+  // Clusters of motions that some contact changes together.
+  std::vector<int> parent(k);
+  std::iota(parent.begin(), parent.end(), 0);
+  auto root = [&](int i) {
+    while (parent[i] != i)
+      i = parent[i] = parent[parent[i]];
+    return i;
+  };
+  for (int p = 0; p < pairs; ++p) {
+    int first = -1;
+    for (int m = 0; m < k; ++m)
+      if (std::abs(AZ(p, m)) > 1e-12) {
+        if (first < 0) first = m;
+        parent[root(m)] = root(first);
+      }
+  }
+  const double tolerance = 1e-10 * std::abs(load_factor) * load_scale;
+  for (int cluster = 0; cluster < k; ++cluster) {
+    if (root(cluster) != cluster) continue;
+    std::vector<int> members, rows;
+    for (int m = 0; m < k; ++m)
+      if (root(m) == cluster) members.push_back(m);
+    for (int p = 0; p < pairs; ++p)
+      for (int m : members)
+        if (std::abs(AZ(p, m)) > 1e-12) {
+          rows.push_back(p);
+          break;
+        }
+    const int n = static_cast<int>(members.size());
+    Eigen::MatrixXd M(n, static_cast<int>(rows.size()));
+    Eigen::VectorXd b(n);
+    for (int i = 0; i < n; ++i) {
+      b(i) = work(members[i]);
+      for (size_t j = 0; j < rows.size(); ++j)
+        M(i, static_cast<int>(j)) = AZ(rows[j], members[i]);
+    }
+    const Eigen::VectorXd residual =
+        rows.empty() ? b : Eigen::VectorXd(b - M * nonnegative_least_squares(M, b));
+    if (!(residual.norm() > tolerance)) continue;
+    std::vector<int> escaping;
+    for (size_t s = 0; s < model.struts.size(); ++s) {
+      double largest = 0.0;
+      for (int node : {0, model.struts[s].nx}) {
+        double ux = 0.0, uy = 0.0;
+        for (int i = 0; i < n; ++i) {
+          const auto u = motion_of(members[i], static_cast<int>(s), node);
+          ux += residual(i) * u[0];
+          uy += residual(i) * u[1];
+        }
+        largest = std::max(largest, std::hypot(ux, uy));
+      }
+      if (largest > 1e-6 * residual.norm()) escaping.push_back(static_cast<int>(s));
+    }
+    return escape_message(model, escaping, load_factor);
+  }
+  return {};
+}
+
 }  // namespace
 
 std::string unbounded_struts(const Model& model, double load_factor) {
-  if (model.dofs_per_node() != 1 || load_factor == 0.0) return {};
+  if (load_factor == 0.0) return {};
+  if (model.frame()) return frame_unbounded_struts(model, load_factor);
+  if (model.dofs_per_node() != 1) return {};
   const int count = static_cast<int>(model.struts.size());
   std::vector<std::vector<Link>> links(count);
   for (size_t k = 0; k < model.pairs.size(); ++k) {

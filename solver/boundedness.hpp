@@ -5,7 +5,9 @@
 // the last clamped strut of a path can all move outward freely, so the scene is
 // unbounded exactly when some run of them at the free end of a path is pushed outward
 // in total (Farkas: no compressive contact forces can then balance the loads).
-// The plane model needs no such check: every plane strut is clamped.
+// The plane model needs no such check: every plane strut is clamped. The frame model
+// checks whether compressive contact forces can balance the loads' work along every
+// free motion (boundedness.cpp, frame_unbounded_struts).
 
 #include <string>
 

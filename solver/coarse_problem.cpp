@@ -4,9 +4,13 @@
 #include <queue>
 #include <stdexcept>
 
+#include "solver/free_motion_space.hpp"
+
 namespace fetic::solver {
 
-CoarseProblem::CoarseProblem(const FetiSystem& system) : system_(system) {}
+CoarseProblem::CoarseProblem(const FetiSystem& system) : system_(system) {
+  if (system.model().frame()) frame_motions_ = std::make_shared<const FreeMotionSpace>(system);
+}
 
 void CoarseProblem::set_active_rows(const std::vector<char>& active) {
   active_ = active;
@@ -29,9 +33,11 @@ void CoarseProblem::set_active_rows(const std::vector<char>& active) {
       const Eigen::VectorXd& z = group.direction;
       for (int a : group.subdomains)
         for (int b : group.subdomains) {
-          const int ma = system_.decomposition().subdomains[a].mode_offset;
-          const int mb = system_.decomposition().subdomains[b].mode_offset;
-          extra.emplace_back(ma, mb, z(ma) * z(mb));
+          const Subdomain& sa = system_.decomposition().subdomains[a];
+          const Subdomain& sb = system_.decomposition().subdomains[b];
+          for (int ma = sa.mode_offset; ma < sa.mode_offset + sa.mode_count; ++ma)
+            for (int mb = sb.mode_offset; mb < sb.mode_offset + sb.mode_count; ++mb)
+              extra.emplace_back(ma, mb, z(ma) * z(mb));
         }
     }
     SparseMatrix Z(A.rows(), A.cols());
@@ -50,6 +56,10 @@ void CoarseProblem::set_active_rows(const std::vector<char>& active) {
 // for every active row between subdomains a and b (g: the row's column of G).
 void CoarseProblem::find_unheld_groups() {
   unheld_.clear();
+  if (frame_motions_) {
+    unheld_ = frame_motions_->unheld(active_);
+    return;
+  }
   const Decomposition& d = system_.decomposition();
   if (system_.model().dofs_per_node() != 1) return;  // plane struts are always clamped
   const int count = static_cast<int>(d.subdomains.size());

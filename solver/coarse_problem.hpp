@@ -11,8 +11,11 @@
 // a direction z is found from the structure (subdomains linked by active rows, none of
 // them a Dirichlet row) and G^ G^' + z z'/|z|^2 is factorized instead, which gives the
 // pseudo-inverse on the range. `unheld()` lists those groups; a load on one of them
-// (z'e != 0) means the working set cannot hold it.
+// (z'e != 0) means the working set cannot hold it. In the frame model a group may have
+// several free directions (translations, rotation, mechanisms); FreeMotionSpace finds
+// them as orthonormal directions, one UnheldGroup each.
 
+#include <memory>
 #include <vector>
 
 #include <Eigen/Core>
@@ -26,6 +29,8 @@ struct UnheldGroup {
   std::vector<int> subdomains;
   Eigen::VectorXd direction;  // over all modes, unit length, zero outside the group
 };
+
+class FreeMotionSpace;
 
 class CoarseProblem {
  public:
@@ -52,6 +57,7 @@ class CoarseProblem {
   std::vector<char> active_;
   SparseMatrix G_hat_;  // modes x rows, inactive columns removed (kept as zero columns)
   std::vector<UnheldGroup> unheld_;
+  std::shared_ptr<const FreeMotionSpace> frame_motions_;  // frame model
   CholmodFactor factor_;
 };
 

@@ -25,6 +25,25 @@ struct StrutCopies {
   std::vector<Copies> of_node;  // per strut node
 };
 
+// Gluing rows u_i - u_j = 0 between every two copies of one DOF component.
+void add_gluing_rows(const Copies& c, int dofs_per_node, int comp, Decomposition& d) {
+  RedundantGroup group;
+  group.copies = static_cast<int>(c.size());
+  for (size_t i = 0; i < c.size(); ++i)
+    for (size_t j = i + 1; j < c.size(); ++j) {
+      Row row;
+      row.kind = RowKind::Gluing;
+      row.entries = {{c[i].first, c[i].second * dofs_per_node + comp, 1.0},
+                     {c[j].first, c[j].second * dofs_per_node + comp, -1.0}};
+      for (const auto& [sub, local] : c)
+        row.copies.push_back({sub, local * dofs_per_node + comp, 1.0});
+      group.rows.push_back(static_cast<int>(d.rows.size()));
+      group.ends.emplace_back(static_cast<int>(i), static_cast<int>(j));
+      d.rows.push_back(std::move(row));
+    }
+  if (group.copies >= 3) d.redundant_groups.push_back(std::move(group));
+}
+
 }  // namespace
 
 Decomposition decompose(const Model& model) {
@@ -67,39 +86,35 @@ Decomposition decompose(const Model& model) {
   // Gluing rows, then Dirichlet rows.
   for (size_t s = 0; s < model.struts.size(); ++s) {
     const StrutMesh& mesh = model.struts[s];
-    std::vector<char> clamped(mesh.node_count(), 0);
-    for (int node : model.clamped_nodes[s])
-      clamped[node] = 1;
+    std::vector<unsigned> held(mesh.node_count(), 0u);
+    for (const HeldNode& node : model.held_nodes[s])
+      held[node.node] = node.components;
     for (int node = 0; node < mesh.node_count(); ++node) {
       const Copies& c = copies[s].of_node[node];
-      if (clamped[node]) continue;
       // Fully redundant: one row per pair of copies (at a cross point of four subdomains
       // six rows, not three), which the scaled Dirichlet preconditioner needs to stay
       // effective there.
-      for (int comp = 0; comp < mesh.dofs_per_node; ++comp) {
-        RedundantGroup group;
-        group.copies = static_cast<int>(c.size());
-        for (size_t i = 0; i < c.size(); ++i)
-          for (size_t j = i + 1; j < c.size(); ++j) {
-            Row row;
-            row.kind = RowKind::Gluing;
-            row.entries = {{c[i].first, c[i].second * mesh.dofs_per_node + comp, 1.0},
-                           {c[j].first, c[j].second * mesh.dofs_per_node + comp, -1.0}};
-            for (const auto& [sub, local] : c)
-              row.copies.push_back({sub, local * mesh.dofs_per_node + comp, 1.0});
-            group.rows.push_back(static_cast<int>(d.rows.size()));
-            group.ends.emplace_back(static_cast<int>(i), static_cast<int>(j));
-            d.rows.push_back(std::move(row));
-          }
-        if (group.copies >= 3) d.redundant_groups.push_back(std::move(group));
-      }
+      for (int comp = 0; comp < mesh.dofs_per_node; ++comp)
+        if (!(held[node] >> comp & 1u)) add_gluing_rows(c, mesh.dofs_per_node, comp, d);
     }
+  }
+  // Joints (frame model): the ends' copies of every shared component that no support
+  // holds, glued like the copies of one node - every pair of ends, so that a joint of
+  // k ends is a cross point of k subdomains (see decomposition.hpp).
+  for (const JointLink& joint : model.joints) {
+    Copies ends;
+    for (const auto& [strut, node] : joint.ends)
+      ends.push_back(copies[strut].of_node[node].front());
+    const auto [first_strut, first_node] = joint.ends.front();
+    for (int comp = 0; comp < joint.shared; ++comp)
+      if (!(model.held(first_strut, first_node) >> comp & 1u)) add_gluing_rows(ends, 3, comp, d);
   }
   for (size_t s = 0; s < model.struts.size(); ++s) {
     const StrutMesh& mesh = model.struts[s];
-    for (int node : model.clamped_nodes[s])
-      for (const auto& [sub, local] : copies[s].of_node[node])
+    for (const HeldNode& node : model.held_nodes[s])
+      for (const auto& [sub, local] : copies[s].of_node[node.node])
         for (int comp = 0; comp < mesh.dofs_per_node; ++comp) {
+          if (!(node.components >> comp & 1u)) continue;
           Row row;
           row.kind = RowKind::Dirichlet;
           row.entries = {{sub, local * mesh.dofs_per_node + comp, 1.0}};
@@ -112,11 +127,9 @@ Decomposition decompose(const Model& model) {
   d.pair_row.assign(model.pairs.size(), -1);
   for (size_t k = 0; k < model.pairs.size(); ++k) {
     const ContactPair& pair = model.pairs[k];
-    auto is_clamped = [&](int strut, int node) {
-      const auto& nodes = model.clamped_nodes[strut];
-      return std::binary_search(nodes.begin(), nodes.end(), node);
-    };
-    if (is_clamped(pair.strut_a, pair.node_a) && is_clamped(pair.strut_b, pair.node_b)) continue;
+    if (model.translation_held(pair.strut_a, pair.node_a) &&
+        model.translation_held(pair.strut_b, pair.node_b))
+      continue;
     Row row;
     row.kind = RowKind::Contact;
     row.pair = static_cast<int>(k);

@@ -44,7 +44,8 @@ Eigen::VectorXd FetiMethod::rigid_amplitudes() const {
     double along = 0.0, size = 0.0;
     for (int j : group.subdomains) {
       const Subdomain& sub = d.subdomains[j];
-      const Eigen::VectorXd motion = system_.subdomains()[j].R * group.direction(sub.mode_offset);
+      const Eigen::VectorXd motion =
+          system_.subdomains()[j].R * group.direction.segment(sub.mode_offset, sub.mode_count);
       along += motion.dot(u.segment(sub.dof_offset, sub.dof_count));
       size += motion.squaredNorm();
     }

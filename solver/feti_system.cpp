@@ -146,8 +146,7 @@ std::vector<Piece> FetiSystem::pieces(const Eigen::VectorXd& lambda, const Eigen
     piece.box = sub.box;
     piece.displacement.reserve(sub.box.node_count());
     for (int n = 0; n < sub.box.node_count(); ++n)
-      piece.displacement.push_back(
-          node_displacement(mesh, u.data() + sub.dof_offset + n * mesh.dofs_per_node));
+      add_node_state(mesh, u.data() + sub.dof_offset + n * mesh.dofs_per_node, piece);
     result.push_back(std::move(piece));
   }
   return result;

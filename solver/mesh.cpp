@@ -17,7 +17,7 @@ StrutMesh build_strut_mesh(const scenes::Scene& scene, int strut_index) {
   StrutMesh mesh;
   mesh.strut = strut_index;
   const bool plane = scene.model == scenes::ModelKind::Plane;
-  mesh.dofs_per_node = plane ? 2 : 1;
+  mesh.dofs_per_node = plane ? 2 : (scene.model == scenes::ModelKind::Frame ? 3 : 1);
   mesh.nx = strut.elements;
   mesh.ny = plane ? strut.elements_across : 0;
   mesh.origin = Vec2(strut.from[0], strut.from[1]);
@@ -28,6 +28,7 @@ StrutMesh build_strut_mesh(const scenes::Scene& scene, int strut_index) {
   mesh.height = plane ? strut.height : 0.0;
   mesh.E = strut.E;
   mesh.area = strut.area;
+  mesh.inertia = strut.inertia;
   mesh.thickness = strut.thickness;
   mesh.nu = strut.nu;
   mesh.subdomains_along = strut.subdomains;
@@ -48,12 +49,17 @@ StrutMesh build_strut_mesh(const scenes::Scene& scene, int strut_index) {
 
 Eigen::VectorXd component_coefficients(const StrutMesh& mesh, const Vec2& direction) {
   if (mesh.dofs_per_node == 1) return Eigen::VectorXd::Constant(1, mesh.e1.dot(direction));
+  if (mesh.dofs_per_node == 3) return Eigen::Vector3d(direction.x(), direction.y(), 0.0);
   return direction;
 }
 
 Vec2 node_displacement(const StrutMesh& mesh, const double* node_dofs) {
   if (mesh.dofs_per_node == 1) return node_dofs[0] * mesh.e1;
   return Vec2(node_dofs[0], node_dofs[1]);
+}
+
+double node_rotation(const StrutMesh& mesh, const double* node_dofs) {
+  return mesh.dofs_per_node == 3 ? node_dofs[2] : 0.0;
 }
 
 }  // namespace fetic::solver

@@ -1,8 +1,9 @@
 #pragma once
 // The finite-element mesh of every strut, exactly as SCENES.md defines it: bar model
 // nodes along the axis (1 axial DOF each); plane model a grid of bilinear quadrilaterals
-// (2 DOFs each). Nodes are numbered i * (ny + 1) + k: i along the axis (0 at 'from'),
-// k across it (0 at the -height/2 side of e2 = e1 rotated by +90 degrees).
+// (2 DOFs each); frame model nodes along the axis with ux, uy and the rotation (3 DOFs
+// each). Nodes are numbered i * (ny + 1) + k: i along the axis (0 at 'from'), k across it
+// (0 at the -height/2 side of e2 = e1 rotated by +90 degrees).
 
 #include <array>
 #include <vector>
@@ -17,7 +18,7 @@ using Vec2 = Eigen::Vector2d;
 
 struct StrutMesh {
   int strut = 0;          // index into scene.struts
-  int dofs_per_node = 1;  // 1 bar, 2 plane
+  int dofs_per_node = 1;  // 1 bar, 2 plane, 3 frame
   int nx = 1;             // elements along the axis
   int ny = 0;             // elements across (0 in the bar model)
   Vec2 origin{0, 0};      // the 'from' end point (on the axis)
@@ -26,7 +27,8 @@ struct StrutMesh {
   double length = 0.0;
   double height = 0.0;  // plane model
   double E = 0.0;
-  double area = 0.0;       // bar model
+  double area = 0.0;       // bar and frame model
+  double inertia = 0.0;    // frame model
   double thickness = 0.0;  // plane model
   double nu = 0.0;         // plane model
   int subdomains_along = 1;
@@ -44,11 +46,14 @@ struct StrutMesh {
 StrutMesh build_strut_mesh(const scenes::Scene& scene, int strut);
 
 // Coefficients that turn a node's DOFs into its displacement component along `direction`.
-// Bar: one coefficient (e1 . direction); plane: (direction.x, direction.y).
+// Bar: one coefficient (e1 . direction); plane: (direction.x, direction.y); frame:
+// (direction.x, direction.y, 0).
 Eigen::VectorXd component_coefficients(const StrutMesh& mesh, const Vec2& direction);
 
 // Displacement vector (ux, uy) of node `node` from the strut's DOF values `dofs`
 // (indexed node * dofs_per_node + component).
 Vec2 node_displacement(const StrutMesh& mesh, const double* node_dofs);
+// Rotation of a node (frame model; 0 in the others).
+double node_rotation(const StrutMesh& mesh, const double* node_dofs);
 
 }  // namespace fetic::solver

@@ -140,6 +140,33 @@ std::vector<std::vector<Vec2>> strut_displacements(const Model& model, const Sna
   return sum;
 }
 
+void add_node_state(const StrutMesh& mesh, const double* node_dofs, Piece& piece) {
+  piece.displacement.push_back(node_displacement(mesh, node_dofs));
+  if (mesh.dofs_per_node == 3) piece.rotation.push_back(node_rotation(mesh, node_dofs));
+}
+
+std::vector<std::vector<double>> strut_rotations(const Model& model, const Snapshot& snapshot) {
+  std::vector<std::vector<double>> sum(model.struts.size());
+  std::vector<std::vector<int>> count(model.struts.size());
+  for (size_t s = 0; s < model.struts.size(); ++s) {
+    sum[s].assign(model.struts[s].node_count(), 0.0);
+    count[s].assign(model.struts[s].node_count(), 0);
+  }
+  for (const Piece& piece : snapshot.pieces) {
+    if (piece.rotation.empty()) continue;
+    const StrutMesh& mesh = model.struts[piece.strut];
+    for (int i = piece.box.i0; i <= piece.box.i1; ++i)
+      for (int k = piece.box.k0; k <= piece.box.k1; ++k) {
+        sum[piece.strut][mesh.node(i, k)] += piece.rotation[piece.box.local(i, k)];
+        count[piece.strut][mesh.node(i, k)] += 1;
+      }
+  }
+  for (size_t s = 0; s < sum.size(); ++s)
+    for (size_t n = 0; n < sum[s].size(); ++n)
+      if (count[s][n] > 1) sum[s][n] /= count[s][n];
+  return sum;
+}
+
 double relative_error(const std::vector<std::vector<Vec2>>& u,
                       const std::vector<std::vector<Vec2>>& reference) {
   double difference = 0.0, size = 0.0;

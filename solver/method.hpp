@@ -58,7 +58,11 @@ struct Piece {
   int strut = 0;
   NodeBox box;
   std::vector<Vec2> displacement;  // per box node, box-local order
+  std::vector<double> rotation;    // frame model: per box node; empty in the others
 };
+
+// Appends one node's displacement (and, in the frame model, rotation) to a piece.
+void add_node_state(const StrutMesh& mesh, const double* node_dofs, Piece& piece);
 
 struct Snapshot {
   MethodKind method = MethodKind::ActiveSet;
@@ -134,6 +138,10 @@ std::string format_number(double value);
 
 // Node displacements per strut (average of the pieces that hold a node).
 std::vector<std::vector<Vec2>> strut_displacements(const Model& model, const Snapshot& snapshot);
+
+// Node rotations per strut (frame model; zeros in the others), averaged like the
+// displacements.
+std::vector<std::vector<double>> strut_rotations(const Model& model, const Snapshot& snapshot);
 
 // ||u - reference|| / ||reference|| over all strut nodes (absolute when the reference is 0).
 double relative_error(const std::vector<std::vector<Vec2>>& u,

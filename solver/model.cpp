@@ -1,6 +1,7 @@
 #include "solver/model.hpp"
 
 #include <algorithm>
+#include <map>
 
 #include "scenes/scene_geometry.hpp"
 
@@ -13,10 +14,94 @@ void add_force(const StrutMesh& mesh, Eigen::VectorXd& load, int node, const Vec
   load.segment(node * mesh.dofs_per_node, mesh.dofs_per_node) += c;
 }
 
+// Frame model: point forces and moments at nodes; a per-length load q as consistent
+// nodal forces q h/2 and moments +-(q.e2) h^2/12 per element (SCENES.md).
+void add_frame_loads(const scenes::Scene& scene, const StrutMesh& mesh, Eigen::VectorXd& load) {
+  for (const scenes::Load& item : scene.loads) {
+    if (item.strut != mesh.strut) continue;
+    const Vec2 force(item.force[0], item.force[1]);
+    if (item.per_length) {
+      const double h = mesh.length / mesh.nx;
+      const double moment = force.dot(mesh.e2) * h * h / 12.0;
+      for (int i = 0; i < mesh.nx; ++i) {
+        load.segment<2>(3 * i) += force * (0.5 * h);
+        load.segment<2>(3 * (i + 1)) += force * (0.5 * h);
+        load(3 * i + 2) += moment;
+        load(3 * (i + 1) + 2) -= moment;
+      }
+    } else {
+      const int node = item.node >= 0 ? item.node : (item.at == scenes::StrutEnd::From ? 0 : mesh.nx);
+      load.segment<2>(3 * node) += force;
+      load(3 * node + 2) += item.moment;
+    }
+  }
+}
+
 std::vector<int> sorted_along(const StrutMesh& mesh, std::vector<int> face, const Vec2& t) {
   std::stable_sort(face.begin(), face.end(),
                    [&](int p, int q) { return mesh.nodes[p].dot(t) < mesh.nodes[q].dot(t); });
   return face;
+}
+
+// Frame model: held DOFs (clamped: all three, pinned: ux and uy; a joint component that
+// one of its ends holds is held at every end, since the joint makes them equal), the
+// joints, one node pair per contact, and the free motions.
+void add_frame_supports_and_joints(const scenes::Scene& scene, Model& model) {
+  const int strut_count = static_cast<int>(scene.struts.size());
+  std::vector<std::map<int, unsigned>> held(strut_count);
+  for (int s = 0; s < strut_count; ++s) {
+    const int last = model.struts[s].nx;
+    for (int e = 0; e < 2; ++e) {
+      const int node = e == 0 ? 0 : last;
+      if (model.end_supports[s][e] == Support::Clamped) held[s][node] |= 7u;
+      if (model.end_supports[s][e] == Support::Pinned) held[s][node] |= 3u;
+    }
+  }
+  for (const scenes::Joint& joint : scene.joints) {
+    JointLink link;
+    link.shared = joint.kind == scenes::JointKind::Rigid ? 3 : 2;
+    const unsigned shared = (1u << link.shared) - 1u;
+    unsigned any = 0;
+    for (const scenes::EndRef& end : joint.ends) {
+      link.ends.emplace_back(end.strut, scenes::node_index(scene, end));
+      const auto it = held[end.strut].find(link.ends.back().second);
+      if (it != held[end.strut].end()) any |= it->second & shared;
+    }
+    if (any)
+      for (const auto& [strut, node] : link.ends)
+        held[strut][node] |= any;
+    model.joints.push_back(std::move(link));
+  }
+  for (int s = 0; s < strut_count; ++s) {
+    std::vector<HeldNode> nodes;
+    std::vector<int> clamped;
+    for (const auto& [node, components] : held[s]) {
+      nodes.push_back({node, components});
+      if (components == 7u) clamped.push_back(node);
+    }
+    model.held_nodes.push_back(std::move(nodes));
+    model.clamped_nodes[s] = std::move(clamped);
+  }
+  for (size_t c = 0; c < scene.contacts.size(); ++c) {
+    const scenes::Contact& contact = scene.contacts[c];
+    const scenes::FrameContactGeometry geometry = scenes::frame_contact_geometry(scene, contact);
+    model.contact_first_pair.push_back(static_cast<int>(model.pairs.size()));
+    model.contact_ends.emplace_back(scenes::end_label(scene, contact.a),
+                                    scenes::end_label(scene, contact.b));
+    model.contact_labels.push_back(model.contact_ends.back().first + " - " +
+                                   model.contact_ends.back().second);
+    ContactPair pair;
+    pair.contact = static_cast<int>(c);
+    pair.strut_a = contact.a.strut;
+    pair.node_a = scenes::node_index(scene, contact.a);
+    pair.strut_b = contact.b.strut;
+    pair.node_b = scenes::node_index(scene, contact.b);
+    pair.normal = Vec2(geometry.normal[0], geometry.normal[1]);
+    pair.gap = std::max(0.0, geometry.gap);
+    model.pairs.push_back(pair);
+  }
+  model.contact_first_pair.push_back(static_cast<int>(model.pairs.size()));
+  model.kinematics = scenes::frame_kinematics(scene);
 }
 
 }  // namespace
@@ -28,8 +113,24 @@ long long Model::dof_count() const {
   return total;
 }
 
+unsigned Model::held(int strut, int node) const {
+  const auto& nodes = held_nodes[strut];
+  const auto it = std::lower_bound(nodes.begin(), nodes.end(), node,
+                                   [](const HeldNode& h, int n) { return h.node < n; });
+  return it != nodes.end() && it->node == node ? it->components : 0u;
+}
+
+bool Model::translation_held(int strut, int node) const {
+  const unsigned translation = dofs_per_node() == 1 ? 1u : 3u;
+  return (held(strut, node) & translation) == translation;
+}
+
 Eigen::VectorXd strut_load(const scenes::Scene& scene, const StrutMesh& mesh) {
   Eigen::VectorXd load = Eigen::VectorXd::Zero(mesh.dof_count());
+  if (mesh.dofs_per_node == 3) {
+    add_frame_loads(scene, mesh, load);
+    return load;
+  }
   for (const scenes::Load& item : scene.loads) {
     if (item.strut != mesh.strut) continue;
     const Vec2 force(item.force[0], item.force[1]);
@@ -85,6 +186,23 @@ Model build_model(const scenes::Scene& scene) {
     std::sort(clamped.begin(), clamped.end());
     clamped.erase(std::unique(clamped.begin(), clamped.end()), clamped.end());
     model.clamped_nodes.push_back(std::move(clamped));
+    model.end_supports.push_back({strut.fixed(scenes::StrutEnd::From)    ? Support::Clamped
+                                  : strut.pinned(scenes::StrutEnd::From) ? Support::Pinned
+                                                                         : Support::None,
+                                  strut.fixed(scenes::StrutEnd::To)    ? Support::Clamped
+                                  : strut.pinned(scenes::StrutEnd::To) ? Support::Pinned
+                                                                       : Support::None});
+  }
+  if (model.frame()) {
+    add_frame_supports_and_joints(scene, model);
+    return model;
+  }
+  const unsigned all = (1u << model.dofs_per_node()) - 1u;
+  for (const auto& clamped : model.clamped_nodes) {
+    std::vector<HeldNode> held;
+    for (int node : clamped)
+      held.push_back({node, all});
+    model.held_nodes.push_back(std::move(held));
   }
   for (size_t c = 0; c < scene.contacts.size(); ++c) {
     const scenes::Contact& contact = scene.contacts[c];

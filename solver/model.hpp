@@ -1,13 +1,15 @@
 #pragma once
 // The discrete model of a scene: the mesh of every strut, nodal loads at load factor 1,
-// clamped nodes and the contact node pairs with their normals and gaps. Everything the
-// methods need, nothing of TOML: the solver layer starts here.
+// supported DOFs, joints (frame model) and the contact node pairs with their normals and
+// gaps. Everything the methods need, nothing of TOML: the solver layer starts here.
 
+#include <array>
 #include <string>
 #include <vector>
 
 #include <Eigen/Core>
 
+#include "scenes/frame_kinematics.hpp"
 #include "scenes/scene.hpp"
 #include "solver/mesh.hpp"
 
@@ -23,6 +25,22 @@ struct ContactPair {
   double gap = 0.0;
 };
 
+// A node with DOFs held at zero: bit c of `components` holds component c.
+struct HeldNode {
+  int node = 0;
+  unsigned components = 0;
+};
+
+// Frame model: strut ends joined at one point. The ends share their first `shared`
+// components: 3 (ux, uy, rotation) for a rigid joint, 2 (ux, uy) for a pinned one.
+struct JointLink {
+  std::vector<std::pair<int, int>> ends;  // (strut, node), as the scene lists them
+  int shared = 3;
+};
+
+// How a strut end is supported (frame model pinned ends; clamped in every model).
+enum class Support { None, Clamped, Pinned };
+
 struct Model {
   scenes::ModelKind kind = scenes::ModelKind::Bar;
   std::string path;
@@ -33,14 +51,30 @@ struct Model {
   std::vector<Eigen::VectorXd> loads;
   // Per strut: nodes whose DOFs are all clamped, in increasing order.
   std::vector<std::vector<int>> clamped_nodes;
+  // Per strut: nodes with held DOFs (supports; in the frame model also a joint component
+  // that another end of the joint holds), in increasing order. Bar and plane model: the
+  // clamped nodes, every component held.
+  std::vector<std::vector<HeldNode>> held_nodes;
+  std::vector<std::array<Support, 2>> end_supports;  // per strut: 'from', 'to'
+  std::vector<JointLink> joints;                     // frame model
+  // Frame model: the motions supports and joints leave free (scenes/frame_kinematics).
+  scenes::FrameKinematics kinematics;
   std::vector<ContactPair> pairs;
   std::vector<std::string> contact_labels;  // "a - b" per scene contact, e.g. "L01.to - R01.from"
   std::vector<std::pair<std::string, std::string>> contact_ends;  // ("L01.to", "R01.from")
   std::vector<int> contact_first_pair;  // per contact, its first pair; back() = pairs.size()
 
-  int dofs_per_node() const { return kind == scenes::ModelKind::Bar ? 1 : 2; }
+  int dofs_per_node() const {
+    return kind == scenes::ModelKind::Bar ? 1 : (kind == scenes::ModelKind::Plane ? 2 : 3);
+  }
+  bool frame() const { return kind == scenes::ModelKind::Frame; }
   long long dof_count() const;
   bool floating(int strut) const { return clamped_nodes[strut].empty(); }
+  // Held components of a node (bit c: component c), 0 when free.
+  unsigned held(int strut, int node) const;
+  // Whether a node cannot move at all (both displacement components, or the axial one of
+  // a bar, held).
+  bool translation_held(int strut, int node) const;
 };
 
 Model build_model(const scenes::Scene& scene);

@@ -1,6 +1,8 @@
 #include "solver/primal_problem.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <map>
 
 #include "solver/rigid_modes.hpp"
 
@@ -27,69 +29,116 @@ std::string singular_message(const Model& model, int strut, CholmodFactor::Resul
   }
 }
 
+namespace {
+
+// Struts that share DOFs: a group joined by joints (frame model), else each strut alone.
+std::vector<std::vector<int>> strut_groups(const Model& model) {
+  if (model.frame()) return model.kinematics.groups;
+  std::vector<std::vector<int>> groups;
+  for (int s = 0; s < static_cast<int>(model.struts.size()); ++s)
+    groups.push_back({s});
+  return groups;
+}
+
+// Frame model: per (strut, node) at a joint, the end that owns the joint's shared DOFs
+// (the smallest strut, numbered first) and how many components they share.
+struct JointOwner {
+  int strut = -1, node = -1, shared = 0;
+};
+std::vector<std::map<int, JointOwner>> joint_owners(const Model& model) {
+  std::vector<std::map<int, JointOwner>> owners(model.struts.size());
+  for (const JointLink& joint : model.joints) {
+    const auto first = *std::min_element(joint.ends.begin(), joint.ends.end());
+    for (const auto& [strut, node] : joint.ends)
+      owners[strut][node] = {first.first, first.second, joint.shared};
+  }
+  return owners;
+}
+
+}  // namespace
+
 PrimalProblem::PrimalProblem(const Model& model, bool factorize_blocks) : model_(model) {
   const int strut_count = static_cast<int>(model.struts.size());
-  // Free DOFs per strut, numbered strut by strut.
-  std::vector<std::vector<int>> global_of(strut_count);
-  for (int s = 0; s < strut_count; ++s) {
-    const StrutMesh& mesh = model.struts[s];
+  const std::vector<std::vector<int>> groups = strut_groups(model);
+  const auto owners = joint_owners(model);
+  // Free DOFs, numbered group by group, strut by strut, node by node.
+  global_of_.resize(strut_count);
+  for (const std::vector<int>& group : groups) {
     StrutBlock block;
-    block.strut = s;
+    block.strut = group.front();
+    block.struts = group;
     block.offset = size_;
-    std::vector<char> clamped(mesh.node_count(), 0);
-    for (int node : model.clamped_nodes[s])
-      clamped[node] = 1;
-    global_of[s].assign(mesh.dof_count(), -1);
-    for (int node = 0; node < mesh.node_count(); ++node) {
-      if (clamped[node]) continue;
-      for (int c = 0; c < mesh.dofs_per_node; ++c) {
-        const int dof = node * mesh.dofs_per_node + c;
-        global_of[s][dof] = size_ + static_cast<int>(block.strut_dofs.size());
-        block.strut_dofs.push_back(dof);
+    int next = size_;
+    for (int s : group) {
+      const StrutMesh& mesh = model.struts[s];
+      const int d = mesh.dofs_per_node;
+      global_of_[s].assign(mesh.dof_count(), -1);
+      auto held = model.held_nodes[s].begin();
+      for (int node = 0; node < mesh.node_count(); ++node) {
+        unsigned mask = 0;
+        if (held != model.held_nodes[s].end() && held->node == node) mask = (held++)->components;
+        const auto owner = owners[s].find(node);
+        for (int c = 0; c < d; ++c) {
+          if (mask >> c & 1u) continue;
+          if (owner != owners[s].end() && c < owner->second.shared &&
+              !(owner->second.strut == s && owner->second.node == node)) {
+            global_of_[s][node * d + c] = global_of_[owner->second.strut][owner->second.node * d + c];
+            continue;
+          }
+          global_of_[s][node * d + c] = next++;
+        }
       }
     }
-    block.size = static_cast<int>(block.strut_dofs.size());
-    size_ += block.size;
+    block.size = next - size_;
+    size_ = next;
     blocks_.push_back(std::move(block));
   }
 
+  std::vector<std::vector<int>> motions_of_group(groups.size());
+  for (size_t m = 0; m < model.kinematics.motions.size(); ++m)
+    motions_of_group[model.kinematics.motions[m].group].push_back(static_cast<int>(m));
   std::vector<Eigen::Triplet<double>> k_entries, r_entries;
   f_ = Eigen::VectorXd::Zero(size_);
-  for (StrutBlock& block : blocks_) {
-    const StrutMesh& mesh = model.struts[block.strut];
-    const SparseMatrix full = assemble_stiffness(mesh, whole_strut(mesh));
-    std::vector<int> local(mesh.dof_count(), -1);
-    for (int j = 0; j < block.size; ++j)
-      local[block.strut_dofs[j]] = j;
+  for (size_t g = 0; g < blocks_.size(); ++g) {
+    StrutBlock& block = blocks_[g];
     std::vector<Eigen::Triplet<double>> entries;
-    for (int col = 0; col < full.outerSize(); ++col)
-      for (SparseMatrix::InnerIterator it(full, col); it; ++it)
-        if (local[it.row()] >= 0 && local[col] >= 0) {
-          entries.emplace_back(local[it.row()], local[col], it.value());
-          k_entries.emplace_back(block.offset + local[it.row()], block.offset + local[col],
+    for (int s : block.struts) {
+      const SparseMatrix full = assemble_stiffness(model.struts[s], whole_strut(model.struts[s]));
+      const std::vector<int>& global = global_of_[s];
+      for (int col = 0; col < full.outerSize(); ++col)
+        for (SparseMatrix::InnerIterator it(full, col); it; ++it)
+          if (global[it.row()] >= 0 && global[col] >= 0) {
+            entries.emplace_back(global[it.row()] - block.offset, global[col] - block.offset,
                                  it.value());
-        }
+            k_entries.emplace_back(global[it.row()], global[col], it.value());
+          }
+    }
     SparseMatrix Ks(block.size, block.size);
     Ks.setFromTriplets(entries.begin(), entries.end());
-    if (model.floating(block.strut)) {
-      const Eigen::MatrixXd modes = rigid_body_modes(mesh, whole_strut(mesh));
-      block.kernel = modes;  // no DOF is clamped, so block DOFs are strut DOFs
-      for (int m = 0; m < modes.cols(); ++m) {
-        const int column = static_cast<int>(kernel_struts_.size());
-        kernel_struts_.push_back(block.strut);
-        for (int j = 0; j < block.size; ++j)
-          if (modes(j, m) != 0.0) r_entries.emplace_back(block.offset + j, column, modes(j, m));
-      }
+    if (model.frame()) {
+      block.kernel = frame_kernel(motions_of_group[g], block);
+    } else if (model.floating(block.strut)) {
+      // No DOF is held, so block DOFs are strut DOFs.
+      block.kernel = rigid_body_modes(model.struts[block.strut], whole_strut(model.struts[block.strut]));
+      kernel_struts_.resize(kernel_struts_.size() + block.kernel.cols(), {block.strut});
     } else {
       block.kernel.resize(block.size, 0);
     }
+    const int first_column = static_cast<int>(kernel_struts_.size()) - static_cast<int>(block.kernel.cols());
+    for (int m = 0; m < block.kernel.cols(); ++m)
+      for (int j = 0; j < block.size; ++j)
+        if (block.kernel(j, m) != 0.0)
+          r_entries.emplace_back(block.offset + j, first_column + m, block.kernel(j, m));
     if (factorize_blocks) {
       const CholmodFactor::Result result = block.inverse.factorize(Ks, block.kernel);
       if (result != CholmodFactor::Result::Ok || block.inverse.rcond() < kSingularRcond)
-        throw SolverError(singular_message(model, block.strut, result, "the strut"));
+        throw SolverError(singular_message(model, block.strut, result,
+                                           block.struts.size() > 1 ? "its group of joined struts"
+                                                                   : "the strut"));
     }
-    for (int j = 0; j < block.size; ++j)
-      f_(block.offset + j) = model.loads[block.strut](block.strut_dofs[j]);
+    for (int s : block.struts)
+      for (int dof = 0; dof < model.struts[s].dof_count(); ++dof)
+        if (global_of_[s][dof] >= 0) f_(global_of_[s][dof]) += model.loads[s](dof);
   }
   K_.resize(size_, size_);
   K_.setFromTriplets(k_entries.begin(), k_entries.end());
@@ -110,7 +159,7 @@ PrimalProblem::PrimalProblem(const Model& model, bool factorize_blocks) : model_
       const Eigen::VectorXd coefficients =
           component_coefficients(mesh, side == 0 ? pair.normal : Vec2(-pair.normal));
       for (int c = 0; c < mesh.dofs_per_node; ++c) {
-        const int global = global_of[s][node * mesh.dofs_per_node + c];
+        const int global = global_of_[s][node * mesh.dofs_per_node + c];
         if (global >= 0 && coefficients(c) != 0.0)
           a_entries.emplace_back(k, global, coefficients(c));
       }
@@ -133,19 +182,46 @@ void PrimalProblem::apply_pseudo_inverse(const Eigen::VectorXd& x, Eigen::Vector
 std::vector<Piece> PrimalProblem::pieces(const Eigen::VectorXd& u) const {
   std::vector<Piece> result;
   for (const StrutBlock& block : blocks_) {
-    const StrutMesh& mesh = model_.struts[block.strut];
-    Eigen::VectorXd dofs = Eigen::VectorXd::Zero(mesh.dof_count());
-    for (int j = 0; j < block.size; ++j)
-      dofs(block.strut_dofs[j]) = u(block.offset + j);
-    Piece piece;
-    piece.strut = block.strut;
-    piece.box = whole_strut(mesh);
-    for (int node = 0; node < mesh.node_count(); ++node)
-      piece.displacement.push_back(
-          node_displacement(mesh, dofs.data() + node * mesh.dofs_per_node));
-    result.push_back(std::move(piece));
+    for (int s : block.struts) {
+      const StrutMesh& mesh = model_.struts[s];
+      Eigen::VectorXd dofs = Eigen::VectorXd::Zero(mesh.dof_count());
+      for (int dof = 0; dof < mesh.dof_count(); ++dof)
+        if (global_of_[s][dof] >= 0) dofs(dof) = u(global_of_[s][dof]);
+      Piece piece;
+      piece.strut = s;
+      piece.box = whole_strut(mesh);
+      for (int node = 0; node < mesh.node_count(); ++node)
+        add_node_state(mesh, dofs.data() + node * mesh.dofs_per_node, piece);
+      result.push_back(std::move(piece));
+    }
   }
   return result;
+}
+
+Eigen::MatrixXd PrimalProblem::frame_kernel(const std::vector<int>& motions,
+                                            const StrutBlock& block) {
+  const scenes::FrameKinematics& kinematics = model_.kinematics;
+  Eigen::MatrixXd kernel = Eigen::MatrixXd::Zero(block.size, static_cast<int>(motions.size()));
+  for (size_t m = 0; m < motions.size(); ++m) {
+    const scenes::FreeMotion& motion = kinematics.motions[motions[m]];
+    std::vector<int> moved;
+    for (int s : block.struts) {
+      const StrutMesh& mesh = model_.struts[s];
+      double largest = 0.0;
+      for (int node = 0; node < mesh.node_count(); ++node) {
+        const auto u = scenes::motion_at(kinematics, motion, s,
+                                         {mesh.nodes[node].x(), mesh.nodes[node].y()});
+        for (int c = 0; c < 3; ++c) {
+          const int global = global_of_[s][3 * node + c];
+          if (global >= 0) kernel(global - block.offset, static_cast<int>(m)) = u[c];
+        }
+        largest = std::max(largest, std::hypot(u[0], u[1]));
+      }
+      if (largest > 1e-9) moved.push_back(s);
+    }
+    kernel_struts_.push_back(moved);
+  }
+  return kernel;
 }
 
 }  // namespace fetic::solver

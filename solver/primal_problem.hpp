@@ -1,9 +1,13 @@
 #pragma once
 // The assembled, undecomposed problem of the primal methods (SD, CG, active set):
 //   minimize 1/2 u'K u - t f'u  subject to  A u <= c
-// over the free DOFs (clamped DOFs removed). K is block diagonal, one block per strut,
-// each factorized once (CHOLMOD); a strut held only by contacts (bar model) keeps its
-// axial translation as the kernel of its block and gets a generalized inverse.
+// over the free DOFs (held DOFs removed). K is block diagonal, one block per strut -
+// in the frame model one per group of struts that joints connect: the ends of a joint
+// share one global DOF per shared component (ux, uy and, rigid, the rotation), so a
+// joint needs no constraint row. Each block is factorized once (CHOLMOD); a block that
+// supports do not hold keeps its free motions as its kernel (bar: the axial
+// translation; frame: the rigid and mechanism motions of scenes/frame_kinematics) and
+// gets a generalized inverse.
 
 #include <string>
 #include <vector>
@@ -20,11 +24,11 @@ namespace fetic::solver {
 using RowSparseMatrix = Eigen::SparseMatrix<double, Eigen::RowMajor, int>;
 
 struct StrutBlock {
-  int strut = 0;
+  int strut = 0;             // the first of its struts
+  std::vector<int> struts;   // one strut, or (frame model) a group joined by joints
   int offset = 0;  // first global DOF
   int size = 0;
-  std::vector<int> strut_dofs;  // strut-local DOF of each block DOF
-  Eigen::MatrixXd kernel;       // size x modes; no columns when the strut is clamped
+  Eigen::MatrixXd kernel;       // size x modes; no columns when supports hold the block
   GeneralizedInverse inverse;
 };
 
@@ -42,7 +46,10 @@ class PrimalProblem {
   const std::vector<StrutBlock>& blocks() const { return blocks_; }
   // Rigid-body modes of the floating struts, one column each (global DOFs).
   const SparseMatrix& kernel() const { return R_; }
-  const std::vector<int>& kernel_struts() const { return kernel_struts_; }
+  // The struts each column of kernel() moves.
+  const std::vector<std::vector<int>>& kernel_struts() const { return kernel_struts_; }
+  // Global DOF of each strut DOF (node * dofs_per_node + component), -1 where held.
+  const std::vector<std::vector<int>>& global_dofs() const { return global_of_; }
 
   // y = K^+ x, block by block (in parallel).
   void apply_pseudo_inverse(const Eigen::VectorXd& x, Eigen::VectorXd& y) const;
@@ -50,6 +57,10 @@ class PrimalProblem {
   std::vector<Piece> pieces(const Eigen::VectorXd& u) const;
 
  private:
+  // Frame model: the group's free motions as columns over the block's DOFs; records the
+  // struts each moves in kernel_struts_.
+  Eigen::MatrixXd frame_kernel(const std::vector<int>& motions, const StrutBlock& block);
+
   const Model& model_;
   int size_ = 0;
   SparseMatrix K_;
@@ -58,7 +69,8 @@ class PrimalProblem {
   Eigen::VectorXd c_;
   std::vector<StrutBlock> blocks_;
   SparseMatrix R_;
-  std::vector<int> kernel_struts_;
+  std::vector<std::vector<int>> kernel_struts_;
+  std::vector<std::vector<int>> global_of_;
 };
 
 // Message for a stiffness that could not be factorized.

@@ -52,6 +52,79 @@ std::array<int, 4> quad_box_nodes(const NodeBox& box, int i, int k) {
   return {box.local(i, k), box.local(i + 1, k), box.local(i + 1, k + 1), box.local(i, k + 1)};
 }
 
+// The beam element in its local axes: (u1, v1, rotation1, u2, v2, rotation2).
+Eigen::Matrix<double, 6, 6> local_beam_stiffness(double E, double area, double inertia, double h) {
+  const double a = E * area / h;
+  const double b = E * inertia / (h * h * h);
+  Eigen::Matrix<double, 6, 6> k;
+  k << a, 0, 0, -a, 0, 0,                                              //
+      0, 12 * b, 6 * b * h, 0, -12 * b, 6 * b * h,                     //
+      0, 6 * b * h, 4 * b * h * h, 0, -6 * b * h, 2 * b * h * h,       //
+      -a, 0, 0, a, 0, 0,                                               //
+      0, -12 * b, -6 * b * h, 0, 12 * b, -6 * b * h,                   //
+      0, 6 * b * h, 2 * b * h * h, 0, -6 * b * h, 4 * b * h * h;
+  return k;
+}
+
+// Global DOFs to local ones.
+Eigen::Matrix<double, 6, 6> beam_rotation(const Vec2& e) {
+  Eigen::Matrix<double, 6, 6> T = Eigen::Matrix<double, 6, 6>::Zero();
+  for (int n = 0; n < 2; ++n) {
+    T.block<3, 3>(3 * n, 3 * n) << e.x(), e.y(), 0.0, -e.y(), e.x(), 0.0, 0.0, 0.0, 1.0;
+  }
+  return T;
+}
+
+}  // namespace
+
+Eigen::Matrix<double, 6, 6> beam_stiffness(double E, double area, double inertia, double h,
+                                           const Vec2& e) {
+  const Eigen::Matrix<double, 6, 6> T = beam_rotation(e);
+  const Eigen::Matrix<double, 6, 6> K =
+      T.transpose() * local_beam_stiffness(E, area, inertia, h) * T;
+  return 0.5 * (K + K.transpose());  // exactly symmetric
+}
+
+BeamForces beam_forces(const StrutMesh& mesh, const NodeBox& box, const Eigen::VectorXd& box_dofs) {
+  const double h = mesh.length / mesh.nx;
+  const Eigen::Matrix<double, 6, 6> k = local_beam_stiffness(mesh.E, mesh.area, mesh.inertia, h);
+  const Eigen::Matrix<double, 6, 6> T = beam_rotation(mesh.e1);
+  BeamForces forces;
+  const int elements = box.i1 - box.i0;
+  forces.axial.resize(elements);
+  forces.moment.resize(elements, 2);
+  for (int i = box.i0; i < box.i1; ++i) {
+    Eigen::Matrix<double, 6, 1> u;
+    u.head<3>() = box_dofs.segment<3>(3 * box.local(i, 0));
+    u.tail<3>() = box_dofs.segment<3>(3 * box.local(i + 1, 0));
+    // End forces the element's neighbours exert on it, in local axes.
+    const Eigen::Matrix<double, 6, 1> f = k * (T * u);
+    forces.axial(i - box.i0) = f(3);
+    // Internal moment (sagging positive): -f_rotation1 at the first node, f_rotation2 at
+    // the second.
+    forces.moment(i - box.i0, 0) = -f(2);
+    forces.moment(i - box.i0, 1) = f(5);
+  }
+  return forces;
+}
+
+namespace {
+
+void assemble_beams(const StrutMesh& mesh, const NodeBox& box,
+                    std::vector<Eigen::Triplet<double>>& entries) {
+  const double h = mesh.length / mesh.nx;
+  const Eigen::Matrix<double, 6, 6> Ke = beam_stiffness(mesh.E, mesh.area, mesh.inertia, h, mesh.e1);
+  entries.reserve(36 * static_cast<size_t>(box.i1 - box.i0));
+  for (int i = box.i0; i < box.i1; ++i) {
+    const int nodes[2] = {box.local(i, 0), box.local(i + 1, 0)};
+    for (int a = 0; a < 2; ++a)
+      for (int ca = 0; ca < 3; ++ca)
+        for (int b = 0; b < 2; ++b)
+          for (int cb = 0; cb < 3; ++cb)
+            entries.emplace_back(3 * nodes[a] + ca, 3 * nodes[b] + cb, Ke(3 * a + ca, 3 * b + cb));
+  }
+}
+
 }  // namespace
 
 NodeBox whole_strut(const StrutMesh& mesh) {
@@ -76,7 +149,9 @@ Eigen::Matrix<double, 8, 8> quad_stiffness(const Eigen::Matrix<double, 4, 2>& co
 SparseMatrix assemble_stiffness(const StrutMesh& mesh, const NodeBox& box) {
   const int n = box.node_count() * mesh.dofs_per_node;
   std::vector<Eigen::Triplet<double>> entries;
-  if (mesh.dofs_per_node == 1) {
+  if (mesh.dofs_per_node == 3) {
+    assemble_beams(mesh, box, entries);
+  } else if (mesh.dofs_per_node == 1) {
     const double k = mesh.E * mesh.area / (mesh.length / mesh.nx);
     entries.reserve(4 * static_cast<size_t>(box.i1 - box.i0));
     for (int i = box.i0; i < box.i1; ++i) {
@@ -110,6 +185,16 @@ SparseMatrix assemble_stiffness(const StrutMesh& mesh, const NodeBox& box) {
 
 Eigen::VectorXd axial_stress(const StrutMesh& mesh, const NodeBox& box,
                              const Eigen::VectorXd& box_dofs) {
+  if (mesh.dofs_per_node == 3) {
+    const double h = mesh.length / mesh.nx;
+    Eigen::VectorXd stress(box.i1 - box.i0);
+    for (int i = box.i0; i < box.i1; ++i) {
+      const Vec2 du = box_dofs.segment<2>(3 * box.local(i + 1, 0)) -
+                      box_dofs.segment<2>(3 * box.local(i, 0));
+      stress(i - box.i0) = mesh.E * du.dot(mesh.e1) / h;
+    }
+    return stress;
+  }
   if (mesh.dofs_per_node == 1) {
     const double h = mesh.length / mesh.nx;
     Eigen::VectorXd stress(box.i1 - box.i0);

@@ -1,7 +1,8 @@
 #pragma once
 // Element stiffness and its assembly over a box of a strut's mesh (a whole strut for the
 // primal methods, one subdomain for FETI). Bar: 2-node elements E*area/h. Plane: 4-node
-// bilinear quadrilaterals in plane stress, 2x2 Gauss integration.
+// bilinear quadrilaterals in plane stress, 2x2 Gauss integration. Frame: 2-node
+// Euler-Bernoulli beams (axial E*area/h, cubic Hermite bending E*inertia/h^3).
 
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
@@ -28,6 +29,21 @@ NodeBox whole_strut(const StrutMesh& mesh);
 // 8x8 stiffness of a plane-stress quadrilateral with corners x[0..3] counterclockwise.
 Eigen::Matrix<double, 8, 8> quad_stiffness(const Eigen::Matrix<double, 4, 2>& corners, double E,
                                            double nu, double thickness);
+
+// 6x6 stiffness of a plane beam element of length h along the unit axis e, in global
+// DOFs (ux1, uy1, rotation1, ux2, uy2, rotation2): the standard frame element in its
+// local axes (e, e turned +90 degrees), rotated.
+Eigen::Matrix<double, 6, 6> beam_stiffness(double E, double area, double inertia, double h,
+                                           const Vec2& e);
+
+// Section forces of every beam element of a frame box, from the box's DOF values: the
+// axial force N (tension positive) and the bending moment at both element ends (positive
+// when it bends the strut towards +e2, i.e. sagging for a strut drawn left to right).
+struct BeamForces {
+  Eigen::VectorXd axial;        // per element
+  Eigen::MatrixXd moment;       // elements x 2: at the element's first and second node
+};
+BeamForces beam_forces(const StrutMesh& mesh, const NodeBox& box, const Eigen::VectorXd& box_dofs);
 
 // Stiffness over the box in box-local DOF numbering (node * dofs_per_node + component).
 SparseMatrix assemble_stiffness(const StrutMesh& mesh, const NodeBox& box);

@@ -1,0 +1,133 @@
+#include "solver/free_motion_space.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <stdexcept>
+
+#include <Eigen/Dense>
+
+#include "solver/rigid_modes.hpp"
+
+namespace fetic::solver {
+namespace {
+
+// Entries below this (relative to a unit motion) are rounding.
+constexpr double kNegligible = 1e-12;
+
+Eigen::MatrixXd null_space(const Eigen::MatrixXd& M) {
+  const int n = static_cast<int>(M.cols());
+  if (M.rows() == 0) return Eigen::MatrixXd::Identity(n, n);
+  Eigen::BDCSVD<Eigen::MatrixXd> svd(M, Eigen::ComputeFullV);
+  const Eigen::VectorXd& sigma = svd.singularValues();
+  const double threshold = 1e-9 * std::max(1.0, sigma.size() ? sigma(0) : 0.0);
+  int rank = 0;
+  while (rank < sigma.size() && sigma(rank) > threshold)
+    ++rank;
+  return svd.matrixV().rightCols(n - rank);
+}
+
+}  // namespace
+
+FreeMotionSpace::FreeMotionSpace(const FetiSystem& system) : system_(system) {
+  const Model& model = system.model();
+  const Decomposition& d = system.decomposition();
+  const auto& motions = model.kinematics.motions;
+  const int k = static_cast<int>(motions.size());
+  std::vector<Eigen::Triplet<double>> entries;
+  for (int m = 0; m < k; ++m) {
+    for (const Subdomain& sub : d.subdomains) {
+      if (model.kinematics.group_of_strut[sub.strut] != motions[m].group) continue;
+      const Vec2 c = box_centre(model.struts[sub.strut], sub.box);
+      const auto u = scenes::motion_at(model.kinematics, motions[m], sub.strut, {c.x(), c.y()});
+      const double values[3] = {u[2], u[0], u[1]};  // the order of rigid_body_modes
+      for (int i = 0; i < 3; ++i)
+        if (values[i] != 0.0) entries.emplace_back(sub.mode_offset + i, m, values[i]);
+    }
+  }
+  Z_.resize(d.total_modes, k);
+  Z_.setFromTriplets(entries.begin(), entries.end());
+  GZ_ = Eigen::SparseMatrix<double, Eigen::RowMajor>(
+      Eigen::SparseMatrix<double>(system.G().transpose()) * Z_);
+
+  // Clusters: motions that a contact row changes together.
+  std::vector<int> parent(k);
+  std::iota(parent.begin(), parent.end(), 0);
+  auto root = [&](int i) {
+    while (parent[i] != i)
+      i = parent[i] = parent[parent[i]];
+    return i;
+  };
+  std::vector<std::vector<int>> row_motions(d.row_count());
+  for (int r = d.equality_rows; r < d.row_count(); ++r) {
+    for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(GZ_, r); it; ++it)
+      if (std::abs(it.value()) > kNegligible) row_motions[r].push_back(static_cast<int>(it.col()));
+    for (int m : row_motions[r])
+      parent[root(m)] = root(row_motions[r].front());
+  }
+  std::vector<int> cluster_of(k, -1);
+  for (int m = 0; m < k; ++m) {
+    int& c = cluster_of[root(m)];
+    if (c < 0) {
+      c = static_cast<int>(clusters_.size());
+      clusters_.emplace_back();
+    }
+    clusters_[c].motions.push_back(m);
+  }
+  for (int r = d.equality_rows; r < d.row_count(); ++r)
+    if (!row_motions[r].empty()) clusters_[cluster_of[root(row_motions[r].front())]].rows.push_back(r);
+  for (Cluster& cluster : clusters_) {
+    for (int m : cluster.motions)
+      for (Eigen::SparseMatrix<double>::InnerIterator it(Z_, m); it; ++it)
+        cluster.modes.push_back(static_cast<int>(it.row()));
+    std::sort(cluster.modes.begin(), cluster.modes.end());
+    cluster.modes.erase(std::unique(cluster.modes.begin(), cluster.modes.end()), cluster.modes.end());
+  }
+}
+
+std::vector<UnheldGroup> FreeMotionSpace::unheld(const std::vector<char>& active) const {
+  const Decomposition& d = system_.decomposition();
+  for (int r = 0; r < d.equality_rows; ++r)
+    if (!active[r])
+      throw std::logic_error("FreeMotionSpace: every equality row must be active");
+  std::vector<UnheldGroup> groups;
+  for (const Cluster& cluster : clusters_) {
+    const int k = static_cast<int>(cluster.motions.size());
+    std::vector<int> rows;
+    for (int r : cluster.rows)
+      if (active[r]) rows.push_back(r);
+    Eigen::MatrixXd M = Eigen::MatrixXd::Zero(static_cast<int>(rows.size()), k);
+    for (size_t i = 0; i < rows.size(); ++i)
+      for (int j = 0; j < k; ++j)
+        M(static_cast<int>(i), j) = GZ_.coeff(rows[i], cluster.motions[j]);
+    const Eigen::MatrixXd N = null_space(M);
+    if (N.cols() == 0) continue;
+    // The free directions over the cluster's modes, orthonormalized.
+    const int n = static_cast<int>(cluster.modes.size());
+    Eigen::MatrixXd Zc = Eigen::MatrixXd::Zero(n, k);
+    for (int j = 0; j < k; ++j)
+      for (Eigen::SparseMatrix<double>::InnerIterator it(Z_, cluster.motions[j]); it; ++it) {
+        const auto at = std::lower_bound(cluster.modes.begin(), cluster.modes.end(), it.row());
+        Zc(static_cast<int>(at - cluster.modes.begin()), j) = it.value();
+      }
+    const Eigen::MatrixXd D = Zc * N;
+    const Eigen::HouseholderQR<Eigen::MatrixXd> qr(D);
+    const Eigen::MatrixXd Q = qr.householderQ() * Eigen::MatrixXd::Identity(n, D.cols());
+    for (int c = 0; c < Q.cols(); ++c) {
+      UnheldGroup group;
+      group.direction = Eigen::VectorXd::Zero(d.total_modes);
+      for (int i = 0; i < n; ++i)
+        group.direction(cluster.modes[i]) = Q(i, c);
+      for (size_t j = 0; j < d.subdomains.size(); ++j) {
+        const Subdomain& sub = d.subdomains[j];
+        if (group.direction.segment(sub.mode_offset, sub.mode_count).lpNorm<Eigen::Infinity>() >
+            kNegligible)
+          group.subdomains.push_back(static_cast<int>(j));
+      }
+      groups.push_back(std::move(group));
+    }
+  }
+  return groups;
+}
+
+}  // namespace fetic::solver
