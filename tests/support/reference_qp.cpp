@@ -42,9 +42,11 @@ BarStrut describe(const scenes::Strut& s) {
 }  // namespace
 
 ReferenceSolution solve_plane_reference_qp(const scenes::Scene& scene, double load_factor);
+ReferenceSolution solve_frame_reference_qp(const scenes::Scene& scene, double load_factor);
 
 ReferenceSolution solve_reference_qp(const scenes::Scene& scene, double load_factor) {
   if (scene.model == scenes::ModelKind::Plane) return solve_plane_reference_qp(scene, load_factor);
+  if (scene.model == scenes::ModelKind::Frame) return solve_frame_reference_qp(scene, load_factor);
   const int strut_count = static_cast<int>(scene.struts.size());
   std::vector<BarStrut> bars;
   for (const scenes::Strut& s : scene.struts)

@@ -16,6 +16,8 @@ struct ReferenceSolution {
   bool optimal = false;
   // Per strut, per node (numbered along the strut, then across), (ux, uy).
   std::vector<std::vector<std::array<double, 2>>> displacement;
+  // Frame model: per strut, per node, the rotation.
+  std::vector<std::vector<double>> rotation;
   // Per contact node pair, in scene order: the contact force (KKT multiplier).
   std::vector<double> force;
 };
