@@ -145,8 +145,16 @@ std::string table(const std::vector<Measurement>& rows) {
 int run_bench(const BenchArgs& args) {
   std::vector<std::string> scenes = args.scenes;
   if (scenes.empty()) {
-    scenes = {"scenes/thesis.toml", "scenes/two_bars.toml", "scenes/chain.toml",
-              "scenes/cantilevers.toml", "scenes/plane_pair.toml"};
+    scenes = {"scenes/thesis.toml",
+              "scenes/two_bars.toml",
+              "scenes/chain.toml",
+              "scenes/cantilevers.toml",
+              "scenes/plane_pair.toml",
+              "scenes/frame_post_on_beam.toml",
+              "scenes/frame_apex_stop.toml",
+              "scenes/frame_portal_sway.toml",
+              "scenes/frame_beam_on_contacts.toml",
+              "scenes/frame_truss_bridge.toml"};
     if (!std::filesystem::exists(scenes.front())) {
       std::cerr << "fetic bench: the bundled scenes are found relative to the repository "
                    "root (scenes/*.toml); run it from there or name the scene files\n";

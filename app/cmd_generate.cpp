@@ -39,7 +39,9 @@ bool parse_pair(const std::string& text, int& first, int& second) {
 
 int run_generate(const GenerateArgs& args) {
   scenes::GenerateOptions options;
-  options.model = args.model == "bar" ? scenes::ModelKind::Bar : scenes::ModelKind::Plane;
+  options.model = args.model == "bar"     ? scenes::ModelKind::Bar
+                  : args.model == "frame" ? scenes::ModelKind::Frame
+                                          : scenes::ModelKind::Plane;
   options.pairs = args.pairs;
   options.seed = args.seed;
   if (!parse_pair(args.elements, options.elements, options.elements_across) ||
@@ -82,8 +84,9 @@ void register_generate(CLI::App& app, int& exit_code) {
   auto args = std::make_shared<GenerateArgs>();
   CLI::App* command = app.add_subcommand(
       "generate", "Write a generated scene of opposing strut pairs (TOML) to stdout or a file");
-  command->add_option("--model", args->model, "bar or plane")
-      ->check(CLI::IsMember({"bar", "plane"}))
+  command->add_option("--model", args->model,
+                      "bar, plane or frame (frame: pairs of facing portal frames)")
+      ->check(CLI::IsMember({"bar", "plane", "frame"}))
       ->capture_default_str();
   command->add_option("--pairs", args->pairs, "Pairs of opposing struts")
       ->check(CLI::Range(1, 1000000))

@@ -4,7 +4,9 @@
 //      imposed as equalities), the primal active-set method and Ipopt;
 //   2. numerical scalability: iterations as the number of subdomains grows 16 times at
 //      fixed H/h, and as h shrinks at fixed H, for each preconditioner;
-//   3. memory: FETI-C's factors against the CHOLMOD factor of the whole problem.
+//   3. memory: FETI-C's factors against the CHOLMOD factor of the whole problem;
+//   4. the frame model (generated pairs of portal frames): iterations as in 2, and a
+//      comparison row as in 1.
 // Tables are printed and written as CSV. `--preset quick` runs in about a minute.
 
 #include <sys/resource.h>
@@ -158,7 +160,19 @@ scenes::GenerateOptions plane(int pairs, int ex, int ey, int sx, int sy) {
   return o;
 }
 
+scenes::GenerateOptions frame(int pairs, int elements, int subdomains) {
+  scenes::GenerateOptions o;
+  o.model = scenes::ModelKind::Frame;
+  o.pairs = pairs;
+  o.elements = elements;
+  o.subdomains = subdomains;
+  return o;
+}
+
 std::string describe(const scenes::GenerateOptions& o) {
+  if (o.model == scenes::ModelKind::Frame)
+    return std::to_string(o.pairs) + "x2 portals(" + std::to_string(o.elements) + " el, " +
+           std::to_string(o.subdomains) + " sub per strut)";
   return std::to_string(o.pairs) + "x(" + std::to_string(o.elements) + "x" +
          std::to_string(o.elements_across) + " el, " + std::to_string(o.subdomains) + "x" +
          std::to_string(o.subdomains_across) + " sub)";
@@ -238,7 +252,8 @@ Table scalability_table(const std::string& title,
     const solver::Model model = solver::build_model(scene);
     std::vector<std::string> row{
         describe(options), std::to_string(model.dof_count()),
-        std::to_string(options.pairs * 2 * options.subdomains * options.subdomains_across),
+        std::to_string(model.struts.size() * options.subdomains *
+                       (options.model == scenes::ModelKind::Plane ? options.subdomains_across : 1)),
         std::to_string(options.elements / options.subdomains)};
     double seconds = 0.0;
     for (solver::Preconditioner p :
@@ -320,6 +335,24 @@ int run(const Args& args) {
   std::vector<scenes::GenerateOptions> memory{plane(5, 100, 24, 5, 1)};
   if (full) memory.push_back(plane(25, 200, 48, 10, 2));
   memory_table(memory).write_csv(args.csv_dir, "memory.csv");
+
+  // 4. frames: the same questions on generated portal frames (6 struts per pair).
+  const int frame_step = full ? 16 : 8;
+  std::vector<scenes::GenerateOptions> frame_subdomains{
+      frame(4, 2 * frame_step, 2), frame(4, 4 * frame_step, 4), frame(4, 8 * frame_step, 8),
+      frame(4, 16 * frame_step, 16)};
+  scalability_table("4a. Frames: iterations as the subdomains grow 8 times at fixed H/h",
+                    frame_subdomains)
+      .write_csv(args.csv_dir, "frame_subdomains.csv");
+  std::vector<scenes::GenerateOptions> frame_finer{frame(4, 8, 4), frame(4, 16, 4),
+                                                   frame(4, 32, 4), frame(4, 64, 4)};
+  if (full) frame_finer.push_back(frame(4, 128, 4));
+  scalability_table("4b. Frames: iterations as h shrinks at fixed H (4 subdomains per strut)",
+                    frame_finer)
+      .write_csv(args.csv_dir, "frame_refinement.csv");
+  std::vector<scenes::GenerateOptions> frame_sizes{frame(20, 40, 4)};
+  if (full) frame_sizes.push_back(frame(50, 100, 5));
+  comparison_table(frame_sizes, 120'000, 200'000).write_csv(args.csv_dir, "frame_comparison.csv");
 
   rusage usage{};
   getrusage(RUSAGE_SELF, &usage);

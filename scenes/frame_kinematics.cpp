@@ -160,8 +160,12 @@ std::string describe(const Scene& scene, const FrameKinematics& k, const Eigen::
   }
   const double size = std::max(length(scene.struts[strut]), 1e-300);
   const double shift = std::hypot(a, b);
-  if (std::abs(theta) * size <= 1e-6 * shift)
-    return "it can slide along (" + number_text(a / shift) + ", " + number_text(b / shift) + ")";
+  if (std::abs(theta) * size <= 1e-6 * shift) {
+    // The direction either way: written with a positive x (or, along y, a positive y).
+    const double sign = a > 1e-12 * shift || (std::abs(a) <= 1e-12 * shift && b > 0.0) ? 1.0 : -1.0;
+    return "it can slide along (" + number_text(sign * a / shift) + ", " +
+           number_text(sign * b / shift) + ")";
+  }
   return "it can rotate about (" + number_text(c[0] - b / theta) + ", " +
          number_text(c[1] + a / theta) + ")";
 }

@@ -7,9 +7,85 @@
 
 namespace fetic::scenes {
 
+namespace {
+
+// Frame model: `pairs` pairs of facing portal frames (see generate_scene.hpp).
+Scene generate_portal_pairs(const GenerateOptions& o) {
+  std::mt19937 rng(o.seed);
+  auto uniform = [&](double a, double b) {
+    return std::uniform_real_distribution<double>(a, b)(rng);
+  };
+  Scene scene;
+  scene.model = ModelKind::Frame;
+  scene.title = "Generated: " + std::to_string(o.pairs) + " pairs of facing portal frames";
+  const double width = 4.0, height = 3.0, spacing = 3.0;
+  const double E = 2.1e11, area = 2.85e-3, inertia = 1.94e-5;
+  auto add = [&](const std::string& name, Point from, Point to, double modulus, bool clamp_from) {
+    Strut s;
+    s.name = name;
+    s.from = from;
+    s.to = to;
+    s.E = modulus;
+    s.area = area;
+    s.inertia = inertia;
+    s.elements = o.elements;
+    s.subdomains = o.subdomains;
+    s.fixed_from = clamp_from;
+    scene.struts.push_back(s);
+    return static_cast<int>(scene.struts.size()) - 1;
+  };
+  auto joint = [&](EndRef a, EndRef b) {
+    Joint j;
+    j.ends = {a, b};
+    scene.joints.push_back(j);
+  };
+  double x = 0.0;
+  for (int p = 0; p < o.pairs; ++p) {
+    // Gaps from 1 to 5 mm; the wind would sway each frame by 0.5 to 1.5 gaps on its
+    // own; stiffness varies by a factor 2.
+    const double gap = uniform(1e-3, 5e-3);
+    int beams[2];
+    for (int side = 0; side < 2; ++side) {
+      const double x0 = x + side * (width + gap);
+      const double modulus = E * uniform(0.7, 1.4);
+      const std::string tag = std::to_string(p + 1) + (side == 0 ? "L" : "R");
+      const int left = add("c" + tag + "a", {x0, 0.0}, {x0, height}, modulus, true);
+      const int right = add("c" + tag + "b", {x0 + width, 0.0}, {x0 + width, height}, modulus, true);
+      const int beam = add("b" + tag, {x0, height}, {x0 + width, height}, modulus, false);
+      joint({left, StrutEnd::To}, {beam, StrutEnd::From});
+      joint({right, StrutEnd::To}, {beam, StrutEnd::To});
+      beams[side] = beam;
+      // Wind on the outer column toward the other frame: the corner of a portal with
+      // clamped feet and rigid corners moves by about w h^4 / (35 E I) under a wind w
+      // per length (measured on these frames); each frame closes 0.3 to 1.2 gaps.
+      const double sway = 35.0 * modulus * inertia / (height * height * height);
+      const double push = sway * gap * uniform(0.3, 1.2);
+      Load wind;
+      wind.strut = side == 0 ? left : right;
+      wind.per_length = true;
+      wind.force = {(side == 0 ? 1.0 : -1.0) * push / height, 0.0};
+      scene.loads.push_back(wind);
+      Load floor;
+      floor.strut = beam;
+      floor.per_length = true;
+      floor.force = {0.0, -uniform(1e4, 3e4)};
+      scene.loads.push_back(floor);
+    }
+    Contact contact;
+    contact.a = {beams[0], StrutEnd::To};
+    contact.b = {beams[1], StrutEnd::From};
+    scene.contacts.push_back(contact);
+    x += 2.0 * width + gap + spacing;
+  }
+  return scene;
+}
+
+}  // namespace
+
 Scene generate_scene(const GenerateOptions& o) {
   if (o.pairs < 1 || o.elements < 1 || o.subdomains < 1 || o.subdomains > o.elements)
     throw std::invalid_argument("need pairs >= 1 and 1 <= subdomains <= elements");
+  if (o.model == ModelKind::Frame) return generate_portal_pairs(o);
   const bool plane = o.model == ModelKind::Plane;
   if (plane &&
       (o.elements_across < 1 || o.subdomains_across < 1 || o.subdomains_across > o.elements_across))

@@ -4,7 +4,9 @@
 // clamped at their right ends and pushed toward the left ones; gaps, loads and
 // stiffnesses vary from pair to pair (deterministically, from a seed). In the plane
 // model the left struts are also bent across their axis, so that their end faces close
-// over only part of the height.
+// over only part of the height. In the frame model a "pair" is two portal frames (two
+// clamped columns and a beam, rigid corners) side by side whose facing corners are a
+// gap apart; wind on the outer columns sways them toward each other.
 
 #include <cstdint>
 

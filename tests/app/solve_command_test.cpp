@@ -79,6 +79,46 @@ TEST_CASE("fetic solve writes the result file of the contract") {
   CHECK(history.back()["active_set"] == active);
 }
 
+TEST_CASE("fetic solve on a frame adds the rotations and names contacts at any node") {
+  const std::string json_path = temporary("fetic_frame.json");
+  std::filesystem::remove(json_path);
+  const Run r = run("solve " + scene("frame_beam_on_contacts.toml") + " --json " + json_path);
+  INFO(r.output);
+  REQUIRE(r.status == 0);
+  std::ifstream in(json_path);
+  const nlohmann::json result = nlohmann::json::parse(in);
+  CHECK(result["model"] == "frame");
+  CHECK(result["method"] == "feti-c");
+  const auto& beam = result["struts"][0];
+  CHECK(beam["name"] == "beam");
+  REQUIRE(beam["rotations"].size() == beam["nodes"].size());
+  // The floating beam sags between its posts: its ends turn opposite ways.
+  CHECK(beam["rotations"][0].get<double>() * beam["rotations"][16].get<double>() < 0.0);
+  CHECK(result["contacts"][0]["b"] == "beam@2");
+  for (const auto& contact : result["contacts"]) {
+    REQUIRE(contact["pairs"].size() == 1);
+    CHECK(contact["pairs"][0]["active"] == true);
+  }
+  // The push of 5 kN at the beam's end is what the stop takes.
+  CHECK(result["contacts"][2]["pairs"][0]["force"].get<double>() == Approx(5.0e3).epsilon(1e-8));
+  std::filesystem::remove(json_path);
+}
+
+TEST_CASE("fetic solve refuses a frame mechanism with status 2, naming the struts") {
+  const std::string path = temporary("mechanism.toml");
+  {
+    std::ofstream out(path);
+    out << "model = \"frame\"\n[[strut]]\nname = \"swing\"\nfrom = [0.0, 0.0]\n"
+           "to = [0.0, -1.0]\nE = 2e11\narea = 1e-3\ninertia = 1e-6\nelements = 2\n"
+           "pinned = [\"from\"]\n";
+  }
+  const Run r = run("solve " + path);
+  CHECK(r.status == 2);
+  CHECK_THAT(r.output, Catch::Contains(path + ":2: strut 'swing' is a mechanism") &&
+                           Catch::Contains("rotate about (0, 0)"));
+  std::filesystem::remove(path);
+}
+
 TEST_CASE("fetic solve exit statuses: invalid scene 2, unsupported method 3, no convergence 4") {
   const Run invalid = run("solve " + std::string(FETIC_BUNDLED_SCENES_DIR) +
                           "/../tests/scenes/invalid/strut_negative_E.toml");

@@ -27,7 +27,12 @@ void require_same(const Scene& a, const Scene& b) {
     CHECK(x.subdomains == y.subdomains);
     CHECK(x.fixed_from == y.fixed_from);
     CHECK(x.fixed_to == y.fixed_to);
-    if (a.model == ModelKind::Bar) {
+    if (a.model == ModelKind::Frame) {
+      CHECK(x.area == y.area);
+      CHECK(x.inertia == y.inertia);
+      CHECK(x.pinned_from == y.pinned_from);
+      CHECK(x.pinned_to == y.pinned_to);
+    } else if (a.model == ModelKind::Bar) {
       CHECK(x.area == y.area);
     } else {
       CHECK(x.height == y.height);
@@ -43,6 +48,17 @@ void require_same(const Scene& a, const Scene& b) {
     CHECK(a.loads[i].per_length == b.loads[i].per_length);
     CHECK(a.loads[i].force == b.loads[i].force);
     if (!a.loads[i].per_length) CHECK(a.loads[i].at == b.loads[i].at);
+    CHECK(a.loads[i].node == b.loads[i].node);
+    CHECK(a.loads[i].moment == b.loads[i].moment);
+  }
+  REQUIRE(a.joints.size() == b.joints.size());
+  for (size_t i = 0; i < a.joints.size(); ++i) {
+    CHECK(a.joints[i].kind == b.joints[i].kind);
+    REQUIRE(a.joints[i].ends.size() == b.joints[i].ends.size());
+    for (size_t e = 0; e < a.joints[i].ends.size(); ++e) {
+      CHECK(a.joints[i].ends[e].strut == b.joints[i].ends[e].strut);
+      CHECK(a.joints[i].ends[e].end == b.joints[i].ends[e].end);
+    }
   }
   REQUIRE(a.contacts.size() == b.contacts.size());
   for (size_t i = 0; i < a.contacts.size(); ++i) {
@@ -50,6 +66,10 @@ void require_same(const Scene& a, const Scene& b) {
     CHECK(a.contacts[i].a.end == b.contacts[i].a.end);
     CHECK(a.contacts[i].b.strut == b.contacts[i].b.strut);
     CHECK(a.contacts[i].b.end == b.contacts[i].b.end);
+    CHECK(a.contacts[i].a.node == b.contacts[i].a.node);
+    CHECK(a.contacts[i].b.node == b.contacts[i].b.node);
+    CHECK(a.contacts[i].has_normal == b.contacts[i].has_normal);
+    CHECK(a.contacts[i].normal == b.contacts[i].normal);
   }
 }
 

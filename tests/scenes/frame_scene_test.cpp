@@ -1,0 +1,202 @@
+// The frame model's keys as the loader reads them (SCENES.md "Frame model"), the
+// geometry of contacts in any direction, and the free motions behind the mechanism check.
+
+#include <catch2/catch.hpp>
+
+#include <cmath>
+
+#include "scenes/frame_kinematics.hpp"
+#include "scenes/generate_scene.hpp"
+#include "scenes/load_scene.hpp"
+#include "scenes/scene_geometry.hpp"
+#include "scenes/write_scene.hpp"
+
+using namespace fetic::scenes;
+
+namespace {
+
+const char* kFrame = R"(model = "frame"
+[defaults]
+E = 2.0e11
+area = 1.0e-3
+inertia = 1.0e-6
+[[strut]]
+name = "beam"
+from = [0.0, 0.0]
+to = [2.0, 0.0]
+elements = 4
+pinned = ["from"]
+fixed = ["to"]
+[[strut]]
+name = "legL"
+from = [1.0, 2.0]
+to = [1.5, 0.5]
+elements = 3
+fixed = ["from"]
+[[strut]]
+name = "legR"
+from = [2.0, 2.0]
+to = [1.5, 0.5]
+elements = 3
+pinned = ["from"]
+[[joint]]
+ends = ["legL.to", "legR.to"]
+[[load]]
+strut = "legL"
+at = 2
+force = [1.0, -2.0]
+moment = 3.5
+[[load]]
+strut = "beam"
+at = "3"
+moment = -1.0
+[[load]]
+strut = "legR"
+at = "to"
+force = [0.0, -5.0]
+[[contact]]
+a = "beam@3"
+b = "legL.to"
+[[contact]]
+a = "beam.to"
+b = "legR@1"
+normal = [0.70710678, 0.70710678]
+)";
+
+}  // namespace
+
+TEST_CASE("frame: supports, joints, node loads with moments and contacts at any node") {
+  const Scene scene = parse_scene(kFrame, "frame.toml");
+  REQUIRE(scene.model == ModelKind::Frame);
+  REQUIRE(scene.struts.size() == 3);
+  CHECK(scene.struts[0].inertia == 1.0e-6);
+  CHECK(scene.struts[0].pinned_from);
+  CHECK_FALSE(scene.struts[0].fixed_from);
+  CHECK(scene.struts[0].fixed_to);
+  CHECK(scene.struts[2].pinned_from);
+
+  REQUIRE(scene.joints.size() == 1);
+  CHECK(scene.joints[0].kind == JointKind::Rigid);  // the default
+  CHECK(end_label(scene, scene.joints[0].ends[1]) == "legR.to");
+
+  REQUIRE(scene.loads.size() == 3);
+  CHECK(scene.loads[0].node == 2);
+  CHECK(scene.loads[0].moment == 3.5);
+  CHECK(scene.loads[1].node == 3);  // a node index given as a string
+  CHECK(scene.loads[1].force == Point{0.0, 0.0});
+  CHECK(scene.loads[2].node == -1);
+  CHECK(scene.loads[2].at == StrutEnd::To);
+
+  REQUIRE(scene.contacts.size() == 2);
+  CHECK(end_label(scene, scene.contacts[0].a) == "beam@3");
+  CHECK(node_index(scene, scene.contacts[0].a) == 3);
+  CHECK(node_index(scene, scene.contacts[0].b) == 3);
+  // Default normal: from a's node (1.5, 0) to b's (1.5, 0.5).
+  const FrameContactGeometry g0 = frame_contact_geometry(scene, scene.contacts[0]);
+  CHECK(g0.normal[0] == Approx(0.0).margin(1e-15));
+  CHECK(g0.normal[1] == Approx(1.0));
+  CHECK(g0.gap == Approx(0.5));
+  // A given normal (normalized) and a node off its line: the gap is along the normal.
+  const FrameContactGeometry g1 = frame_contact_geometry(scene, scene.contacts[1]);
+  const Point b = node_point(scene, scene.contacts[1].b);
+  CHECK(b[0] == Approx(11.0 / 6.0));
+  CHECK(g1.gap == Approx(((b[0] - 2.0) + b[1]) / std::sqrt(2.0)));
+  CHECK(std::hypot(g1.normal[0], g1.normal[1]) == Approx(1.0).epsilon(1e-15));
+
+  // Writing and reading back keeps every frame key.
+  const Scene again = parse_scene(scene_to_toml(scene), "again.toml");
+  CHECK(again.loads[1].node == 3);
+  CHECK(again.loads[0].moment == 3.5);
+  CHECK(again.contacts[1].has_normal);
+  CHECK(end_label(again, again.contacts[1].b) == "legR@1");
+  CHECK(again.struts[0].pinned_from);
+}
+
+TEST_CASE("frame: free motions are the rigid motions supports and joints allow") {
+  const char* text = R"(model = "frame"
+[defaults]
+E = 2.0e11
+area = 1.0e-3
+inertia = 1.0e-6
+elements = 2
+[[strut]]
+name = "float"
+from = [0.0, 1.0]
+to = [2.0, 1.0]
+[[strut]]
+name = "lever"
+from = [0.0, 0.0]
+to = [2.0, 0.0]
+pinned = ["from"]
+[[strut]]
+name = "clamped"
+from = [0.0, -1.0]
+to = [2.0, -1.0]
+fixed = ["from"]
+[[strut]]
+name = "arm"
+from = [2.0, -1.0]
+to = [2.0, -2.0]
+[[joint]]
+ends = ["clamped.to", "arm.from"]
+kind = "pinned"
+[[contact]]
+a = "lever.to"
+b = "float.to"
+[[contact]]
+a = "lever@1"
+b = "float.from"
+[[contact]]
+a = "clamped@1"
+b = "float.from"
+normal = [0.6, 0.8]
+[[contact]]
+a = "clamped@2"
+b = "float@1"
+[[contact]]
+a = "clamped@1"
+b = "arm.to"
+normal = [1.0, 0.0]
+)";
+  const Scene scene = parse_scene(text, "motions.toml");
+  const FrameKinematics k = frame_kinematics(scene);
+  // Groups: float, lever, clamped+arm. Motions: 3 (float) + 1 (lever about its pin) +
+  // 1 (arm about the joint).
+  CHECK(k.groups.size() == 3);
+  REQUIRE(k.motions.size() == 5);
+  for (const FreeMotion& m : k.motions) {
+    if (m.group == k.group_of_strut[1]) {  // the lever turns about (0, 0)
+      const auto pin = motion_at(k, m, 1, {0.0, 0.0});
+      CHECK(std::hypot(pin[0], pin[1]) <= 1e-12);
+      CHECK(std::abs(pin[2]) > 0.0);
+    }
+    if (m.group == k.group_of_strut[3]) {  // only the arm moves, about (2, -1)
+      const auto hinge = motion_at(k, m, 3, {2.0, -1.0});
+      CHECK(std::hypot(hinge[0], hinge[1]) <= 1e-12);
+      const auto clamped = motion_at(k, m, 2, {1.0, -1.0});
+      CHECK(std::abs(clamped[0]) + std::abs(clamped[1]) + std::abs(clamped[2]) == 0.0);
+    }
+  }
+  // The contacts hold every motion, also the float turning with the lever.
+  CHECK(frame_mechanisms(scene, k).empty());
+  // Without the last contact on the float, float and lever can turn together about
+  // their pins' line: a mechanism.
+  Scene fewer = scene;
+  fewer.contacts.erase(fewer.contacts.begin() + 3);
+  const auto mechanisms = frame_mechanisms(fewer, k);
+  REQUIRE(mechanisms.size() == 1);
+  CHECK(mechanisms[0].struts == std::vector<int>{0, 1});
+}
+
+TEST_CASE("frame: generated portal frames are valid and have the requested size") {
+  GenerateOptions options;
+  options.model = ModelKind::Frame;
+  options.pairs = 3;
+  options.elements = 10;
+  options.subdomains = 2;
+  const Scene scene = parse_scene(scene_to_toml(generate_scene(options)), "generated.toml");
+  CHECK(scene.struts.size() == 18);
+  CHECK(scene.joints.size() == 12);
+  CHECK(scene.contacts.size() == 3);
+  CHECK(unknowns(scene) == 18LL * 11 * 3);
+}
