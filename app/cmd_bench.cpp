@@ -154,7 +154,8 @@ int run_bench(const BenchArgs& args) {
               "scenes/frame_apex_stop.toml",
               "scenes/frame_portal_sway.toml",
               "scenes/frame_beam_on_contacts.toml",
-              "scenes/frame_truss_bridge.toml"};
+              "scenes/frame_truss_bridge.toml",
+              "scenes/frame_scaffold.toml"};
     if (!std::filesystem::exists(scenes.front())) {
       std::cerr << "fetic bench: the bundled scenes are found relative to the repository "
                    "root (scenes/*.toml); run it from there or name the scene files\n";

@@ -81,7 +81,8 @@ TEST_CASE("frame: active set and FETI-C agree with CGAL on 120 random frame scen
 
 TEST_CASE("frame: every method agrees with CGAL on the bundled frame scenes") {
   for (const char* name : {"frame_post_on_beam.toml", "frame_apex_stop.toml", "frame_portal_sway.toml",
-                           "frame_beam_on_contacts.toml", "frame_truss_bridge.toml"}) {
+                           "frame_beam_on_contacts.toml", "frame_truss_bridge.toml",
+                           "frame_scaffold.toml"}) {
     INFO(name);
     const scenes::Scene scene = testing::bundled_scene(name);
     const testing::ReferenceSolution reference = testing::solve_reference_qp(scene, 1.0);
