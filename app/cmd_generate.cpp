@@ -79,8 +79,9 @@ void register_generate(CLI::App& app, int& exit_code) {
   auto args = std::make_shared<GenerateArgs>();
   CLI::App* command = app.add_subcommand(
       "generate", "Write a generated scene of opposing strut pairs (TOML) to stdout or a file");
-  command->add_option("--model", args->model,
-                      "bar, plane or frame (frame: pairs of facing portal frames)")
+  command
+      ->add_option("--model", args->model,
+                   "bar, plane or frame (frame: pairs of facing portal frames)")
       ->check(CLI::IsMember({"bar", "plane", "frame"}))
       ->capture_default_str();
   command->add_option("--pairs", args->pairs, "Pairs of opposing struts")

@@ -344,8 +344,8 @@ int run(const Args& args) {
   scalability_table("4a. Frames: iterations as the subdomains grow 8 times at fixed H/h",
                     frame_subdomains)
       .write_csv(args.csv_dir, "frame_subdomains.csv");
-  std::vector<scenes::GenerateOptions> frame_finer{frame(4, 8, 4), frame(4, 16, 4),
-                                                   frame(4, 32, 4), frame(4, 64, 4)};
+  std::vector<scenes::GenerateOptions> frame_finer{frame(4, 8, 4), frame(4, 16, 4), frame(4, 32, 4),
+                                                   frame(4, 64, 4)};
   if (full) frame_finer.push_back(frame(4, 128, 4));
   scalability_table("4b. Frames: iterations as h shrinks at fixed H (4 subdomains per strut)",
                     frame_finer)

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <numeric>
+#include <unordered_map>
 
 #include <Eigen/Dense>
 
@@ -51,17 +52,18 @@ std::string number_text(double value) {
 
 // The free motions of one group of struts joined by joints.
 void group_motions(const Scene& scene, int group, const std::vector<int>& struts,
-                   std::vector<FreeMotion>& motions) {
+                   const std::vector<int>& joints, std::vector<FreeMotion>& motions) {
   // Bodies: struts joined by rigid joints move as one.
   const int count = static_cast<int>(struts.size());
-  std::vector<int> local(scene.struts.size(), -1);
+  std::unordered_map<int, int> local;  // strut -> index in the group
   for (int i = 0; i < count; ++i)
     local[struts[i]] = i;
   UnionFind rigid(count);
-  for (const Joint& joint : scene.joints) {
-    if (joint.kind != JointKind::Rigid || local[joint.ends[0].strut] < 0) continue;
+  for (int j : joints) {
+    const Joint& joint = scene.joints[j];
+    if (joint.kind != JointKind::Rigid) continue;
     for (const EndRef& end : joint.ends)
-      rigid.join(local[joint.ends[0].strut], local[end.strut]);
+      rigid.join(local.at(joint.ends[0].strut), local.at(end.strut));
   }
   // A body with a clamped end does not move: it has no parameters.
   std::vector<char> clamped(count, 0);
@@ -94,7 +96,7 @@ void group_motions(const Scene& scene, int group, const std::vector<int>& struts
   std::vector<Eigen::RowVectorXd> rows;
   auto translation_rows = [&](int strut, Point p, double sign, Eigen::RowVectorXd& x,
                               Eigen::RowVectorXd& y) {
-    const int column = body_column[rigid.root(local[strut])];
+    const int column = body_column[rigid.root(local.at(strut))];
     if (column < 0) return;
     x(column) += sign;
     x(column + 2) -= sign * (p[1] - centre[1]) / size;
@@ -114,8 +116,8 @@ void group_motions(const Scene& scene, int group, const std::vector<int>& struts
       add(y);
     }
   }
-  for (const Joint& joint : scene.joints) {
-    if (local[joint.ends[0].strut] < 0) continue;
+  for (int j : joints) {
+    const Joint& joint = scene.joints[j];
     const Point p = end_point(scene.struts[joint.ends[0].strut], joint.ends[0].end);
     for (size_t e = 1; e < joint.ends.size(); ++e) {
       Eigen::RowVectorXd x = Eigen::RowVectorXd::Zero(columns), y = x;
@@ -199,8 +201,11 @@ FrameKinematics frame_kinematics(const Scene& scene) {
     k.position_in_group[s] = static_cast<int>(k.groups[group].size());
     k.groups[group].push_back(s);
   }
+  std::vector<std::vector<int>> joints_of(k.groups.size());
+  for (size_t j = 0; j < scene.joints.size(); ++j)
+    joints_of[k.group_of_strut[scene.joints[j].ends[0].strut]].push_back(static_cast<int>(j));
   for (size_t g = 0; g < k.groups.size(); ++g)
-    group_motions(scene, static_cast<int>(g), k.groups[g], k.motions);
+    group_motions(scene, static_cast<int>(g), k.groups[g], joints_of[g], k.motions);
   return k;
 }
 
@@ -210,7 +215,9 @@ std::vector<Mechanism> frame_mechanisms(const Scene& scene, const FrameKinematic
   UnionFind linked(groups);
   for (const Contact& contact : scene.contacts)
     linked.join(k.group_of_strut[contact.a.strut], k.group_of_strut[contact.b.strut]);
-  std::vector<std::vector<int>> motions_of(groups), contacts_of(groups);
+  std::vector<std::vector<int>> motions_of(groups), contacts_of(groups), struts_of(groups);
+  for (size_t s = 0; s < scene.struts.size(); ++s)
+    struts_of[linked.root(k.group_of_strut[s])].push_back(static_cast<int>(s));
   for (size_t m = 0; m < k.motions.size(); ++m)
     motions_of[linked.root(k.motions[m].group)].push_back(static_cast<int>(m));
   for (size_t c = 0; c < scene.contacts.size(); ++c)
@@ -232,16 +239,14 @@ std::vector<Mechanism> frame_mechanisms(const Scene& scene, const FrameKinematic
         const FreeMotion& motion = k.motions[motions[j]];
         const auto ua = motion_at(k, motion, contact.a.strut, pa);
         const auto ub = motion_at(k, motion, contact.b.strut, pb);
-        M(static_cast<int>(r), j) =
-            g.normal[0] * (ua[0] - ub[0]) + g.normal[1] * (ua[1] - ub[1]);
+        M(static_cast<int>(r), j) = g.normal[0] * (ua[0] - ub[0]) + g.normal[1] * (ua[1] - ub[1]);
       }
     }
     const Eigen::MatrixXd free = null_space(M, cols);
     if (free.cols() == 0) continue;
     // Struts any unheld motion moves.
     Mechanism mechanism;
-    for (int s = 0; s < static_cast<int>(scene.struts.size()); ++s) {
-      if (linked.root(k.group_of_strut[s]) != root) continue;
+    for (int s : struts_of[root]) {
       double largest = 0.0;
       for (int f = 0; f < free.cols(); ++f)
         for (Point p : {scene.struts[s].from, scene.struts[s].to}) {

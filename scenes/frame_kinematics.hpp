@@ -24,13 +24,13 @@ namespace fetic::scenes {
 // rigidly, u(p) = (a - theta (p_y - c_y), b + theta (p_x - c_x)), rotation theta.
 struct FreeMotion {
   int group = 0;
-  Point centre{};                        // c: the group's centre
+  Point centre{};                               // c: the group's centre
   std::vector<std::array<double, 3>> of_strut;  // (a, b, theta) per strut of the group
 };
 
 struct FrameKinematics {
   std::vector<int> group_of_strut;
-  std::vector<int> position_in_group;  // per strut: its index in groups[group_of_strut]
+  std::vector<int> position_in_group;    // per strut: its index in groups[group_of_strut]
   std::vector<std::vector<int>> groups;  // struts connected by joints, in increasing order
   std::vector<FreeMotion> motions;       // orthonormal per group (translations and rotation
                                          // scaled by the group's size)

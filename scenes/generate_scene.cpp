@@ -50,7 +50,8 @@ Scene generate_portal_pairs(const GenerateOptions& o) {
       const double modulus = E * uniform(0.7, 1.4);
       const std::string tag = std::to_string(p + 1) + (side == 0 ? "L" : "R");
       const int left = add("c" + tag + "a", {x0, 0.0}, {x0, height}, modulus, true);
-      const int right = add("c" + tag + "b", {x0 + width, 0.0}, {x0 + width, height}, modulus, true);
+      const int right =
+          add("c" + tag + "b", {x0 + width, 0.0}, {x0 + width, height}, modulus, true);
       const int beam = add("b" + tag, {x0, height}, {x0 + width, height}, modulus, false);
       joint({left, StrutEnd::To}, {beam, StrutEnd::From});
       joint({right, StrutEnd::To}, {beam, StrutEnd::To});

@@ -472,7 +472,8 @@ class SceneParser {
         continue;
       }
       if (const toml::node* moment = table.get("moment")) {
-        read_.error(line_of(*moment), label + ": 'moment' needs the frame model (model = \"frame\")");
+        read_.error(line_of(*moment),
+                    label + ": 'moment' needs the frame model (model = \"frame\")");
         ok = false;
       }
       if (per_length && (at || force)) {
@@ -594,14 +595,14 @@ class SceneParser {
       if (text == "to") return strut ? strut->elements : 0;
       if (text.empty() || text.size() > 18 ||
           !std::all_of(text.begin(), text.end(), [](char c) { return c >= '0' && c <= '9'; })) {
-        read_.error(line_of(node), what + " must be \"from\", \"to\" or a node index, got \"" +
-                                       text + "\"");
+        read_.error(line_of(node),
+                    what + " must be \"from\", \"to\" or a node index, got \"" + text + "\"");
         return std::nullopt;
       }
       index = std::stoll(text);
     } else {
-      read_.error(line_of(node), what + " must be \"from\", \"to\" or a node index, got " +
-                                     type_name(node));
+      read_.error(line_of(node),
+                  what + " must be \"from\", \"to\" or a node index, got " + type_name(node));
       return std::nullopt;
     }
     if (strut && strut->elements > 0 && (index < 0 || index > strut->elements)) {
@@ -702,8 +703,8 @@ class SceneParser {
     const std::string digits = text.substr(at + 1);
     if (digits.empty() || digits.size() > 18 ||
         !std::all_of(digits.begin(), digits.end(), [](char c) { return c >= '0' && c <= '9'; })) {
-      read_.error(line_of(node), what + ": \"" + text + "\" must end in a node index, e.g. \"" +
-                                     name + "@0\"");
+      read_.error(line_of(node),
+                  what + ": \"" + text + "\" must end in a node index, e.g. \"" + name + "@0\"");
       return std::nullopt;
     }
     const long long k = std::stoll(digits);
@@ -787,8 +788,10 @@ class SceneParser {
         if (!ref) {
           ok = false;
         } else if (ref->node >= 0) {
-          read_.error(line_of(item), label + ": a joint connects strut ends (\"NAME.from\" or "
-                                             "\"NAME.to\"), got \"" + *text + "\"");
+          read_.error(line_of(item), label +
+                                         ": a joint connects strut ends (\"NAME.from\" or "
+                                         "\"NAME.to\"), got \"" +
+                                         *text + "\"");
           ok = false;
         } else {
           joint.ends.push_back(*ref);

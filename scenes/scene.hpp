@@ -33,7 +33,7 @@ struct Strut {
   int elements_across = 0;
   int subdomains_across = 1;
   // frame model only
-  double inertia = 0.0;  // second moment of area of the cross-section
+  double inertia = 0.0;      // second moment of area of the cross-section
   bool pinned_from = false;  // pinned support: ux, uy held, rotation free
   bool pinned_to = false;
   int line = 0;  // line of the [[strut]] header, for messages
@@ -54,8 +54,8 @@ struct Load {
   int strut = -1;
   bool per_length = false;  // true: force per unit length along the whole strut
   StrutEnd at = StrutEnd::From;
-  int node = -1;  // frame model: 'at' given as a node index; -1 for an end
-  Point force{};  // [N] at an end, or [N/m] along the strut
+  int node = -1;        // frame model: 'at' given as a node index; -1 for an end
+  Point force{};        // [N] at an end, or [N/m] along the strut
   double moment = 0.0;  // frame model: [N m] at the node, counter-clockwise
   int line = 0;
 };

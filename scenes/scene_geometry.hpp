@@ -34,7 +34,7 @@ Point node_point(const Scene& scene, EndRef ref);
 // (x_b - x_a) / |x_b - x_a|; the gap g = n.(x_b - x_a), a negative g within
 // kGapRoundingTolerance x the longer strut taken as zero.
 struct FrameContactGeometry {
-  Point normal{};         // unit; (0, 0) when the nodes coincide and no normal is given
+  Point normal{};  // unit; (0, 0) when the nodes coincide and no normal is given
   double gap = 0.0;
   double distance = 0.0;  // |x_b - x_a|
   bool coincide = false;  // the nodes are at one point (within the rounding tolerance)

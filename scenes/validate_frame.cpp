@@ -87,12 +87,12 @@ void check_joints(const Scene& scene, std::vector<Problem>& problems,
       if (!inserted) {
         const Joint& other = scene.joints[it->second];
         problems.push_back(
-            {joint.line, label + ": the end " + end_label(scene, end) +
-                             (it->second == static_cast<int>(j)
-                                  ? " is listed twice"
-                                  : " is already in the joint on line " +
-                                        std::to_string(other.line) +
-                                        " (list all ends that meet at a point in one joint)")});
+            {joint.line,
+             label + ": the end " + end_label(scene, end) +
+                 (it->second == static_cast<int>(j)
+                      ? " is listed twice"
+                      : " is already in the joint on line " + std::to_string(other.line) +
+                            " (list all ends that meet at a point in one joint)")});
         continue;
       }
       const Point p = end_point(scene.struts[end.strut], end.end);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <numeric>
 #include <vector>
 
@@ -99,6 +100,9 @@ std::string frame_unbounded_struts(const Model& model, double load_factor) {
   const auto& motions = kinematics.motions;
   const int k = static_cast<int>(motions.size());
   if (k == 0) return {};
+  std::vector<std::vector<int>> motions_of(kinematics.groups.size());
+  for (int m = 0; m < k; ++m)
+    motions_of[motions[m].group].push_back(m);
   auto motion_of = [&](int m, int strut, int node) {
     const Vec2& p = model.struts[strut].nodes[node];
     return scenes::motion_at(kinematics, motions[m], strut, {p.x(), p.y()});
@@ -109,26 +113,24 @@ std::string frame_unbounded_struts(const Model& model, double load_factor) {
   for (size_t s = 0; s < model.struts.size(); ++s) {
     const Eigen::VectorXd& f = model.loads[s];
     load_scale += f.lpNorm<1>();
+    const auto& group_motions = motions_of[kinematics.group_of_strut[s]];
+    if (group_motions.empty()) continue;
     for (int node = 0; node < model.struts[s].node_count(); ++node) {
       if (f.segment<3>(3 * node).isZero()) continue;
-      for (int m = 0; m < k; ++m) {
+      for (int m : group_motions) {
         const auto u = motion_of(m, static_cast<int>(s), node);
-        work(m) += load_factor * (f(3 * node) * u[0] + f(3 * node + 1) * u[1] + f(3 * node + 2) * u[2]);
+        work(m) +=
+            load_factor * (f(3 * node) * u[0] + f(3 * node + 1) * u[1] + f(3 * node + 2) * u[2]);
       }
     }
   }
-  // Change of each contact gap per unit of each motion (A Z).
-  const int pairs = static_cast<int>(model.pairs.size());
-  Eigen::MatrixXd AZ = Eigen::MatrixXd::Zero(pairs, k);
-  for (int p = 0; p < pairs; ++p) {
-    const ContactPair& pair = model.pairs[p];
-    for (int m = 0; m < k; ++m) {
-      const auto ua = motion_of(m, pair.strut_a, pair.node_a);
-      const auto ub = motion_of(m, pair.strut_b, pair.node_b);
-      AZ(p, m) = pair.normal.x() * (ua[0] - ub[0]) + pair.normal.y() * (ua[1] - ub[1]);
-    }
-  }
-  // Clusters of motions that some contact changes together.
+  // Change of each contact gap per unit of each motion of the two groups it touches (A Z),
+  // and the clusters of motions that contacts change together.
+  struct Entry {
+    int pair, motion;
+    double value;
+  };
+  std::vector<Entry> entries;
   std::vector<int> parent(k);
   std::iota(parent.begin(), parent.end(), 0);
   auto root = [&](int i) {
@@ -136,51 +138,72 @@ std::string frame_unbounded_struts(const Model& model, double load_factor) {
       i = parent[i] = parent[parent[i]];
     return i;
   };
-  for (int p = 0; p < pairs; ++p) {
+  for (int p = 0; p < static_cast<int>(model.pairs.size()); ++p) {
+    const ContactPair& pair = model.pairs[p];
+    const int ga = kinematics.group_of_strut[pair.strut_a];
+    const int gb = kinematics.group_of_strut[pair.strut_b];
+    std::vector<int> touched = motions_of[ga];
+    if (gb != ga) touched.insert(touched.end(), motions_of[gb].begin(), motions_of[gb].end());
     int first = -1;
-    for (int m = 0; m < k; ++m)
-      if (std::abs(AZ(p, m)) > 1e-12) {
-        if (first < 0) first = m;
-        parent[root(m)] = root(first);
-      }
+    for (int m : touched) {
+      const auto ua = motion_of(m, pair.strut_a, pair.node_a);
+      const auto ub = motion_of(m, pair.strut_b, pair.node_b);
+      const double value = pair.normal.x() * (ua[0] - ub[0]) + pair.normal.y() * (ua[1] - ub[1]);
+      if (std::abs(value) <= 1e-12) continue;
+      entries.push_back({p, m, value});
+      if (first < 0) first = m;
+      parent[root(m)] = root(first);
+    }
   }
+  std::vector<std::vector<int>> members_of(k), entries_of(k);
+  for (int m = 0; m < k; ++m)
+    members_of[root(m)].push_back(m);
+  for (size_t e = 0; e < entries.size(); ++e)
+    entries_of[root(entries[e].motion)].push_back(static_cast<int>(e));
   const double tolerance = 1e-10 * std::abs(load_factor) * load_scale;
   for (int cluster = 0; cluster < k; ++cluster) {
-    if (root(cluster) != cluster) continue;
-    std::vector<int> members, rows;
-    for (int m = 0; m < k; ++m)
-      if (root(m) == cluster) members.push_back(m);
-    for (int p = 0; p < pairs; ++p)
-      for (int m : members)
-        if (std::abs(AZ(p, m)) > 1e-12) {
-          rows.push_back(p);
-          break;
-        }
+    const std::vector<int>& members = members_of[cluster];
+    if (members.empty()) continue;
+    std::vector<int> rows;
+    std::map<int, int> row_of_pair, column_of_motion;
+    for (size_t i = 0; i < members.size(); ++i)
+      column_of_motion[members[i]] = static_cast<int>(i);
+    for (int e : entries_of[cluster])
+      if (row_of_pair.emplace(entries[e].pair, static_cast<int>(row_of_pair.size())).second)
+        rows.push_back(entries[e].pair);
     const int n = static_cast<int>(members.size());
-    Eigen::MatrixXd M(n, static_cast<int>(rows.size()));
+    Eigen::MatrixXd M = Eigen::MatrixXd::Zero(n, static_cast<int>(rows.size()));
     Eigen::VectorXd b(n);
-    for (int i = 0; i < n; ++i) {
+    for (int i = 0; i < n; ++i)
       b(i) = work(members[i]);
-      for (size_t j = 0; j < rows.size(); ++j)
-        M(i, static_cast<int>(j)) = AZ(rows[j], members[i]);
-    }
+    for (int e : entries_of[cluster])
+      M(column_of_motion[entries[e].motion], row_of_pair[entries[e].pair]) = entries[e].value;
     const Eigen::VectorXd residual =
         rows.empty() ? b : Eigen::VectorXd(b - M * nonnegative_least_squares(M, b));
     if (!(residual.norm() > tolerance)) continue;
+    // The struts the escaping motion moves.
     std::vector<int> escaping;
-    for (size_t s = 0; s < model.struts.size(); ++s) {
-      double largest = 0.0;
-      for (int node : {0, model.struts[s].nx}) {
-        double ux = 0.0, uy = 0.0;
-        for (int i = 0; i < n; ++i) {
-          const auto u = motion_of(members[i], static_cast<int>(s), node);
-          ux += residual(i) * u[0];
-          uy += residual(i) * u[1];
+    std::vector<char> group_seen(kinematics.groups.size(), 0);
+    for (int m : members) {
+      const int g = motions[m].group;
+      if (group_seen[g]) continue;
+      group_seen[g] = 1;
+      for (int s : kinematics.groups[g]) {
+        double largest = 0.0;
+        for (int node : {0, model.struts[s].nx}) {
+          double ux = 0.0, uy = 0.0;
+          for (int i = 0; i < n; ++i) {
+            if (motions[members[i]].group != g) continue;
+            const auto u = motion_of(members[i], s, node);
+            ux += residual(i) * u[0];
+            uy += residual(i) * u[1];
+          }
+          largest = std::max(largest, std::hypot(ux, uy));
         }
-        largest = std::max(largest, std::hypot(ux, uy));
+        if (largest > 1e-6 * residual.norm()) escaping.push_back(s);
       }
-      if (largest > 1e-6 * residual.norm()) escaping.push_back(static_cast<int>(s));
     }
+    std::sort(escaping.begin(), escaping.end());
     return escape_message(model, escaping, load_factor);
   }
   return {};

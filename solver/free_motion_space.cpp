@@ -35,9 +35,13 @@ FreeMotionSpace::FreeMotionSpace(const FetiSystem& system) : system_(system) {
   const auto& motions = model.kinematics.motions;
   const int k = static_cast<int>(motions.size());
   std::vector<Eigen::Triplet<double>> entries;
+  std::vector<std::vector<int>> subdomains_of(model.kinematics.groups.size());
+  for (size_t j = 0; j < d.subdomains.size(); ++j)
+    subdomains_of[model.kinematics.group_of_strut[d.subdomains[j].strut]].push_back(
+        static_cast<int>(j));
   for (int m = 0; m < k; ++m) {
-    for (const Subdomain& sub : d.subdomains) {
-      if (model.kinematics.group_of_strut[sub.strut] != motions[m].group) continue;
+    for (int j : subdomains_of[motions[m].group]) {
+      const Subdomain& sub = d.subdomains[j];
       const Vec2 c = box_centre(model.struts[sub.strut], sub.box);
       const auto u = scenes::motion_at(model.kinematics, motions[m], sub.strut, {c.x(), c.y()});
       const double values[3] = {u[2], u[0], u[1]};  // the order of rigid_body_modes
@@ -75,21 +79,28 @@ FreeMotionSpace::FreeMotionSpace(const FetiSystem& system) : system_(system) {
     clusters_[c].motions.push_back(m);
   }
   for (int r = d.equality_rows; r < d.row_count(); ++r)
-    if (!row_motions[r].empty()) clusters_[cluster_of[root(row_motions[r].front())]].rows.push_back(r);
+    if (!row_motions[r].empty())
+      clusters_[cluster_of[root(row_motions[r].front())]].rows.push_back(r);
   for (Cluster& cluster : clusters_) {
     for (int m : cluster.motions)
       for (Eigen::SparseMatrix<double>::InnerIterator it(Z_, m); it; ++it)
         cluster.modes.push_back(static_cast<int>(it.row()));
+    for (int m : cluster.motions)
+      for (int j : subdomains_of[motions[m].group])
+        cluster.subdomains.push_back(j);
+    std::sort(cluster.subdomains.begin(), cluster.subdomains.end());
+    cluster.subdomains.erase(std::unique(cluster.subdomains.begin(), cluster.subdomains.end()),
+                             cluster.subdomains.end());
     std::sort(cluster.modes.begin(), cluster.modes.end());
-    cluster.modes.erase(std::unique(cluster.modes.begin(), cluster.modes.end()), cluster.modes.end());
+    cluster.modes.erase(std::unique(cluster.modes.begin(), cluster.modes.end()),
+                        cluster.modes.end());
   }
 }
 
 std::vector<UnheldGroup> FreeMotionSpace::unheld(const std::vector<char>& active) const {
   const Decomposition& d = system_.decomposition();
   for (int r = 0; r < d.equality_rows; ++r)
-    if (!active[r])
-      throw std::logic_error("FreeMotionSpace: every equality row must be active");
+    if (!active[r]) throw std::logic_error("FreeMotionSpace: every equality row must be active");
   std::vector<UnheldGroup> groups;
   for (const Cluster& cluster : clusters_) {
     const int k = static_cast<int>(cluster.motions.size());
@@ -118,11 +129,11 @@ std::vector<UnheldGroup> FreeMotionSpace::unheld(const std::vector<char>& active
       group.direction = Eigen::VectorXd::Zero(d.total_modes);
       for (int i = 0; i < n; ++i)
         group.direction(cluster.modes[i]) = Q(i, c);
-      for (size_t j = 0; j < d.subdomains.size(); ++j) {
+      for (int j : cluster.subdomains) {
         const Subdomain& sub = d.subdomains[j];
         if (group.direction.segment(sub.mode_offset, sub.mode_count).lpNorm<Eigen::Infinity>() >
             kNegligible)
-          group.subdomains.push_back(static_cast<int>(j));
+          group.subdomains.push_back(j);
       }
       groups.push_back(std::move(group));
     }

@@ -31,12 +31,13 @@ class FreeMotionSpace {
  private:
   struct Cluster {
     std::vector<int> motions;
-    std::vector<int> rows;   // contact rows some motion of the cluster changes
-    std::vector<int> modes;  // modes some motion of the cluster moves
+    std::vector<int> rows;        // contact rows some motion of the cluster changes
+    std::vector<int> modes;       // modes some motion of the cluster moves
+    std::vector<int> subdomains;  // of the struts its motions move
   };
 
   const FetiSystem& system_;
-  Eigen::SparseMatrix<double> Z_;   // modes x motions
+  Eigen::SparseMatrix<double> Z_;                    // modes x motions
   Eigen::SparseMatrix<double, Eigen::RowMajor> GZ_;  // rows x motions: G'Z
   std::vector<Cluster> clusters_;
 };

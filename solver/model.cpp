@@ -30,7 +30,8 @@ void add_frame_loads(const scenes::Scene& scene, const StrutMesh& mesh, Eigen::V
         load(3 * (i + 1) + 2) -= moment;
       }
     } else {
-      const int node = item.node >= 0 ? item.node : (item.at == scenes::StrutEnd::From ? 0 : mesh.nx);
+      const int node =
+          item.node >= 0 ? item.node : (item.at == scenes::StrutEnd::From ? 0 : mesh.nx);
       load.segment<2>(3 * node) += force;
       load(3 * node + 2) += item.moment;
     }

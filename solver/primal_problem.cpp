@@ -82,7 +82,8 @@ PrimalProblem::PrimalProblem(const Model& model, bool factorize_blocks) : model_
           if (mask >> c & 1u) continue;
           if (owner != owners[s].end() && c < owner->second.shared &&
               !(owner->second.strut == s && owner->second.node == node)) {
-            global_of_[s][node * d + c] = global_of_[owner->second.strut][owner->second.node * d + c];
+            global_of_[s][node * d + c] =
+                global_of_[owner->second.strut][owner->second.node * d + c];
             continue;
           }
           global_of_[s][node * d + c] = next++;
@@ -119,12 +120,14 @@ PrimalProblem::PrimalProblem(const Model& model, bool factorize_blocks) : model_
       block.kernel = frame_kernel(motions_of_group[g], block);
     } else if (model.floating(block.strut)) {
       // No DOF is held, so block DOFs are strut DOFs.
-      block.kernel = rigid_body_modes(model.struts[block.strut], whole_strut(model.struts[block.strut]));
+      block.kernel =
+          rigid_body_modes(model.struts[block.strut], whole_strut(model.struts[block.strut]));
       kernel_struts_.resize(kernel_struts_.size() + block.kernel.cols(), {block.strut});
     } else {
       block.kernel.resize(block.size, 0);
     }
-    const int first_column = static_cast<int>(kernel_struts_.size()) - static_cast<int>(block.kernel.cols());
+    const int first_column =
+        static_cast<int>(kernel_struts_.size()) - static_cast<int>(block.kernel.cols());
     for (int m = 0; m < block.kernel.cols(); ++m)
       for (int j = 0; j < block.size; ++j)
         if (block.kernel(j, m) != 0.0)
@@ -132,9 +135,9 @@ PrimalProblem::PrimalProblem(const Model& model, bool factorize_blocks) : model_
     if (factorize_blocks) {
       const CholmodFactor::Result result = block.inverse.factorize(Ks, block.kernel);
       if (result != CholmodFactor::Result::Ok || block.inverse.rcond() < kSingularRcond)
-        throw SolverError(singular_message(model, block.strut, result,
-                                           block.struts.size() > 1 ? "its group of joined struts"
-                                                                   : "the strut"));
+        throw SolverError(
+            singular_message(model, block.strut, result,
+                             block.struts.size() > 1 ? "its group of joined struts" : "the strut"));
     }
     for (int s : block.struts)
       for (int dof = 0; dof < model.struts[s].dof_count(); ++dof)
@@ -209,8 +212,8 @@ Eigen::MatrixXd PrimalProblem::frame_kernel(const std::vector<int>& motions,
       const StrutMesh& mesh = model_.struts[s];
       double largest = 0.0;
       for (int node = 0; node < mesh.node_count(); ++node) {
-        const auto u = scenes::motion_at(kinematics, motion, s,
-                                         {mesh.nodes[node].x(), mesh.nodes[node].y()});
+        const auto u =
+            scenes::motion_at(kinematics, motion, s, {mesh.nodes[node].x(), mesh.nodes[node].y()});
         for (int c = 0; c < 3; ++c) {
           const int global = global_of_[s][3 * node + c];
           if (global >= 0) kernel(global - block.offset, static_cast<int>(m)) = u[c];

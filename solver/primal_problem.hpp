@@ -24,11 +24,11 @@ namespace fetic::solver {
 using RowSparseMatrix = Eigen::SparseMatrix<double, Eigen::RowMajor, int>;
 
 struct StrutBlock {
-  int strut = 0;             // the first of its struts
-  std::vector<int> struts;   // one strut, or (frame model) a group joined by joints
-  int offset = 0;  // first global DOF
+  int strut = 0;            // the first of its struts
+  std::vector<int> struts;  // one strut, or (frame model) a group joined by joints
+  int offset = 0;           // first global DOF
   int size = 0;
-  Eigen::MatrixXd kernel;       // size x modes; no columns when supports hold the block
+  Eigen::MatrixXd kernel;  // size x modes; no columns when supports hold the block
   GeneralizedInverse inverse;
 };
 

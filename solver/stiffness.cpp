@@ -57,11 +57,11 @@ Eigen::Matrix<double, 6, 6> local_beam_stiffness(double E, double area, double i
   const double a = E * area / h;
   const double b = E * inertia / (h * h * h);
   Eigen::Matrix<double, 6, 6> k;
-  k << a, 0, 0, -a, 0, 0,                                              //
-      0, 12 * b, 6 * b * h, 0, -12 * b, 6 * b * h,                     //
-      0, 6 * b * h, 4 * b * h * h, 0, -6 * b * h, 2 * b * h * h,       //
-      -a, 0, 0, a, 0, 0,                                               //
-      0, -12 * b, -6 * b * h, 0, 12 * b, -6 * b * h,                   //
+  k << a, 0, 0, -a, 0, 0,                                         //
+      0, 12 * b, 6 * b * h, 0, -12 * b, 6 * b * h,                //
+      0, 6 * b * h, 4 * b * h * h, 0, -6 * b * h, 2 * b * h * h,  //
+      -a, 0, 0, a, 0, 0,                                          //
+      0, -12 * b, -6 * b * h, 0, 12 * b, -6 * b * h,              //
       0, 6 * b * h, 2 * b * h * h, 0, -6 * b * h, 4 * b * h * h;
   return k;
 }
@@ -113,7 +113,8 @@ namespace {
 void assemble_beams(const StrutMesh& mesh, const NodeBox& box,
                     std::vector<Eigen::Triplet<double>>& entries) {
   const double h = mesh.length / mesh.nx;
-  const Eigen::Matrix<double, 6, 6> Ke = beam_stiffness(mesh.E, mesh.area, mesh.inertia, h, mesh.e1);
+  const Eigen::Matrix<double, 6, 6> Ke =
+      beam_stiffness(mesh.E, mesh.area, mesh.inertia, h, mesh.e1);
   entries.reserve(36 * static_cast<size_t>(box.i1 - box.i0));
   for (int i = box.i0; i < box.i1; ++i) {
     const int nodes[2] = {box.local(i, 0), box.local(i + 1, 0)};
@@ -189,8 +190,8 @@ Eigen::VectorXd axial_stress(const StrutMesh& mesh, const NodeBox& box,
     const double h = mesh.length / mesh.nx;
     Eigen::VectorXd stress(box.i1 - box.i0);
     for (int i = box.i0; i < box.i1; ++i) {
-      const Vec2 du = box_dofs.segment<2>(3 * box.local(i + 1, 0)) -
-                      box_dofs.segment<2>(3 * box.local(i, 0));
+      const Vec2 du =
+          box_dofs.segment<2>(3 * box.local(i + 1, 0)) - box_dofs.segment<2>(3 * box.local(i, 0));
       stress(i - box.i0) = mesh.E * du.dot(mesh.e1) / h;
     }
     return stress;

@@ -40,8 +40,8 @@ Eigen::Matrix<double, 6, 6> beam_stiffness(double E, double area, double inertia
 // axial force N (tension positive) and the bending moment at both element ends (positive
 // when it bends the strut towards +e2, i.e. sagging for a strut drawn left to right).
 struct BeamForces {
-  Eigen::VectorXd axial;        // per element
-  Eigen::MatrixXd moment;       // elements x 2: at the element's first and second node
+  Eigen::VectorXd axial;   // per element
+  Eigen::MatrixXd moment;  // elements x 2: at the element's first and second node
 };
 BeamForces beam_forces(const StrutMesh& mesh, const NodeBox& box, const Eigen::VectorXd& box_dofs);
 

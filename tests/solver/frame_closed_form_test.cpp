@@ -40,10 +40,11 @@ TEST_CASE("frame: a cantilever's tip deflects P L^3 / (3 E I) and turns P L^2 / 
     const double c = std::cos(angle), s = std::sin(angle);
     // The load across the axis (+90 degrees): the tip moves that way and turns
     // counter-clockwise.
-    const std::string text = "model = \"frame\"\n[[strut]]\nname = \"C\"\nfrom = [0.0, 0.0]\nto = " +
-                             point(L * c, L * s) + "\nE = 2.1e11\narea = 2.0e-3\ninertia = 3.0e-6\n" +
-                             "elements = 8\nsubdomains = 3\nfixed = [\"from\"]\n[[load]]\nstrut = \"C\"\n" +
-                             "at = \"to\"\nforce = " + point(-P * s, P * c) + "\n";
+    const std::string text =
+        "model = \"frame\"\n[[strut]]\nname = \"C\"\nfrom = [0.0, 0.0]\nto = " +
+        point(L * c, L * s) + "\nE = 2.1e11\narea = 2.0e-3\ninertia = 3.0e-6\n" +
+        "elements = 8\nsubdomains = 3\nfixed = [\"from\"]\n[[load]]\nstrut = \"C\"\n" +
+        "at = \"to\"\nforce = " + point(-P * s, P * c) + "\n";
     for (MethodKind kind : {MethodKind::ActiveSet, MethodKind::ConjugateGradient, MethodKind::Feti,
                             MethodKind::FetiC}) {
       INFO("angle " << angle << ", method " << solver::to_string(kind));
@@ -67,17 +68,25 @@ std::string post_on_beam(double P, double gap, double angle, const char* normal)
   const double c = std::cos(angle), s = std::sin(angle);
   auto at = [&](double x, double y) { return point(c * x - s * y, s * x + c * y); };
   return "model = \"frame\"\n[defaults]\nE = 2.0e11\n"
-         "[[strut]]\nname = \"beam\"\nfrom = " + at(0.0, 0.0) + "\nto = " + at(2.4, 0.0) +
-         "\narea = 3.0e-3\ninertia = 1.5e-5\nelements = 6\nsubdomains = 2\nfixed = [\"from\", \"to\"]\n"
-         "[[strut]]\nname = \"post\"\nfrom = " + at(1.2, 1.3) + "\nto = " + at(1.2, gap) +
+         "[[strut]]\nname = \"beam\"\nfrom = " +
+         at(0.0, 0.0) + "\nto = " + at(2.4, 0.0) +
+         "\narea = 3.0e-3\ninertia = 1.5e-5\nelements = 6\nsubdomains = 2\nfixed = [\"from\", "
+         "\"to\"]\n"
+         "[[strut]]\nname = \"post\"\nfrom = " +
+         at(1.2, 1.3) + "\nto = " + at(1.2, gap) +
          "\narea = 8.0e-4\ninertia = 4.0e-7\nelements = 4\nsubdomains = 2\nfixed = [\"from\"]\n"
-         "[[load]]\nstrut = \"post\"\nat = \"to\"\nforce = " + at(0.0, -P) + "\n"
-         "[[contact]]\na = \"beam@3\"\nb = \"post.to\"\n" + normal;
+         "[[load]]\nstrut = \"post\"\nat = \"to\"\nforce = " +
+         at(0.0, -P) +
+         "\n"
+         "[[contact]]\na = \"beam@3\"\nb = \"post.to\"\n" +
+         normal;
 }
 
 }  // namespace
 
-TEST_CASE("frame: a post pushed onto a clamped-clamped beam: force max(0, (P/k_p - g) / (1/k_p + 1/k_b))") {
+TEST_CASE(
+    "frame: a post pushed onto a clamped-clamped beam: force max(0, (P/k_p - g) / (1/k_p + "
+    "1/k_b))") {
   const double E = 2.0e11, L_beam = 2.4, I = 1.5e-5, A_post = 8.0e-4;
   const double k_b = 192.0 * E * I / (L_beam * L_beam * L_beam);
   int touching = 0;
@@ -96,8 +105,8 @@ TEST_CASE("frame: a post pushed onto a clamped-clamped beam: force max(0, (P/k_p
         REQUIRE(solved->state.status == solver::Status::Converged);
         CHECK(solved->state.force[0] == Approx(expected).epsilon(1e-8).margin(1e-9 * P));
         // The beam's middle moves down by force / k_b.
-        const double sag = -node_state(*solved, 0, 3).u.dot(
-            solver::Vec2(-std::sin(angle), std::cos(angle)));
+        const double sag =
+            -node_state(*solved, 0, 3).u.dot(solver::Vec2(-std::sin(angle), std::cos(angle)));
         CHECK(sag == Approx(expected / k_b).epsilon(1e-8).margin(1e-12));
       }
     }
@@ -112,10 +121,15 @@ TEST_CASE("frame: a symmetric two-leg pinned truss: apex deflection P L / (2 E A
     const std::string text =
         "model = \"frame\"\n[defaults]\nE = 2.1e11\narea = 6.0e-4\ninertia = 2.0e-7\n"
         "elements = 5\nsubdomains = 2\npinned = [\"from\"]\n"
-        "[[strut]]\nname = \"left\"\nfrom = " + point(-w, 0.0) + "\nto = " + point(0.0, h) + "\n"
-        "[[strut]]\nname = \"right\"\nfrom = " + point(w, 0.0) + "\nto = " + point(0.0, h) + "\n"
+        "[[strut]]\nname = \"left\"\nfrom = " +
+        point(-w, 0.0) + "\nto = " + point(0.0, h) +
+        "\n"
+        "[[strut]]\nname = \"right\"\nfrom = " +
+        point(w, 0.0) + "\nto = " + point(0.0, h) +
+        "\n"
         "[[joint]]\nends = [\"left.to\", \"right.to\"]\nkind = \"pinned\"\n"
-        "[[load]]\nstrut = \"right\"\nat = 5\nforce = [0.0, " + std::to_string(-P) + "]\n";
+        "[[load]]\nstrut = \"right\"\nat = 5\nforce = [0.0, " +
+        std::to_string(-P) + "]\n";
     for (MethodKind kind : {MethodKind::ActiveSet, MethodKind::ConjugateGradient, MethodKind::Feti,
                             MethodKind::FetiC}) {
       INFO("angle " << a << ", method " << solver::to_string(kind));

@@ -52,11 +52,12 @@ int check_against(const scenes::Scene& scene, const testing::ReferenceSolution& 
 
 TEST_CASE("frame: active set and FETI-C agree with CGAL on 120 random frame scenes of four kinds") {
   std::mt19937 rng(1717);
-  const testing::FrameKind kinds[] = {testing::FrameKind::PostOnBeam, testing::FrameKind::ApexOnStop,
-                                      testing::FrameKind::PortalOnStop,
-                                      testing::FrameKind::FloatingBeam};
-  const solver::Preconditioner preconditioners[] = {
-      solver::Preconditioner::Dirichlet, solver::Preconditioner::Lumped, solver::Preconditioner::None};
+  const testing::FrameKind kinds[] = {
+      testing::FrameKind::PostOnBeam, testing::FrameKind::ApexOnStop,
+      testing::FrameKind::PortalOnStop, testing::FrameKind::FloatingBeam};
+  const solver::Preconditioner preconditioners[] = {solver::Preconditioner::Dirichlet,
+                                                    solver::Preconditioner::Lumped,
+                                                    solver::Preconditioner::None};
   int scenes_checked = 0, contacts = 0, active = 0;
   for (int trial = 0; trial < 120; ++trial) {
     const std::string text = testing::random_frame_scene(rng, kinds[trial % 4]);
@@ -80,17 +81,18 @@ TEST_CASE("frame: active set and FETI-C agree with CGAL on 120 random frame scen
 }
 
 TEST_CASE("frame: every method agrees with CGAL on the bundled frame scenes") {
-  for (const char* name : {"frame_post_on_beam.toml", "frame_apex_stop.toml", "frame_portal_sway.toml",
-                           "frame_beam_on_contacts.toml", "frame_truss_bridge.toml",
-                           "frame_scaffold.toml"}) {
+  for (const char* name :
+       {"frame_post_on_beam.toml", "frame_apex_stop.toml", "frame_portal_sway.toml",
+        "frame_beam_on_contacts.toml", "frame_truss_bridge.toml", "frame_scaffold.toml"}) {
     INFO(name);
     const scenes::Scene scene = testing::bundled_scene(name);
     const testing::ReferenceSolution reference = testing::solve_reference_qp(scene, 1.0);
     REQUIRE(reference.optimal);
     const int active = check_against(scene, reference, MethodKind::ActiveSet);
     CHECK(active > 0);
-    for (solver::Preconditioner p : {solver::Preconditioner::Dirichlet, solver::Preconditioner::Lumped,
-                                     solver::Preconditioner::None}) {
+    for (solver::Preconditioner p :
+         {solver::Preconditioner::Dirichlet, solver::Preconditioner::Lumped,
+          solver::Preconditioner::None}) {
       solver::SolveOptions options;
       options.preconditioner = p;
       CHECK(check_against(scene, reference, MethodKind::FetiC, options) == active);

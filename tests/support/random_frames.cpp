@@ -99,7 +99,8 @@ class FrameWriter {
     for (size_t i = 0; i < ends.size(); ++i)
       text_ += (i ? ", \"" : "\"") + ends[i] + "\"";
     text_ += "]\n";
-    if (!rigid || chance(rng_, 0.5)) text_ += std::string("kind = \"") + (rigid ? "rigid" : "pinned") + "\"\n";
+    if (!rigid || chance(rng_, 0.5))
+      text_ += std::string("kind = \"") + (rigid ? "rigid" : "pinned") + "\"\n";
   }
 
   void force(const std::string& strut, const std::string& at, V f, double moment = 0.0) {
@@ -199,7 +200,8 @@ void post_on_beam(std::mt19937& rng, FrameWriter& w) {
   w.force(lower, w.at(lower, -1), {uniform(rng, -0.2, 0.2) * std::abs(P), P});
   const double stiffness = 48.0 * E * Ib / (L * L * L);
   if (chance(rng, 0.5))
-    w.per_length(beam, (stiffness * 1e-3 / L) * V{uniform(rng, -0.2, 0.2), uniform(rng, -1.0, 1.0)});
+    w.per_length(beam,
+                 (stiffness * 1e-3 / L) * V{uniform(rng, -0.2, 0.2), uniform(rng, -1.0, 1.0)});
   if (chance(rng, 0.3))
     w.force(beam, w.at(beam, integer(rng, 1, eb - 1)), {0, 0},
             uniform(rng, -1.0, 1.0) * stiffness * 1e-3 * L);
@@ -214,7 +216,8 @@ void apex_on_stop(std::mt19937& rng, FrameWriter& w) {
   const bool rigid = chance(rng, 0.5);
   std::vector<std::string> legs, ends;
   for (const V& foot : feet) {
-    legs.push_back(w.strut(foot, apex, E, A, I, integer(rng, 2, 6), chance(rng, 0.5) ? "pinned" : "fixed", ""));
+    legs.push_back(w.strut(foot, apex, E, A, I, integer(rng, 2, 6),
+                           chance(rng, 0.5) ? "pinned" : "fixed", ""));
     ends.push_back(w.end(legs.back(), false, false));
   }
   w.joint(ends, rigid);
@@ -230,7 +233,8 @@ void apex_on_stop(std::mt19937& rng, FrameWriter& w) {
   const V across = unit(uniform(rng, 0.0, 2.0 * kPi));
   const V f = (chance(rng, 0.85) ? P : -P) * u + uniform(rng, 0.0, 0.7) * P * across;
   w.force(leg, w.at(leg, -1), f, chance(rng, 0.3) ? uniform(rng, -0.1, 0.1) * P : 0.0);
-  if (chance(rng, 0.4)) w.per_length(legs[0], uniform(rng, -0.3, 0.3) * (P / H) * unit(uniform(rng, 0.0, 2.0 * kPi)));
+  if (chance(rng, 0.4))
+    w.per_length(legs[0], uniform(rng, -0.3, 0.3) * (P / H) * unit(uniform(rng, 0.0, 2.0 * kPi)));
 }
 
 void portal_on_stop(std::mt19937& rng, FrameWriter& w) {
@@ -244,10 +248,10 @@ void portal_on_stop(std::mt19937& rng, FrameWriter& w) {
       corners_rigid[i] = chance(rng, 0.6);
     }
   } while (feet_pinned[0] && feet_pinned[1] && !corners_rigid[0] && !corners_rigid[1]);
-  const std::string left = w.strut({0, 0}, {0, H}, E, A, I, integer(rng, 2, 6),
-                                   feet_pinned[0] ? "pinned" : "fixed", "");
-  const std::string right = w.strut({B, 0}, {B, H}, E, A, I, integer(rng, 2, 6),
-                                    feet_pinned[1] ? "pinned" : "fixed", "");
+  const std::string left =
+      w.strut({0, 0}, {0, H}, E, A, I, integer(rng, 2, 6), feet_pinned[0] ? "pinned" : "fixed", "");
+  const std::string right =
+      w.strut({B, 0}, {B, H}, E, A, I, integer(rng, 2, 6), feet_pinned[1] ? "pinned" : "fixed", "");
   const std::string beam = w.strut({0, H}, {B, H}, E, A, I, integer(rng, 2, 6), "", "");
   w.joint({w.end(left, false, false), w.end(beam, true, false)}, corners_rigid[0]);
   w.joint({w.end(beam, false, false), w.end(right, false, false)}, corners_rigid[1]);
@@ -284,16 +288,16 @@ void floating_beam(std::mt19937& rng, FrameWriter& w) {
     const double tilt = chance(rng, 0.5) ? uniform(rng, -0.05, 0.05) : 0.0;
     const V n{std::sin(tilt), std::cos(tilt)};
     const V tip = V{x, 0} - g * n;
-    const std::string post =
-        w.strut(tip - uniform(rng, 0.5, 1.2) * V{0, 1}, tip, E, A, I, integer(rng, 1, 4), "fixed", "");
+    const std::string post = w.strut(tip - uniform(rng, 0.5, 1.2) * V{0, 1}, tip, E, A, I,
+                                     integer(rng, 1, 4), "fixed", "");
     w.contact(w.end(post, false), w.node(beam, k), n, g == 0.0 || tilt != 0.0 || chance(rng, 0.3));
   }
   // A stop at one end, along the beam.
   const bool at_left = chance(rng, 0.5);
   const double g = random_gap(rng);
   const V end = at_left ? V{0, 0} : V{L, 0}, out = at_left ? V{-1, 0} : V{1, 0};
-  const std::string stop =
-      w.strut(end + (g + uniform(rng, 0.2, 0.5)) * out, end + g * out, E, A, I, integer(rng, 1, 3), "fixed", "");
+  const std::string stop = w.strut(end + (g + uniform(rng, 0.2, 0.5)) * out, end + g * out, E, A, I,
+                                   integer(rng, 1, 3), "fixed", "");
   w.contact(w.end(stop, false), w.end(beam, at_left), -1.0 * out, g == 0.0 || chance(rng, 0.3));
   // Loaded into all three contacts: down between the posts, and toward the stop.
   const double q = uniform(rng, 0.3, 3.0) * 384.0 * E * I * 1e-3 / (5.0 * L * L * L * L);

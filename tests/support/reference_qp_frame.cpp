@@ -194,8 +194,8 @@ ReferenceSolution solve_frame_reference_qp(const scenes::Scene& scene, double lo
         if (load.strut != s) continue;
         const Vec q(load.force[0], load.force[1]);
         if (!load.per_length) {
-          const int node = load.node >= 0 ? load.node
-                                          : (load.at == scenes::StrutEnd::From ? 0 : b.nodes - 1);
+          const int node =
+              load.node >= 0 ? load.node : (load.at == scenes::StrutEnd::From ? 0 : b.nodes - 1);
           const double values[3] = {q.x(), q.y(), load.moment};
           for (int c = 0; c < 3; ++c)
             if (unknown(dof(s, node, c)) >= 0) f(unknown(dof(s, node, c))) += values[c];
@@ -243,8 +243,7 @@ ReferenceSolution solve_frame_reference_qp(const scenes::Scene& scene, double lo
       else
         normal = (xb - xa).normalized();
       double gap = normal.dot(xb - xa);
-      const double scale =
-          std::max(beams[contact.a.strut].length, beams[contact.b.strut].length);
+      const double scale = std::max(beams[contact.a.strut].length, beams[contact.b.strut].length);
       if (std::abs(gap) < 1e-9 * scale) gap = 0.0;
       RowData row{static_cast<int>(c), {}, gap};
       for (int k = 0; k < 2; ++k) {
