@@ -73,7 +73,7 @@ int run_bench(const BenchArgs& args) {
   view.width = size.width;
   view.height = size.height;
   const render::FrameComposer composer(model, view, extent,
-                                       {model.title, args.method, std::string()});
+                                       {model.title, args.method, std::string(), std::string()});
   // Frames of the iteration movie, repeated until there are enough.
   const auto for_each_frame = [&](const std::function<void(const render::Frame&, int)>& use) {
     int index = 0;

@@ -43,7 +43,7 @@ Image render_final(const Shot& shot) {
   plan.every_iteration = false;
   const RunExtent extent = survey(model, *method, plan);
   const FrameComposer composer(model, shot.view, extent,
-                               {model.title, solver::to_string(shot.method), ""});
+                               {model.title, solver::to_string(shot.method), "", ""});
   Image image;
   run_frames(*method, plan, [&](const Frame& frame) {
     const ComposedFrame composed = composer.compose(frame);
