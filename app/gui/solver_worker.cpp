@@ -5,17 +5,10 @@
 #include <cmath>
 #include <limits>
 
-#include <omp.h>
-
+#include "app/render_output.hpp"
 #include "solver/load_sweep.hpp"
 
 namespace fetic::app::gui {
-namespace {
-
-// Unknowns from which the solver thread uses an OpenMP team (one thread a core).
-constexpr long kParallelFrom = 200000;
-
-}  // namespace
 
 double automatic_max_load(const solver::Model& model, const solver::Snapshot& at_one) {
   if (at_one.status != solver::Status::Converged || at_one.active_set_size() > 0) return 2.0;
@@ -209,7 +202,7 @@ void SolverWorker::run() {
         newer.reset();
         // Small models solve fastest on one thread: an OpenMP team's start-up and spinning
         // cost more than the work and take the cores the window renders on (llvmpipe).
-        omp_set_num_threads(target.model->dof_count() < kParallelFrom ? 1 : omp_get_num_procs());
+        use_solver_threads_for_pictures(*target.model);
         try {
           made_model = target.model;
           method = solver::make_method(target.method, *made_model, target.options);
