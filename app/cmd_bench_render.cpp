@@ -15,12 +15,12 @@
 #include <string>
 #include <thread>
 
-#include "app/atomic_file.hpp"
 #include "app/commands.hpp"
 #include "app/exit_codes.hpp"
 #include "app/interrupt.hpp"
 #include "app/method_options.hpp"
 #include "app/movie_stream.hpp"
+#include "app/output_file.hpp"
 #include "app/render_output.hpp"
 #include "app/scene_input.hpp"
 #include "render/colormap.hpp"
@@ -62,8 +62,9 @@ std::string load_average() {
 }
 
 int run_bench(const BenchArgs& args) {
-  const auto scene = load_scene_or_report(args.scene);
-  if (!scene) return kExitInvalidScene;
+  int status = kExitOk;
+  const auto scene = load_scene_or_report(args.scene, status);
+  if (!scene) return status;
   const solver::Model model = solver::build_model(*scene);
   use_solver_threads_for_pictures(model);
   const ImageSize size = *parse_image_size(args.size);
@@ -165,8 +166,8 @@ int run_bench(const BenchArgs& args) {
     if (have_ffmpeg) {
       const std::string movie = (std::filesystem::path(directory) / "bench.mp4").string();
       const auto start = Clock::now();
-      write_via_temporary(movie, [&](const std::string& file) {
-        MovieStream stream(file, size.width, size.height, 30);
+      write_output_by(movie, [&](const ExternalTarget& target) {
+        MovieStream stream(target, size.width, size.height, 30);
         for_each_frame(
             [&](const render::Frame& frame, int) { stream.submit(draw(frame, streamed)); });
         return stream.finish();
@@ -212,8 +213,7 @@ int run_bench(const BenchArgs& args) {
       std::printf("movie        not measured: ffmpeg is not installed\n");
     std::printf("load         %s\n", load_average().c_str());
   } catch (const OutputError& error) {
-    std::cerr << error.what() << '\n';
-    return kExitOutput;
+    return report_output_error(error);
   } catch (const render::RenderError& error) {
     std::cerr << directory << ": rendering failed: " << error.what() << '\n';
     return kExitOutput;

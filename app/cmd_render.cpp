@@ -9,12 +9,12 @@
 #include <string>
 #include <vector>
 
-#include "app/atomic_file.hpp"
 #include "app/commands.hpp"
 #include "app/exit_codes.hpp"
 #include "app/interrupt.hpp"
 #include "app/method_options.hpp"
 #include "app/movie_stream.hpp"
+#include "app/output_file.hpp"
 #include "app/render_output.hpp"
 #include "app/scene_input.hpp"
 #include "render/colormap.hpp"
@@ -43,8 +43,9 @@ struct RenderArgs {
 };
 
 int run_render(const RenderArgs& args) {
-  const auto scene = load_scene_or_report(args.scene);
-  if (!scene) return kExitInvalidScene;
+  int status = kExitOk;
+  const auto scene = load_scene_or_report(args.scene, status);
+  if (!scene) return status;
   const solver::Model model = solver::build_model(*scene);
   use_solver_threads_for_pictures(model);
   const ImageSize size = *parse_image_size(args.size);
@@ -106,7 +107,7 @@ int run_render(const RenderArgs& args) {
   // from the same rendered images.
   const bool frames_wanted = !args.out.empty();
   bool movie_wanted = !args.movie.empty();
-  int status = kExitOk;
+  status = kExitOk;
   if (movie_wanted && !program_on_path("ffmpeg")) {
     std::cerr << args.movie << ": ffmpeg is not installed, so no movie can be made"
               << (frames_wanted ? "; writing the PNG frames only" : "")
@@ -146,8 +147,8 @@ int run_render(const RenderArgs& args) {
   };
   try {
     if (movie_wanted) {
-      write_via_temporary(args.movie, [&](const std::string& temporary) {
-        MovieStream stream(temporary, size.width, size.height, args.fps);
+      write_output_by(args.movie, [&](const ExternalTarget& target) {
+        MovieStream stream(target, size.width, size.height, args.fps);
         render_frames(&stream);
         return stream.finish();
       });
@@ -164,8 +165,7 @@ int run_render(const RenderArgs& args) {
                 << "\n";
       return kExitInterrupted;
     }
-    std::cerr << error.what() << (movie_wanted ? " (ffmpeg failed)" : "") << '\n';
-    return kExitOutput;
+    return report_output_error(error);
   } catch (const render::RenderError& error) {
     std::cerr << (frames_wanted ? args.out : args.movie) << ": rendering failed: " << error.what()
               << '\n';
@@ -177,23 +177,25 @@ int run_render(const RenderArgs& args) {
     return kExitInterrupted;
   }
 
+  // With --movie - the movie goes to stdout: the report goes to stderr then.
+  std::ostream& report = is_stdout(args.movie) ? std::cerr : std::cout;
   if (frames_wanted) {
-    std::cout << "frames       " << written << " in " << args.out << " ("
-              << frame_name(0, extent.frame_count) << " .. "
-              << frame_name(written - 1, extent.frame_count) << "), " << size.width << "x"
-              << size.height << ", magnification " << composer.framing().magnification << "\n";
+    report << "frames       " << written << " in " << args.out << " ("
+           << frame_name(0, extent.frame_count) << " .. "
+           << frame_name(written - 1, extent.frame_count) << "), " << size.width << "x"
+           << size.height << ", magnification " << composer.framing().magnification << "\n";
     const std::string next =
         (std::filesystem::path(args.out) / frame_name(written, extent.frame_count)).string();
     if (std::filesystem::exists(next))
-      std::cout << "note         " << next
-                << " and later frames are from an earlier run; they were left alone\n";
+      report << "note         " << next
+             << " and later frames are from an earlier run; they were left alone\n";
   }
   if (movie_wanted)
-    std::cout << "movie        " << args.movie << " (" << written << " frames at " << args.fps
-              << " per second, " << size.width << "x" << size.height << ", magnification "
-              << composer.framing().magnification << ")\n";
-  std::cout << "renderer     " << headless->context->description() << ", " << args.samples
-            << (args.samples == 1 ? " sample" : " samples") << " per pixel\n";
+    report << "movie        " << args.movie << " (" << written << " frames at " << args.fps
+           << " per second, " << size.width << "x" << size.height << ", magnification "
+           << composer.framing().magnification << ")\n";
+  report << "renderer     " << headless->context->description() << ", " << args.samples
+         << (args.samples == 1 ? " sample" : " samples") << " per pixel\n";
 
   if (extent.final_status != solver::Status::Converged) {
     std::cerr << args.scene << ": " << method_name << " did not converge: " << extent.final_message
@@ -225,7 +227,8 @@ void register_render(CLI::App& app, int& exit_code) {
       command->add_flag("--final", args->final_only, "Only the final state of each solve");
   every->excludes(final_only);
   command->add_option("--movie", args->movie,
-                      "Stream the frames into this H.264 mp4 (ffmpeg; no PNG files unless --out)");
+                      "Stream the frames into this H.264 mp4 (ffmpeg; - for stdout; no PNG files "
+                      "unless --out)");
   command->add_option("--fps", args->fps, "Frames per second of the movie")
       ->check(CLI::Range(1, 120))
       ->capture_default_str();

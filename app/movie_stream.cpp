@@ -11,26 +11,12 @@
 #include <string>
 #include <vector>
 
-#include "app/atomic_file.hpp"
 #include "app/interrupt.hpp"
 
 extern char** environ;
 
 namespace fetic::app {
 namespace {
-
-// A frame written into a pipe that ffmpeg has closed raises SIGPIPE, which would end the
-// process without a message: while a stream is open, the write fails with EPIPE instead.
-struct IgnoreSigpipe {
-  struct sigaction previous {};
-  IgnoreSigpipe() {
-    struct sigaction ignore {};
-    ignore.sa_handler = SIG_IGN;
-    sigemptyset(&ignore.sa_mask);
-    sigaction(SIGPIPE, &ignore, &previous);
-  }
-  ~IgnoreSigpipe() { sigaction(SIGPIPE, &previous, nullptr); }
-};
 
 bool write_all(int fd, const std::uint8_t* data, std::size_t size) {
   while (size > 0) {
@@ -47,11 +33,12 @@ bool write_all(int fd, const std::uint8_t* data, std::size_t size) {
 
 }  // namespace
 
-MovieStream::MovieStream(const std::string& file, int width, int height, int fps)
+MovieStream::MovieStream(const ExternalTarget& target, int width, int height, int fps)
     : width_(width), height_(height) {
+  const std::string shown = target.file.empty() ? "standard output" : target.file;
   int fds[2];
   if (::pipe2(fds, O_CLOEXEC) != 0)
-    throw OutputError(file + ": cannot open a pipe to ffmpeg (" + std::strerror(errno) + ")");
+    throw OutputError(shown + ": cannot open a pipe to ffmpeg (" + std::strerror(errno) + ")");
   const std::string size = std::to_string(width) + "x" + std::to_string(height);
   // veryfast: about twice the speed of x264's default preset, and on these flat pictures
   // no larger; yuv420p for players; the pad makes odd sizes even, as H.264 needs.
@@ -66,8 +53,11 @@ MovieStream::MovieStream(const std::string& file, int width, int height, int fps
                                      "-preset",    "veryfast",
                                      "-pix_fmt",   "yuv420p",
                                      "-vf",        "pad=ceil(iw/2)*2:ceil(ih/2)*2",
-                                     "-f",         "mp4",
-                                     file};
+                                     "-f",         "mp4"};
+  // A stream cannot be rewound to write the index at the front: a fragmented mp4.
+  if (target.stream) arguments.insert(arguments.end(), {"-movflags", "frag_keyframe+empty_moov"});
+  // "file:" keeps a ':' in the name from being read as a protocol.
+  arguments.push_back(target.file.empty() ? "pipe:1" : "file:" + target.file);
   std::vector<char*> argv;
   for (std::string& argument : arguments)
     argv.push_back(argument.data());
@@ -75,13 +65,23 @@ MovieStream::MovieStream(const std::string& file, int width, int height, int fps
   posix_spawn_file_actions_t actions;
   posix_spawn_file_actions_init(&actions);
   posix_spawn_file_actions_adddup2(&actions, fds[0], 0);  // dup2 clears FD_CLOEXEC
-  const int spawned = posix_spawnp(&child_, "ffmpeg", &actions, nullptr, argv.data(), environ);
+  // fetic ignores SIGPIPE (a lost write is reported, not fatal: a frame written after
+  // ffmpeg stopped fails with EPIPE); ffmpeg gets the default.
+  posix_spawnattr_t attributes;
+  posix_spawnattr_init(&attributes);
+  sigset_t defaults;
+  sigemptyset(&defaults);
+  sigaddset(&defaults, SIGPIPE);
+  posix_spawnattr_setsigdefault(&attributes, &defaults);
+  posix_spawnattr_setflags(&attributes, POSIX_SPAWN_SETSIGDEF);
+  const int spawned = posix_spawnp(&child_, "ffmpeg", &actions, &attributes, argv.data(), environ);
+  posix_spawnattr_destroy(&attributes);
   posix_spawn_file_actions_destroy(&actions);
   ::close(fds[0]);
   if (spawned != 0) {
     ::close(fds[1]);
     child_ = 0;
-    throw OutputError(file + ": cannot start ffmpeg (" + std::strerror(spawned) + ")");
+    throw OutputError(shown + ": cannot start ffmpeg (" + std::strerror(spawned) + ")");
   }
   pipe_ = fds[1];
   writer_ = std::thread([this] { write_frames(); });
@@ -100,7 +100,6 @@ MovieStream::~MovieStream() {
 }
 
 void MovieStream::write_frames() {
-  const IgnoreSigpipe ignore;
   std::unique_lock lock(mutex_);
   for (;;) {
     changed_.wait(lock, [&] { return closing_ || !queue_.empty(); });

@@ -1,8 +1,9 @@
 #pragma once
 // A movie made while the frames render: raw RGBA frames go through a pipe into ffmpeg
 // (H.264), with no PNG files in between. A writer thread feeds the pipe, so the next frame
-// renders while ffmpeg takes the last one. Used inside write_via_temporary, so the movie
-// appears whole or not at all.
+// renders while ffmpeg takes the last one. Used inside write_output_by
+// (app/output_file.hpp), so a movie file appears whole or not at all, and a FIFO, a device
+// or standard output gets a fragmented mp4 (it cannot be rewound for the index).
 
 #include <sys/types.h>
 
@@ -12,15 +13,16 @@
 #include <string>
 #include <thread>
 
+#include "app/output_file.hpp"
 #include "render/image.hpp"
 
 namespace fetic::app {
 
 class MovieStream {
  public:
-  // Starts ffmpeg writing an mp4 of width x height at `fps` frames per second to `file`.
-  // Throws OutputError when ffmpeg cannot be started.
-  MovieStream(const std::string& file, int width, int height, int fps);
+  // Starts ffmpeg writing an mp4 of width x height at `fps` frames per second to the
+  // target. Throws OutputError when ffmpeg cannot be started.
+  MovieStream(const ExternalTarget& target, int width, int height, int fps);
   // Stops ffmpeg if finish() was not called (its output is then incomplete).
   ~MovieStream();
   MovieStream(const MovieStream&) = delete;
