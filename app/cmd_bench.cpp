@@ -18,6 +18,7 @@
 #include "app/interrupt.hpp"
 #include "app/output_file.hpp"
 #include "app/scene_input.hpp"
+#include "scenes/scene_error.hpp"
 #include "solver/method.hpp"
 
 namespace fetic::app {
@@ -167,14 +168,15 @@ int run_bench(const BenchArgs& args) {
     }
     for (const Variant& variant : variants_for(model)) {
       if (interrupted()) {
-        std::cerr << path << ": fetic bench interrupted by " << interrupt_name() << " after "
-                  << rows.size() << " measurement(s); no table or CSV written\n";
+        std::cerr << scenes::printable(path) << ": fetic bench interrupted by " << interrupt_name()
+                  << " after " << rows.size() << " measurement(s); no table or CSV written\n";
         return kExitInterrupted;
       }
       try {
         rows.push_back(measure(model, path, variant, std::max(1, args.repeat)));
       } catch (const solver::SolverError& error) {
-        std::cerr << path << ": " << variant.label() << ": " << error.what() << '\n';
+        std::cerr << scenes::printable(path) << ": " << variant.label() << ": " << error.what()
+                  << '\n';
       }
     }
   }

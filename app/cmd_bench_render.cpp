@@ -22,6 +22,7 @@
 #include "render/colormap.hpp"
 #include "render/frame_composer.hpp"
 #include "render/frame_sequence.hpp"
+#include "scenes/scene_error.hpp"
 
 namespace fetic::app {
 namespace {
@@ -55,7 +56,7 @@ int run_bench(const BenchArgs& args) {
   try {
     method = solver::make_method(*solver::parse_method(args.method), model, solver::SolveOptions{});
   } catch (const solver::SolverError& error) {
-    std::cerr << args.scene << ": " << error.what() << '\n';
+    std::cerr << scenes::printable(args.scene) << ": " << error.what() << '\n';
     return kExitSolverSetup;
   }
   std::string directory = args.out;
@@ -134,8 +135,8 @@ int run_bench(const BenchArgs& args) {
     }
     pooled.total = seconds(start);
     if (interrupted()) {
-      std::cerr << directory << ": fetic bench-render interrupted by " << interrupt_name()
-                << "; the frames written are complete\n";
+      std::cerr << scenes::printable(directory) << ": fetic bench-render interrupted by "
+                << interrupt_name() << "; the frames written are complete\n";
       if (temporary) std::filesystem::remove_all(directory);
       return kExitInterrupted;
     }
@@ -163,7 +164,7 @@ int run_bench(const BenchArgs& args) {
   } catch (const OutputError& error) {
     return report_output_error(error);
   } catch (const render::RenderError& error) {
-    std::cerr << directory << ": rendering failed: " << error.what() << '\n';
+    std::cerr << scenes::printable(directory) << ": rendering failed: " << error.what() << '\n';
     return kExitOutput;
   }
   if (temporary) std::filesystem::remove_all(directory);

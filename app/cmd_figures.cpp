@@ -16,6 +16,7 @@
 #include "app/render_output.hpp"
 #include "app/scene_input.hpp"
 #include "render/figures.hpp"
+#include "scenes/scene_error.hpp"
 
 namespace fetic::app {
 namespace {
@@ -59,8 +60,8 @@ int run_figures(const FiguresArgs& args) {
   int written = 0, skipped = 0;
   for (const std::string& id : ids) {
     if (interrupted()) {
-      std::cerr << args.out << ": interrupted by " << interrupt_name() << " after " << written
-                << " complete figure(s)\n";
+      std::cerr << scenes::printable(args.out) << ": interrupted by " << interrupt_name()
+                << " after " << written << " complete figure(s)\n";
       return kExitInterrupted;
     }
     const render::Figure figure = maker.make(id, size.width, size.height);
@@ -79,7 +80,7 @@ int run_figures(const FiguresArgs& args) {
     } catch (const OutputError& error) {
       return report_output_error(error);
     } catch (const render::RenderError& error) {
-      std::cerr << path << ": rendering failed: " << error.what() << '\n';
+      std::cerr << scenes::printable(path) << ": rendering failed: " << error.what() << '\n';
       return kExitOutput;
     }
     std::cout << "figure " << id << "   " << path << "  " << figure.info.what

@@ -1,8 +1,11 @@
 #include "app/gui/script.hpp"
 
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <sstream>
+
+#include "solver/method.hpp"
 
 namespace fetic::app::gui {
 namespace {
@@ -13,6 +16,12 @@ std::optional<double> number(const std::string& text) {
   const double value = std::strtod(text.c_str(), &end);
   if (end != text.c_str() + text.size() || !std::isfinite(value)) return std::nullopt;
   return value;
+}
+
+std::string short_number(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", value);
+  return text;
 }
 
 }  // namespace
@@ -55,7 +64,8 @@ std::vector<ScriptAction> parse_script(const std::string& text, std::vector<Scri
     const auto need_number = [&](RequestKind kind, double low, double high) {
       const auto value = number(argument);
       if (!value || *value < low || *value > high) {
-        errors.push_back({line, "'" + verb + "' needs a number" +
+        errors.push_back({line, "'" + verb + "' needs a number from " + short_number(low) + " to " +
+                                    short_number(high) +
                                     (argument.empty() ? "" : ", not '" + argument + "'")});
         return false;
       }
@@ -75,9 +85,15 @@ std::vector<ScriptAction> parse_script(const std::string& text, std::vector<Scri
     if (verb == "load") {
       ok = need_number(RequestKind::SetLoad, 0.0, 1e300);
     } else if (verb == "method" || verb == "preconditioner") {
-      ok = !argument.empty();
-      if (!ok) errors.push_back({line, "'" + verb + "' needs a name"});
-      r.kind = verb == "method" ? RequestKind::SetMethod : RequestKind::SetPreconditioner;
+      const bool method = verb == "method";
+      ok = method ? solver::parse_method(argument).has_value()
+                  : solver::parse_preconditioner(argument).has_value();
+      if (!ok)
+        errors.push_back({line, "'" + verb + "' needs " +
+                                    (method ? "sd, cg, active-set, feti or feti-c"
+                                            : "none, lumped or dirichlet") +
+                                    (argument.empty() ? "" : ", not '" + argument + "'")});
+      r.kind = method ? RequestKind::SetMethod : RequestKind::SetPreconditioner;
       r.text = argument;
     } else if (verb == "magnification") {
       if (argument == "auto") {

@@ -51,11 +51,27 @@ TEST_CASE("script errors name the line and the problem", "[script]") {
   parse_script("load\nload x\njump 3\ntoggle colours\n-1 quit\n1.0\nstep now\n", errors);
   REQUIRE(errors.size() == 7);
   CHECK(errors[0].line == 1);
-  CHECK(errors[0].message == "'load' needs a number");
-  CHECK(errors[1].message == "'load' needs a number, not 'x'");
+  CHECK(errors[0].message == "'load' needs a number from 0 to 1e+300");
+  CHECK(errors[1].message == "'load' needs a number from 0 to 1e+300, not 'x'");
   CHECK(errors[2].message == "unknown action 'jump'");
   CHECK(errors[3].line == 4);
   CHECK(errors[4].message == "the time must not be negative");
   CHECK(errors[5].message == "a time without an action");
   CHECK(errors[6].message == "'step' takes no argument");
+}
+
+TEST_CASE("script names and counts are checked when the script is read", "[script]") {
+  std::vector<ScriptError> errors;
+  const auto actions = parse_script(
+      "method bogus\npreconditioner jacobi\nrecord-sweep 1000000000\nmethod\n"
+      "method active-set\npreconditioner lumped\n",
+      errors);
+  REQUIRE(errors.size() == 4);
+  CHECK(errors[0].message == "'method' needs sd, cg, active-set, feti or feti-c, not 'bogus'");
+  CHECK(errors[1].message == "'preconditioner' needs none, lumped or dirichlet, not 'jacobi'");
+  CHECK(errors[2].message == "'record-sweep' needs a number from 2 to 10000, not '1000000000'");
+  CHECK(errors[3].line == 4);
+  REQUIRE(actions.size() == 2);
+  CHECK(actions[0].request.kind == RequestKind::SetMethod);
+  CHECK(actions[1].request.text == "lumped");
 }
