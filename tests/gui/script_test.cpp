@@ -60,18 +60,33 @@ TEST_CASE("script errors name the line and the problem", "[script]") {
   CHECK(errors[6].message == "'step' takes no argument");
 }
 
-TEST_CASE("script names and counts are checked when the script is read", "[script]") {
+TEST_CASE("method and preconditioner names are checked; live stepping and cancel", "[script]") {
   std::vector<ScriptError> errors;
   const auto actions = parse_script(
-      "method bogus\npreconditioner jacobi\nrecord-sweep 1000000000\nmethod\n"
-      "method active-set\npreconditioner lumped\n",
+      "method fetic\nmethod active-set\npreconditioner diriclet\npreconditioner lumped\n"
+      "live on\nlive off\nlive maybe\ncancel\ncancel now\n",
       errors);
   REQUIRE(errors.size() == 4);
-  CHECK(errors[0].message == "'method' needs sd, cg, active-set, feti or feti-c, not 'bogus'");
-  CHECK(errors[1].message == "'preconditioner' needs none, lumped or dirichlet, not 'jacobi'");
-  CHECK(errors[2].message == "'record-sweep' needs a number from 2 to 10000, not '1000000000'");
-  CHECK(errors[3].line == 4);
-  REQUIRE(actions.size() == 2);
+  CHECK(errors[0].line == 1);
+  CHECK(errors[0].message == "unknown method 'fetic' (feti-c, active-set, feti, cg or sd)");
+  CHECK(errors[1].line == 3);
+  CHECK(errors[1].message == "unknown preconditioner 'diriclet' (dirichlet, lumped or none)");
+  CHECK(errors[2].message == "'live' needs on or off");
+  CHECK(errors[3].message == "'cancel' takes no argument");
+  REQUIRE(actions.size() == 5);
   CHECK(actions[0].request.kind == RequestKind::SetMethod);
-  CHECK(actions[1].request.text == "lumped");
+  CHECK(actions[0].request.text == "active-set");
+  CHECK(actions[1].request.kind == RequestKind::SetPreconditioner);
+  CHECK(actions[2].request.kind == RequestKind::SetLive);
+  CHECK(actions[2].request.value == 1.0);
+  CHECK(actions[3].request.value == 0.0);
+  CHECK(actions[4].request.kind == RequestKind::Cancel);
+}
+
+TEST_CASE("script numbers name their range", "[script]") {
+  std::vector<ScriptError> errors;
+  parse_script("record-sweep 1000000000\nmethod bogus\n", errors);
+  REQUIRE(errors.size() == 2);
+  CHECK(errors[0].message == "'record-sweep' needs a number from 2 to 10000, not '1000000000'");
+  CHECK(errors[1].message == "unknown method 'bogus' (feti-c, active-set, feti, cg or sd)");
 }
