@@ -16,6 +16,7 @@
 #include "app/commands.hpp"
 #include "app/exit_codes.hpp"
 #include "app/interrupt.hpp"
+#include "app/out_of_memory.hpp"
 #include "app/output_file.hpp"
 #include "app/scene_input.hpp"
 #include "scenes/scene_error.hpp"
@@ -160,6 +161,15 @@ int run_bench(const BenchArgs& args) {
     int status = kExitOk;
     const auto scene = load_scene_or_report(path, status);
     if (!scene) return status;
+    if (!memory_suffices(
+            *scene, path,
+            {{solver::MethodKind::ActiveSet, solver::MethodKind::FetiC, solver::MethodKind::Feti,
+              solver::MethodKind::ConjugateGradient, solver::MethodKind::SteepestDescent},
+             false,
+             0},
+            status))
+      return status;
+    Activity measuring("measuring the methods");
     const solver::Model model = solver::build_model(*scene);
     if (!warmed_up) {
       // The first parallel region starts OpenMP's threads: keep that out of the table.

@@ -20,6 +20,7 @@
 #include "app/interrupt.hpp"
 #include "app/method_options.hpp"
 #include "app/movie_stream.hpp"
+#include "app/out_of_memory.hpp"
 #include "app/output_file.hpp"
 #include "app/render_output.hpp"
 #include "app/scene_input.hpp"
@@ -66,6 +67,10 @@ int run_bench(const BenchArgs& args) {
   int status = kExitOk;
   const auto scene = load_scene_or_report(args.scene, status);
   if (!scene) return status;
+  if (!memory_suffices(*scene, args.scene, {{*solver::parse_method(args.method)}, false, 0},
+                       status))
+    return status;
+  Activity rendering("rendering");
   const solver::Model model = solver::build_model(*scene);
   use_solver_threads_for_pictures(model);
   const ImageSize size = *parse_image_size(args.size);

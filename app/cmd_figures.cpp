@@ -12,6 +12,7 @@
 #include "app/commands.hpp"
 #include "app/exit_codes.hpp"
 #include "app/interrupt.hpp"
+#include "app/out_of_memory.hpp"
 #include "app/output_file.hpp"
 #include "app/render_output.hpp"
 #include "app/scene_input.hpp"
@@ -48,6 +49,14 @@ int run_figures(const FiguresArgs& args) {
   if (needs_thesis) {
     scene = load_scene_or_report(args.scene, scene_status);
     if (scene_status == kExitInterrupted) return scene_status;
+    if (scene && !memory_suffices(*scene, args.scene,
+                                  {{solver::MethodKind::ActiveSet, solver::MethodKind::FetiC,
+                                    solver::MethodKind::Feti, solver::MethodKind::ConjugateGradient,
+                                    solver::MethodKind::SteepestDescent},
+                                   false,
+                                   0},
+                                  scene_status))
+      return scene_status;
     if (scene) {
       thesis = solver::build_model(*scene);
     } else {

@@ -12,6 +12,8 @@
 #include "app/commands.hpp"
 #include "app/exit_codes.hpp"
 #include "app/interrupt.hpp"
+#include "app/memory_estimate.hpp"
+#include "app/out_of_memory.hpp"
 #include "app/output_file.hpp"
 #include "scenes/generate_scene.hpp"
 #include "scenes/load_scene.hpp"
@@ -69,6 +71,12 @@ std::string limit_problem(const GenerateArgs& args, const scenes::GenerateOption
       sample.pairs;
   // Names and numbers grow by a few digits over the pairs: 10% on top.
   const double bytes = 1.1 * per_pair * options.pairs + static_cast<double>(header(args, 0).size());
+  if (const auto available = available_memory();
+      available && memory_check_enabled() &&
+      estimate_parse_memory(bytes) + bytes > available->bytes)
+    return "not enough memory: making and checking a scene of about " + memory_text(bytes) +
+           " needs about " + memory_text(estimate_parse_memory(bytes) + bytes) + ", and " +
+           memory_text(available->bytes) + " is available (" + available->limited_by + ")";
   if (bytes > static_cast<double>(scenes::kMaxSceneFileBytes)) {
     char text[160];
     std::snprintf(text, sizeof text,
@@ -94,9 +102,10 @@ int run_generate(const GenerateArgs& args) {
   }
   std::string text;
   try {
+    Activity generating("generating the scene");
     if (const std::string problem = limit_problem(args, options); !problem.empty()) {
       std::cerr << "fetic generate: " << problem << '\n';
-      return kExitUsage;
+      return problem.starts_with("not enough memory") ? kExitOutOfMemory : kExitUsage;
     }
     const scenes::Scene scene = scenes::generate_scene(options);
     if (interrupted()) return interrupted_status();

@@ -15,6 +15,7 @@
 #include "app/load_factor_check.hpp"
 #include "app/method_options.hpp"
 #include "app/movie_stream.hpp"
+#include "app/out_of_memory.hpp"
 #include "app/output_file.hpp"
 #include "app/render_output.hpp"
 #include "app/scene_input.hpp"
@@ -55,6 +56,8 @@ int run_render(const RenderArgs& args) {
     std::cerr << scenes::printable(args.scene) << ": " << problem << '\n';
     return kExitUsage;
   }
+  if (!memory_suffices(*scene, args.scene, {{args.method.kind()}, false, 0}, status)) return status;
+  Activity rendering("rendering");
   const solver::Model model = solver::build_model(*scene);
   use_solver_threads_for_pictures(model);
   const ImageSize size = *parse_image_size(args.size);

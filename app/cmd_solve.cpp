@@ -14,6 +14,7 @@
 #include "app/interrupt.hpp"
 #include "app/load_factor_check.hpp"
 #include "app/method_options.hpp"
+#include "app/out_of_memory.hpp"
 #include "app/output_file.hpp"
 #include "app/result_json.hpp"
 #include "app/scene_input.hpp"
@@ -108,7 +109,12 @@ int run_solve(const SolveArgs& args) {
     std::cerr << scenes::printable(args.scene) << ": " << problem << '\n';
     return kExitUsage;
   }
+  MemoryUse use{{args.method.kind()}, !args.json.empty(), 0};
+  if (args.reference) use.methods.push_back(solver::MethodKind::ActiveSet);
+  if (!memory_suffices(*scene, args.scene, use, status)) return status;
+  Activity assembling("assembling the model");
   const solver::Model model = solver::build_model(*scene);
+  Activity setting_up("setting up the method (factorizing the subdomains)");
 
   RunInfo info;
   info.scene_path = args.scene;
@@ -135,6 +141,7 @@ int run_solve(const SolveArgs& args) {
   if (sweeping && !args.quiet)
     report << "load steps   " << load_factors.size() << " from " << load_factors.front() << " to "
            << load_factors.back() << ", each warm-started\n";
+  Activity solving("solving");
   const auto solve_start = std::chrono::steady_clock::now();
   solver::SweepHooks hooks;
   hooks.before_start = [&](double t) {
@@ -165,6 +172,7 @@ int run_solve(const SolveArgs& args) {
   if (!args.quiet) print_summary(report, model, last.state, info);
   if (!args.json.empty()) {
     try {
+      Activity writing("writing the result file");
       nlohmann::json result = result_json(model, last.state, last.history, info);
       if (sweeping) {
         nlohmann::json list = nlohmann::json::array();

@@ -17,6 +17,7 @@
 #include "app/gui/script.hpp"
 #include "app/load_factor_check.hpp"
 #include "app/method_options.hpp"
+#include "app/out_of_memory.hpp"
 #include "app/render_output.hpp"
 #include "app/scene_input.hpp"
 #include "render/glfw_window.hpp"
@@ -58,6 +59,12 @@ int run_gui(const gui::Options& args) {
       std::cerr << scenes::printable(args.scene) << ": " << problem << '\n';
       return kExitUsage;
     }
+  // The window may switch to any method and keeps the iterates of a solve for scrubbing.
+  if (!memory_suffices(*scene, args.scene,
+                       {{solver::MethodKind::FetiC, solver::MethodKind::ActiveSet}, false, 100},
+                       status))
+    return status;
+  Activity running("running the window");
   auto model = std::make_shared<const solver::Model>(solver::build_model(*scene));
   const std::string title =
       model->title.empty() ? fs::path(args.scene).filename().string() : model->title;
