@@ -11,6 +11,7 @@
 #include <tuple>
 
 #include "scenes/frame_kinematics.hpp"
+#include "scenes/magnitudes.hpp"
 #include "scenes/scene_geometry.hpp"
 
 namespace fetic::scenes {
@@ -26,8 +27,6 @@ std::string number_text(double value) {
   out << value;
   return out.str();
 }
-
-constexpr double kMagnitudeLimit = 1e60;
 
 bool outside_magnitude_range(double value) {
   const double magnitude = std::abs(value);
