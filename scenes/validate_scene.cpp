@@ -206,7 +206,8 @@ void check_bar_loads(const Scene& scene, std::vector<Problem>& warnings) {
     const double across = load.force[1] * t[0] - load.force[0] * t[1];
     const double size = std::hypot(load.force[0], load.force[1]);
     if (!(std::abs(across) > kRelativeTolerance * size)) continue;
-    const std::string unit = load.per_length ? " N/m" : " N";
+    const std::string unit =
+        " " + (load.per_length ? force_per_length_unit(scene.units) : scene.units.force);
     warnings.push_back({load.line, "load on strut " + quoted(scene.struts[load.strut].name) +
                                        ": the bar model carries only the axial component of a "
                                        "force; the sideways component " +
