@@ -13,6 +13,7 @@
 #include "scenes/frame_kinematics.hpp"
 #include "scenes/magnitudes.hpp"
 #include "scenes/scene_geometry.hpp"
+#include "scenes/units.hpp"
 
 namespace fetic::scenes {
 namespace {
@@ -53,13 +54,16 @@ void check_magnitudes(const Scene& scene, std::vector<Problem>& problems) {
       problems.push_back({strut.line, "strut " + quoted(strut.name) +
                                           ": element bending stiffness E * inertia / element "
                                           "length^3 = " +
-                                          number_text(bending) + " N/m is " + range_text()});
+                                          number_text(bending) + " " +
+                                          force_per_length_unit(scene.units) + " is " +
+                                          range_text()});
   }
   for (const Load& load : scene.loads) {
     if (load.moment == 0.0) continue;
     if (outside_magnitude_range(load.moment))
       problems.push_back({load.line, "load on strut " + quoted(scene.struts[load.strut].name) +
-                                         ": moment " + number_text(load.moment) + " N m is " +
+                                         ": moment " + number_text(load.moment) + " " +
+                                         scene.units.force + " " + scene.units.length + " is " +
                                          range_text() + "; write 0 for no moment"});
   }
 }
