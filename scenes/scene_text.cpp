@@ -39,20 +39,20 @@ auto retrying(Call call, const std::function<bool()>& stop, const std::string& p
 
 std::string read_text_file(const std::string& path, std::size_t max_bytes, const std::string& what,
                            const std::function<bool()>& stop) {
-  const std::string limit_text = "the limit for " + what + " is " +
+  const std::string limit_text = "the limit for a " + what + " is " +
                                  mebibytes(static_cast<double>(max_bytes)) + " (" +
                                  std::to_string(max_bytes) + " bytes)";
   const int fd = retrying([&] { return ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NOCTTY); },
-                          stop, path, ("opening " + what + " (a FIFO without a writer?)").c_str());
-  if (fd < 0) throw read_error(path, "cannot open " + what + " (" + std::strerror(errno) + ")");
+                          stop, path, ("opening the " + what + " (a FIFO without a writer?)").c_str());
+  if (fd < 0) throw read_error(path, "cannot open the " + what + " (" + std::strerror(errno) + ")");
   struct Closer {
     int fd;
     ~Closer() { ::close(fd); }
   } closer{fd};
   struct stat info {};
   if (::fstat(fd, &info) != 0)
-    throw read_error(path, "cannot read " + what + " (" + std::strerror(errno) + ")");
-  if (S_ISDIR(info.st_mode)) throw read_error(path, "is a directory, not " + what);
+    throw read_error(path, "cannot read the " + what + " (" + std::strerror(errno) + ")");
+  if (S_ISDIR(info.st_mode)) throw read_error(path, "is a directory, not a " + what);
   const bool regular = S_ISREG(info.st_mode);
   if (regular && static_cast<unsigned long long>(info.st_size) > max_bytes)
     throw read_error(path, "the file has " + mebibytes(static_cast<double>(info.st_size)) + " (" +
@@ -68,8 +68,8 @@ std::string read_text_file(const std::string& path, std::size_t max_bytes, const
       text.resize(std::min(text.size() * 2, max_bytes + 1));
     }
     const ssize_t n = retrying([&] { return ::read(fd, text.data() + used, text.size() - used); },
-                               stop, path, ("reading " + what).c_str());
-    if (n < 0) throw read_error(path, "cannot read " + what + " (" + std::strerror(errno) + ")");
+                               stop, path, ("reading the " + what).c_str());
+    if (n < 0) throw read_error(path, "cannot read the " + what + " (" + std::strerror(errno) + ")");
     if (n == 0) break;
     used += static_cast<size_t>(n);
   }
@@ -82,7 +82,7 @@ std::string read_text_file(const std::string& path, std::size_t max_bytes, const
 }
 
 std::string read_scene_text(const std::string& path, const std::function<bool()>& stop) {
-  return read_text_file(path, kMaxSceneFileBytes, "the scene file", stop);
+  return read_text_file(path, kMaxSceneFileBytes, "scene file", stop);
 }
 
 Problem nesting_problem(std::string_view text) {

@@ -29,8 +29,8 @@ inline constexpr int kMaxNesting = 32;
 // SceneError saying so.
 std::string read_scene_text(const std::string& path, const std::function<bool()>& stop = {});
 
-// The same for any text file read whole (`what`: "the scene file", "the script"), up to
-// `max_bytes`.
+// The same for any text file read whole (`what`, for messages: "scene file", "script"),
+// up to `max_bytes`.
 std::string read_text_file(const std::string& path, std::size_t max_bytes, const std::string& what,
                            const std::function<bool()>& stop = {});
 

@@ -39,7 +39,7 @@ int run_gui(const gui::Options& args) {
   if (!args.script.empty()) {
     std::string text;
     try {  // bounded like a scene file: a script of /dev/zero ends at the limit
-      text = scenes::read_text_file(args.script, std::size_t{1} << 20, "the script",
+      text = scenes::read_text_file(args.script, std::size_t{1} << 20, "script",
                                     [] { return interrupted(); });
     } catch (const scenes::SceneError& error) {
       std::cerr << error.what() << '\n';
