@@ -14,8 +14,10 @@
 #include "app/exit_codes.hpp"
 #include "app/interrupt.hpp"
 #include "app/method_options.hpp"
+#include "app/progress.hpp"
 #include "app/render_output.hpp"
 #include "app/scene_input.hpp"
+#include "app/vtu_export.hpp"
 #include "render/colormap.hpp"
 #include "render/frame_composer.hpp"
 #include "render/frame_sequence.hpp"
@@ -38,6 +40,10 @@ struct RenderArgs {
   bool no_overlay = false;
   int max_frames = 2000;
   int threads = 0;
+  std::string vtu;  // also write each frame's state as ParaView files here
+  std::string vtu_format = "zlib";
+  bool progress = false;
+  bool quiet = false;
 };
 
 int run_render(const RenderArgs& args) {
@@ -66,9 +72,14 @@ int run_render(const RenderArgs& args) {
   auto headless = open_headless(args.out);
   if (!headless) return kExitNoDisplay;
 
+  ProgressLine progress(progress_mode(args.progress, args.quiet));
   // Survey pass: the same deterministic run, for fixed scales and the frame count.
-  const render::RunExtent extent =
-      render::survey(model, *method, plan, [] { return !interrupted(); });
+  const render::RunExtent extent = render::survey(model, *method, plan, [&] {
+    if (progress.due())
+      progress.update("render survey: iteration " + std::to_string(method->iteration()));
+    return !interrupted();
+  });
+  progress.clear();
   if (interrupted()) {
     std::cerr << args.scene << ": interrupted by " << interrupt_name() << " before any frame\n";
     return kExitInterrupted;
@@ -97,9 +108,23 @@ int run_render(const RenderArgs& args) {
   const int threads = args.threads > 0 ? args.threads : default_encoder_threads();
   render::PngEncoderPool pool(threads);
   int written = 0;
+  // ParaView's time: the load factor for a rising sweep of one frame per step, else the
+  // frame number.
+  bool time_is_load = !plan.every_iteration;
+  for (size_t k = 1; k < plan.load_factors.size(); ++k)
+    time_is_load = time_is_load && plan.load_factors[k] > plan.load_factors[k - 1];
   try {
+    std::unique_ptr<VtuSeries> vtu;
+    if (!args.vtu.empty())
+      vtu = std::make_unique<VtuSeries>(args.vtu, model, *parse_vtk_encoding(args.vtu_format));
     render::run_frames(*method, plan, [&](const render::Frame& frame) {
       if (interrupted()) return false;
+      progress.update("render frame " + std::to_string(frame.index + 1) + " of " +
+                      std::to_string(extent.frame_count));
+      if (vtu)
+        vtu->write(frame.snapshot, time_is_load
+                                       ? plan.load_factors[static_cast<size_t>(frame.load_step)]
+                                       : frame.index);
       const render::ComposedFrame composed = composer.compose(frame);
       render::Image image =
           headless->renderer->render(size.width, size.height, {&composed.scene, &composed.overlay},
@@ -112,7 +137,9 @@ int run_render(const RenderArgs& args) {
       return true;
     });
     pool.finish();
+    progress.clear();
   } catch (const OutputError& error) {
+    progress.clear();
     std::cerr << error.what() << '\n';
     return kExitOutput;
   } catch (const render::RenderError& error) {
@@ -185,6 +212,15 @@ void register_render(CLI::App& app, int& exit_code) {
       ->capture_default_str();
   command->add_option("--threads", args->threads, "PNG encoding threads (0: one per core)")
       ->check(CLI::Range(0, 64));
+  command->add_option("--vtu", args->vtu,
+                      "Also write every frame's state as ParaView files here (struts.pvd, "
+                      "contacts.pvd)");
+  command->add_option("--vtu-format", args->vtu_format, "Data encoding of the .vtu files")
+      ->check(CLI::IsMember({"ascii", "binary", "zlib"}))
+      ->capture_default_str();
+  command->add_flag("--progress", args->progress,
+                    "Show the progress line on stderr even when it is not a terminal");
+  command->add_flag("--quiet", args->quiet, "No progress line");
   command->callback([args, &exit_code] { exit_code = run_render(*args); });
 }
 

@@ -14,8 +14,10 @@
 #include "app/exit_codes.hpp"
 #include "app/interrupt.hpp"
 #include "app/method_options.hpp"
+#include "app/progress.hpp"
 #include "app/result_json.hpp"
 #include "app/scene_input.hpp"
+#include "app/solve_outputs.hpp"
 #include "solver/load_sweep.hpp"
 #include "solver/method.hpp"
 
@@ -25,9 +27,10 @@ namespace {
 struct SolveArgs {
   std::string scene;
   MethodArgs method;
-  std::string json;
+  SolveOutputArgs outputs;  // --json, --csv, --csv-steps, --vtu, ...
   bool reference = false;
   bool quiet = false;
+  bool progress = false;
 };
 
 double seconds_since(std::chrono::steady_clock::time_point start) {
@@ -38,6 +41,11 @@ std::string format(const char* pattern, double value) {
   char buffer[64];
   std::snprintf(buffer, sizeof buffer, pattern, value);
   return buffer;
+}
+
+// "1 iteration", "2 iterations".
+std::string count_of(long long n, const char* singular, const char* plural) {
+  return std::to_string(n) + " " + (n == 1 ? singular : plural);
 }
 
 void print_summary(const solver::Model& model, const solver::Snapshot& state, const RunInfo& info) {
@@ -52,18 +60,20 @@ void print_summary(const solver::Model& model, const solver::Snapshot& state, co
         largest_node = static_cast<int>(n);
       }
   std::cout << "scene        " << info.scene_path << " (" << scenes::to_string(model.kind) << ", "
-            << model.struts.size() << " struts, " << model.contact_labels.size() << " contacts, "
-            << model.dof_count() << " unknowns)\n";
+            << count_of(static_cast<long long>(model.struts.size()), "strut", "struts") << ", "
+            << count_of(static_cast<long long>(model.contact_labels.size()), "contact", "contacts")
+            << ", " << count_of(model.dof_count(), "unknown", "unknowns") << ")\n";
   std::cout << "method       " << solver::to_string(info.method);
   if (info.method == solver::MethodKind::Feti || info.method == solver::MethodKind::FetiC)
     std::cout << " (preconditioner " << solver::to_string(info.preconditioner) << ")";
   std::cout << ", load factor " << state.load_factor << ", tolerance " << info.tolerance << "\n";
   std::cout << "converged    " << (state.status == solver::Status::Converged ? "yes" : "NO")
-            << " after " << state.iteration << " iterations, relative residual "
-            << format("%.3e", state.residual) << "\n";
+            << " after " << count_of(state.iteration, "iteration", "iterations")
+            << ", relative residual " << format("%.3e", state.residual) << "\n";
   if (!state.message.empty()) std::cout << "             " << state.message << "\n";
-  std::cout << "contacts     " << state.active_set_size() << " of " << model.pairs.size()
-            << " node pairs active\n";
+  std::cout << "contacts     " << state.active_set_size() << " of "
+            << count_of(static_cast<long long>(model.pairs.size()), "node pair", "node pairs")
+            << " active\n";
   if (largest_strut >= 0)
     std::cout << "largest displacement " << format("%.6e", largest) << " (strut '"
               << model.strut_names[largest_strut] << "', node " << largest_node << ")\n";
@@ -114,51 +124,80 @@ int run_solve(const SolveArgs& args) {
 
   const std::vector<double> load_factors = args.method.load_factors();
   const bool sweeping = !args.method.load_steps.empty();
+  std::unique_ptr<SolveOutputs> outputs;
+  try {
+    outputs = std::make_unique<SolveOutputs>(args.outputs, model, load_factors);
+  } catch (const CLI::ValidationError& error) {
+    std::cerr << args.scene << ": " << error.what() << '\n';
+    return kExitUsage;
+  } catch (const OutputError& error) {
+    std::cerr << error.what() << '\n';
+    return kExitOutput;
+  }
   if (sweeping && !args.quiet)
     std::cout << "load steps   " << load_factors.size() << " from " << load_factors.front()
               << " to " << load_factors.back() << ", each warm-started\n";
+  ProgressLine progress(progress_mode(args.progress, args.quiet));
+  int step_number = 0;
   const auto solve_start = std::chrono::steady_clock::now();
   solver::SweepHooks hooks;
   hooks.before_start = [&](double t) {
+    ++step_number;
     if (args.reference) method->set_reference(references.at(t));
   };
+  hooks.on_iteration = [&](double t, const solver::Method& running) {
+    outputs->iteration(running);
+    if (!progress.due()) return;
+    char line[160];
+    const auto& history = running.history();
+    std::snprintf(line, sizeof line, "solve  t = %g%s  iteration %d  residual %.3e  active %d", t,
+                  sweeping ? (" (step " + std::to_string(step_number) + " of " +
+                              std::to_string(load_factors.size()) + ")")
+                                 .c_str()
+                           : "",
+                  running.iteration(), history.empty() ? 0.0 : history.back().residual,
+                  history.empty() ? 0 : history.back().active_set);
+    progress.update(line);
+  };
   hooks.on_step = [&](const solver::SweepStep& step) {
+    outputs->step(step);
     if (!sweeping || args.quiet) return;
-    std::printf("  t = %-12.6g %-9s %4d iterations  %5d active  residual %.3e\n",
-                step.load_factor, solver::to_string(step.state.status), step.state.iteration,
-                step.state.active_set_size(), step.state.residual);
+    progress.clear();
+    std::printf("  t = %-12.6g %-9s %4d iterations  %5d active  residual %.3e\n", step.load_factor,
+                step.state.status == solver::Status::Running ? "stopped"
+                                                             : solver::to_string(step.state.status),
+                step.state.iteration, step.state.active_set_size(), step.state.residual);
     std::fflush(stdout);
   };
   hooks.keep_going = [] { return !interrupted(); };
-  const std::vector<solver::SweepStep> steps = solver::sweep(*method, load_factors, hooks);
+  std::vector<solver::SweepStep> steps;
+  try {
+    steps = solver::sweep(*method, load_factors, hooks);
+    progress.clear();
+    info.solve_seconds = seconds_since(solve_start) - outputs->writing_seconds();
+    // An interrupted solve still writes its outputs, with the current iterate marked
+    // "interrupted": true, "converged": false.
+    outputs->finish(steps, info, sweeping);
+  } catch (const OutputError& error) {
+    progress.clear();
+    std::cerr << error.what() << '\n';
+    return kExitOutput;
+  }
   if (interrupted()) {
-    std::cerr << args.scene << ": interrupted by " << interrupt_name() << " at iteration "
-              << method->iteration() << "; no result file written\n";
+    const bool cut = steps.empty() || steps.size() < load_factors.size() ||
+                     steps.back().state.status == solver::Status::Running;
+    std::cerr << args.scene << ": interrupted by " << interrupt_name();
+    if (!cut)
+      std::cerr << " after the solve had finished; the outputs are complete";
+    else
+      std::cerr << " at iteration " << method->iteration();
+    if (cut && outputs->writes_anything())
+      std::cerr << "; the current iterate, marked interrupted, is in " << outputs->written_list();
+    std::cerr << '\n';
     return kExitInterrupted;
   }
-  info.solve_seconds = seconds_since(solve_start);
   const solver::SweepStep& last = steps.back();
-
   if (!args.quiet) print_summary(model, last.state, info);
-  if (!args.json.empty()) {
-    try {
-      nlohmann::json result = result_json(model, last.state, last.history, info);
-      if (sweeping) {
-        nlohmann::json list = nlohmann::json::array();
-        for (const solver::SweepStep& step : steps)
-          list.push_back({{"load_factor", step.load_factor},
-                          {"converged", step.state.status == solver::Status::Converged},
-                          {"iterations", step.state.iteration},
-                          {"active_set", step.state.active_set_size()},
-                          {"residual", step.state.residual}});
-        result["steps"] = list;
-      }
-      write_file_atomically(args.json, [&](std::ostream& out) { out << result.dump(1) << '\n'; });
-    } catch (const OutputError& error) {
-      std::cerr << error.what() << '\n';
-      return kExitOutput;
-    }
-  }
   for (const solver::SweepStep& step : steps)
     if (step.state.status != solver::Status::Converged) {
       std::cerr << args.scene << ": " << solver::to_string(info.method)
@@ -176,11 +215,13 @@ void register_solve(CLI::App& app, int& exit_code) {
   CLI::App* command = app.add_subcommand("solve", "Solve a scene and report the result");
   command->add_option("scene", args->scene, "Scene file (TOML, see docs/SCENES.md)")->required();
   add_method_options(command, args->method);
-  command->add_option("--json", args->json, "Write the result file (JSON) here");
+  add_solve_output_options(command, args->outputs);
   command->add_flag("--reference", args->reference,
                     "Record each iteration's displacement error against an active-set solve "
                     "made in the same run");
-  command->add_flag("--quiet", args->quiet, "Print no summary");
+  command->add_flag("--quiet", args->quiet, "Print no summary and no progress");
+  command->add_flag("--progress", args->progress,
+                    "Show the progress line on stderr even when it is not a terminal");
   command->callback([args, &exit_code] { exit_code = run_solve(*args); });
 }
 
