@@ -11,6 +11,7 @@
 
 #include "app/atomic_file.hpp"
 #include "app/commands.hpp"
+#include "app/data_paths.hpp"
 #include "app/exit_codes.hpp"
 #include "app/interrupt.hpp"
 #include "app/render_output.hpp"
@@ -24,7 +25,7 @@ struct FiguresArgs {
   std::string out;
   std::string size = "1200x800";
   std::vector<std::string> figures;  // empty: all
-  std::string scene = "scenes/thesis.toml";
+  std::string scene = bundled_scene("thesis.toml");
 };
 
 int run_figures(const FiguresArgs& args) {

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "app/atomic_file.hpp"
+#include "app/data_paths.hpp"
 #include "app/exit_codes.hpp"
 #include "app/interrupt.hpp"
 
@@ -69,7 +70,8 @@ std::optional<Headless> open_headless(const std::string& output) {
     std::cerr << output << ": cannot render: " << error.what() << '\n';
     return std::nullopt;
   }
-  headless.font = std::make_unique<render::FontAtlas>();
+  headless.font = std::make_unique<render::FontAtlas>(font_file("DejaVuSans.ttf"),
+                                                      font_file("DejaVuSans-Bold.ttf"));
   if (!headless.font->note().empty()) std::cerr << "note: " << headless.font->note() << '\n';
   try {
     headless.renderer = std::make_unique<render::GlRenderer>(*headless.context, *headless.font);

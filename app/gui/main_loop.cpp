@@ -17,6 +17,7 @@
 #include <backends/imgui_impl_opengl3.h>
 #include <imgui.h>
 
+#include "app/data_paths.hpp"
 #include "app/exit_codes.hpp"
 #include "app/gui/app.hpp"
 #include "app/interrupt.hpp"
@@ -36,7 +37,7 @@ int App::run(render::GlfwWindow& window, std::vector<ScriptAction> script) {
     std::cerr << args_.state_file << ": cannot write the state file\n";
     return kExitOutput;
   }
-  render::FontAtlas font;
+  render::FontAtlas font(font_file("DejaVuSans.ttf"), font_file("DejaVuSans-Bold.ttf"));
   render::GlRenderer renderer(window, font);
   renderer_ = &renderer;
 
@@ -44,7 +45,8 @@ int App::run(render::GlfwWindow& window, std::vector<ScriptAction> script) {
   ImGui::CreateContext();
   ImGuiIO& io = ImGui::GetIO();
   io.IniFilename = nullptr;
-  if (fs::exists(render::kDejaVuSans)) io.Fonts->AddFontFromFileTTF(render::kDejaVuSans, 15.0f);
+  const std::string regular = font_file("DejaVuSans.ttf");
+  if (fs::exists(regular)) io.Fonts->AddFontFromFileTTF(regular.c_str(), 15.0f);
   ImGui::StyleColorsLight();
   // Our key callback first: ImGui's callbacks chain to the one installed before them.
   glfwSetWindowUserPointer(window.handle(), this);
