@@ -7,6 +7,7 @@
 
 #include "app/commands.hpp"
 #include "app/exit_codes.hpp"
+#include "app/help_text.hpp"
 #include "app/interrupt.hpp"
 
 int main(int argc, char** argv) {
@@ -22,6 +23,7 @@ int main(int argc, char** argv) {
   fetic::app::register_figures(app, exit_code);
   fetic::app::register_bench_render(app, exit_code);
   fetic::app::register_gui(app, exit_code);
+  fetic::app::add_help_footers(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {
