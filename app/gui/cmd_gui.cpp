@@ -97,10 +97,15 @@ void register_gui(CLI::App& app, int& exit_code) {
       ->capture_default_str();
   command->add_option("--state-file", args->state_file,
                       "Write what the app does as JSON lines to this file (- for stdout)");
-  command->add_option("--script", args->script, "Run timed actions from this file (see docs/WINDOW.md)");
+  command->add_option("--script", args->script,
+                      "Run timed actions from this file (see docs/WINDOW.md)");
   command->add_option("--screenshot-dir", args->screenshot_dir, "Where S saves screenshots")
       ->capture_default_str();
   command->add_option("--record-dir", args->record_dir, "Where recordings go")
+      ->capture_default_str();
+  command
+      ->add_option("--vtu-dir", args->vtu_dir,
+                   "Where the ParaView export button writes struts.pvd, contacts.pvd")
       ->capture_default_str();
   command->add_flag("--no-overlay", args->no_overlay, "Start without the information panel");
   command

@@ -6,8 +6,8 @@
 // Actions run in order; one with a TIME waits until then. Actions: load T, method NAME,
 // preconditioner NAME, magnification M|auto, play, pause, step, back, reset, scrub I,
 // toggle subdomains|forces|gaps|stress|overlay|help, screenshot [FILE], record-iterations,
-// record-sweep N, reload, wait (until the current solve has finished and is on screen),
-// quit. Each becomes the same request a key or a panel widget makes.
+// record-sweep N, export-vtu [DIR], reload, wait (until the current solve has finished and
+// is on screen), quit. Each becomes the same request a key or a panel widget makes.
 
 #include <optional>
 #include <string>
