@@ -213,7 +213,7 @@ TEST_CASE("summary: singular and plural counts") {
              Catch::Contains("after 1 iteration,") || Catch::Contains("after 2 iterations,"));
 }
 
-TEST_CASE("--csv-node: bad node names are a usage error naming the problem") {
+TEST_CASE("solve with a bad --csv-node is a usage error naming the problem") {
   const Run r = run("solve " + scene("two_bars.toml") + " --csv-steps " + temporary("x.csv") +
                     " --csv-node nobody.to");
   CHECK(r.status == 1);
