@@ -12,12 +12,12 @@
 #include <memory>
 #include <string>
 
-#include "app/atomic_file.hpp"
 #include "app/commands.hpp"
 #include "app/data_paths.hpp"
 #include "app/exit_codes.hpp"
 #include "app/interrupt.hpp"
 #include "app/method_options.hpp"
+#include "app/output_file.hpp"
 #include "app/render_output.hpp"
 #include "app/scene_input.hpp"
 #include "render/colormap.hpp"
@@ -47,8 +47,9 @@ struct Timing {
 };
 
 int run_bench(const BenchArgs& args) {
-  const auto scene = load_scene_or_report(args.scene);
-  if (!scene) return kExitInvalidScene;
+  int status = kExitOk;
+  const auto scene = load_scene_or_report(args.scene, status);
+  if (!scene) return status;
   const solver::Model model = solver::build_model(*scene);
   const ImageSize size = *parse_image_size(args.size);
   std::unique_ptr<solver::Method> method;
@@ -161,8 +162,7 @@ int run_bench(const BenchArgs& args) {
                 ms(pooled.compose + pooled.render));
     std::printf("speed-up     %.2fx\n", serial.total / pooled.total);
   } catch (const OutputError& error) {
-    std::cerr << error.what() << '\n';
-    return kExitOutput;
+    return report_output_error(error);
   } catch (const render::RenderError& error) {
     std::cerr << directory << ": rendering failed: " << error.what() << '\n';
     return kExitOutput;

@@ -9,11 +9,11 @@
 #include <string>
 #include <vector>
 
-#include "app/atomic_file.hpp"
 #include "app/commands.hpp"
 #include "app/exit_codes.hpp"
 #include "app/interrupt.hpp"
 #include "app/method_options.hpp"
+#include "app/output_file.hpp"
 #include "app/progress.hpp"
 #include "app/render_output.hpp"
 #include "app/scene_input.hpp"
@@ -47,8 +47,9 @@ struct RenderArgs {
 };
 
 int run_render(const RenderArgs& args) {
-  const auto scene = load_scene_or_report(args.scene);
-  if (!scene) return kExitInvalidScene;
+  int status = kExitOk;
+  const auto scene = load_scene_or_report(args.scene, status);
+  if (!scene) return status;
   const solver::Model model = solver::build_model(*scene);
   const ImageSize size = *parse_image_size(args.size);
 
@@ -140,8 +141,7 @@ int run_render(const RenderArgs& args) {
     progress.clear();
   } catch (const OutputError& error) {
     progress.clear();
-    std::cerr << error.what() << '\n';
-    return kExitOutput;
+    return report_output_error(error);
   } catch (const render::RenderError& error) {
     std::cerr << args.out << ": rendering failed: " << error.what() << '\n';
     return kExitOutput;
@@ -152,19 +152,21 @@ int run_render(const RenderArgs& args) {
     return kExitInterrupted;
   }
 
-  std::cout << "frames       " << written << " in " << args.out << " ("
-            << frame_name(0, extent.frame_count) << " .. "
-            << frame_name(written - 1, extent.frame_count) << "), " << size.width << "x"
-            << size.height << ", magnification " << composer.framing().magnification << "\n";
-  std::cout << "renderer     " << headless->context->description() << "\n";
+  // With --movie - the movie goes to stdout: the report goes to stderr then.
+  std::ostream& report = is_stdout(args.movie) ? std::cerr : std::cout;
+  report << "frames       " << written << " in " << args.out << " ("
+         << frame_name(0, extent.frame_count) << " .. "
+         << frame_name(written - 1, extent.frame_count) << "), " << size.width << "x" << size.height
+         << ", magnification " << composer.framing().magnification << "\n";
+  report << "renderer     " << headless->context->description() << "\n";
   const std::string next =
       (std::filesystem::path(args.out) / frame_name(written, extent.frame_count)).string();
   if (std::filesystem::exists(next))
-    std::cout << "note         " << next
-              << " and later frames are from an earlier run; they were left alone\n";
+    report << "note         " << next
+           << " and later frames are from an earlier run; they were left alone\n";
 
-  int status = kExitOk;
-  if (!args.movie.empty()) status = assemble_movie(args.out, written, args.fps, args.movie);
+  status = kExitOk;
+  if (!args.movie.empty()) status = assemble_movie(args.out, written, args.fps, args.movie, report);
   if (extent.final_status != solver::Status::Converged) {
     std::cerr << args.scene << ": " << method_name << " did not converge: " << extent.final_message
               << " (the frames show it)\n";
@@ -193,7 +195,8 @@ void register_render(CLI::App& app, int& exit_code) {
   auto* final_only =
       command->add_flag("--final", args->final_only, "Only the final state of each solve");
   every->excludes(final_only);
-  command->add_option("--movie", args->movie, "Also assemble the frames into this mp4 (ffmpeg)");
+  command->add_option("--movie", args->movie,
+                      "Also assemble the frames into this mp4 (ffmpeg; - for stdout)");
   command->add_option("--fps", args->fps, "Frames per second of the movie")
       ->check(CLI::Range(1, 120))
       ->capture_default_str();

@@ -9,11 +9,11 @@
 #include <memory>
 #include <string>
 
-#include "app/atomic_file.hpp"
 #include "app/commands.hpp"
 #include "app/exit_codes.hpp"
 #include "app/interrupt.hpp"
 #include "app/method_options.hpp"
+#include "app/output_file.hpp"
 #include "app/progress.hpp"
 #include "app/result_json.hpp"
 #include "app/scene_input.hpp"
@@ -48,7 +48,8 @@ std::string count_of(long long n, const char* singular, const char* plural) {
   return std::to_string(n) + " " + (n == 1 ? singular : plural);
 }
 
-void print_summary(const solver::Model& model, const solver::Snapshot& state, const RunInfo& info) {
+void print_summary(std::ostream& out, const solver::Model& model, const solver::Snapshot& state,
+                   const RunInfo& info) {
   const auto displacements = solver::strut_displacements(model, state);
   double largest = 0.0;
   int largest_strut = -1, largest_node = -1;
@@ -59,26 +60,26 @@ void print_summary(const solver::Model& model, const solver::Snapshot& state, co
         largest_strut = static_cast<int>(s);
         largest_node = static_cast<int>(n);
       }
-  std::cout << "scene        " << info.scene_path << " (" << scenes::to_string(model.kind) << ", "
-            << count_of(static_cast<long long>(model.struts.size()), "strut", "struts") << ", "
-            << count_of(static_cast<long long>(model.contact_labels.size()), "contact", "contacts")
-            << ", " << count_of(model.dof_count(), "unknown", "unknowns") << ")\n";
-  std::cout << "method       " << solver::to_string(info.method);
+  out << "scene        " << info.scene_path << " (" << scenes::to_string(model.kind) << ", "
+      << count_of(static_cast<long long>(model.struts.size()), "strut", "struts") << ", "
+      << count_of(static_cast<long long>(model.contact_labels.size()), "contact", "contacts")
+      << ", " << count_of(model.dof_count(), "unknown", "unknowns") << ")\n";
+  out << "method       " << solver::to_string(info.method);
   if (info.method == solver::MethodKind::Feti || info.method == solver::MethodKind::FetiC)
-    std::cout << " (preconditioner " << solver::to_string(info.preconditioner) << ")";
-  std::cout << ", load factor " << state.load_factor << ", tolerance " << info.tolerance << "\n";
-  std::cout << "converged    " << (state.status == solver::Status::Converged ? "yes" : "NO")
-            << " after " << count_of(state.iteration, "iteration", "iterations")
-            << ", relative residual " << format("%.3e", state.residual) << "\n";
-  if (!state.message.empty()) std::cout << "             " << state.message << "\n";
-  std::cout << "contacts     " << state.active_set_size() << " of "
-            << count_of(static_cast<long long>(model.pairs.size()), "node pair", "node pairs")
-            << " active\n";
+    out << " (preconditioner " << solver::to_string(info.preconditioner) << ")";
+  out << ", load factor " << state.load_factor << ", tolerance " << info.tolerance << "\n";
+  out << "converged    " << (state.status == solver::Status::Converged ? "yes" : "NO") << " after "
+      << count_of(state.iteration, "iteration", "iterations") << ", relative residual "
+      << format("%.3e", state.residual) << "\n";
+  if (!state.message.empty()) out << "             " << state.message << "\n";
+  out << "contacts     " << state.active_set_size() << " of "
+      << count_of(static_cast<long long>(model.pairs.size()), "node pair", "node pairs")
+      << " active\n";
   if (largest_strut >= 0)
-    std::cout << "largest displacement " << format("%.6e", largest) << " (strut '"
-              << model.strut_names[largest_strut] << "', node " << largest_node << ")\n";
-  std::cout << "time         set-up " << format("%.3f", info.setup_seconds * 1e3) << " ms, solve "
-            << format("%.3f", info.solve_seconds * 1e3) << " ms\n";
+    out << "largest displacement " << format("%.6e", largest) << " (strut '"
+        << model.strut_names[largest_strut] << "', node " << largest_node << ")\n";
+  out << "time         set-up " << format("%.3f", info.setup_seconds * 1e3) << " ms, solve "
+      << format("%.3f", info.solve_seconds * 1e3) << " ms\n";
 }
 
 // Displacements of a direct (active-set) solve at every load factor, for error histories.
@@ -100,8 +101,9 @@ std::map<double, std::vector<std::vector<solver::Vec2>>> reference_solutions(
 }
 
 int run_solve(const SolveArgs& args) {
-  const auto scene = load_scene_or_report(args.scene);
-  if (!scene) return kExitInvalidScene;
+  int status = kExitOk;
+  const auto scene = load_scene_or_report(args.scene, status);
+  if (!scene) return status;
   const solver::Model model = solver::build_model(*scene);
 
   RunInfo info;
@@ -131,12 +133,13 @@ int run_solve(const SolveArgs& args) {
     std::cerr << args.scene << ": " << error.what() << '\n';
     return kExitUsage;
   } catch (const OutputError& error) {
-    std::cerr << error.what() << '\n';
-    return kExitOutput;
+    return report_output_error(error);
   }
+  // With an output on stdout (-), the report goes to stderr.
+  std::ostream& report = outputs->uses_stdout() ? std::cerr : std::cout;
   if (sweeping && !args.quiet)
-    std::cout << "load steps   " << load_factors.size() << " from " << load_factors.front()
-              << " to " << load_factors.back() << ", each warm-started\n";
+    report << "load steps   " << load_factors.size() << " from " << load_factors.front() << " to "
+           << load_factors.back() << ", each warm-started\n";
   ProgressLine progress(progress_mode(args.progress, args.quiet));
   int step_number = 0;
   const auto solve_start = std::chrono::steady_clock::now();
@@ -163,11 +166,14 @@ int run_solve(const SolveArgs& args) {
     outputs->step(step);
     if (!sweeping || args.quiet) return;
     progress.clear();
-    std::printf("  t = %-12.6g %-9s %4d iterations  %5d active  residual %.3e\n", step.load_factor,
-                step.state.status == solver::Status::Running ? "stopped"
-                                                             : solver::to_string(step.state.status),
-                step.state.iteration, step.state.active_set_size(), step.state.residual);
-    std::fflush(stdout);
+    char line[160];
+    std::snprintf(
+        line, sizeof line, "  t = %-12.6g %-9s %4d iterations  %5d active  residual %.3e\n",
+        step.load_factor,
+        step.state.status == solver::Status::Running ? "stopped"
+                                                     : solver::to_string(step.state.status),
+        step.state.iteration, step.state.active_set_size(), step.state.residual);
+    report << line << std::flush;
   };
   hooks.keep_going = [] { return !interrupted(); };
   std::vector<solver::SweepStep> steps;
@@ -180,8 +186,7 @@ int run_solve(const SolveArgs& args) {
     outputs->finish(steps, info, sweeping);
   } catch (const OutputError& error) {
     progress.clear();
-    std::cerr << error.what() << '\n';
-    return kExitOutput;
+    return report_output_error(error);
   }
   if (interrupted()) {
     const bool cut = steps.empty() || steps.size() < load_factors.size() ||
@@ -197,7 +202,7 @@ int run_solve(const SolveArgs& args) {
     return kExitInterrupted;
   }
   const solver::SweepStep& last = steps.back();
-  if (!args.quiet) print_summary(model, last.state, info);
+  if (!args.quiet) print_summary(report, model, last.state, info);
   for (const solver::SweepStep& step : steps)
     if (step.state.status != solver::Status::Converged) {
       std::cerr << args.scene << ": " << solver::to_string(info.method)

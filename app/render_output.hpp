@@ -28,7 +28,7 @@ CLI::Validator image_size_check();
 // frame_0000.png ... with at least 4 digits, more when `count` needs them.
 std::string frame_name(int index, int count);
 
-// Writes the PNG to a temporary file beside `path` and renames it: a reader never sees a
+// Writes the PNG through write_output (app/output_file.hpp): a reader never sees a
 // half-written PNG. Throws OutputError naming the file.
 void write_png_atomically(const std::string& path, const render::PngBytes& png);
 
@@ -51,8 +51,10 @@ bool make_output_directory(const std::string& directory);
 bool program_on_path(const std::string& name);
 
 // Runs ffmpeg on frames 0 .. count-1 of `directory` (frame_0000.png, ...): an H.264 mp4 at
-// `fps` appears atomically as `movie`. Returns an exit status (kExitOutput when ffmpeg is
-// missing or fails, saying so).
-int assemble_movie(const std::string& directory, int count, int fps, const std::string& movie);
+// `fps` is written to `movie` through write_output_by (app/output_file.hpp: atomically to
+// a file; a fragmented mp4 to a FIFO, a device or "-", stdout). Prints what it made to
+// `report`. Returns an exit status (kExitOutput when ffmpeg is missing or fails, saying so).
+int assemble_movie(const std::string& directory, int count, int fps, const std::string& movie,
+                   std::ostream& report);
 
 }  // namespace fetic::app

@@ -2,16 +2,17 @@
 
 #include <chrono>
 
-#include "app/atomic_file.hpp"
 #include "app/json_layout.hpp"
+#include "app/output_file.hpp"
 #include "app/state_json.hpp"
 
 namespace fetic::app {
 
 void add_solve_output_options(CLI::App* command, SolveOutputArgs& args) {
-  command->add_option("--json", args.json, "Write the result file (JSON, docs/SCENES.md) here");
+  command->add_option("--json", args.json,
+                      "Write the result file (JSON, docs/SCENES.md) here (- for stdout)");
   command->add_option("--csv", args.csv,
-                      "Write the iteration history of every load step as CSV here");
+                      "Write the iteration history of every load step as CSV here (- for stdout)");
   command->add_option("--csv-steps", args.csv_steps,
                       "Write one CSV row per load step here: load factor, displacements of the "
                       "--csv-node nodes [m], total force [N] and active pairs of every contact");
@@ -47,6 +48,10 @@ SolveOutputs::SolveOutputs(const SolveOutputArgs& args, const solver::Model& mod
     time_is_load_factor_ = time_is_load_factor_ && load_factors[k] > load_factors[k - 1];
   if (!args.vtu.empty())
     vtu_ = std::make_unique<VtuSeries>(args.vtu, model, *parse_vtk_encoding(args.vtu_format));
+}
+
+bool SolveOutputs::uses_stdout() const {
+  return is_stdout(args_.json) || is_stdout(args_.csv) || is_stdout(args_.csv_steps);
 }
 
 bool SolveOutputs::writes_anything() const {
@@ -109,15 +114,15 @@ void SolveOutputs::finish(const std::vector<solver::SweepStep>& steps, const Run
       }
       result["steps"] = std::move(list);
     }
-    write_file_atomically(args_.json, [&](std::ostream& out) {
+    write_output(args_.json, [&](std::ostream& out) {
       out << scalars_first(std::move(result)).dump(1) << '\n';
     });
   }
   if (!args_.csv.empty())
-    write_file_atomically(args_.csv, [&](std::ostream& out) { write_history_csv(out, steps); });
+    write_output(args_.csv, [&](std::ostream& out) { write_history_csv(out, steps); });
   if (!args_.csv_steps.empty())
-    write_file_atomically(args_.csv_steps,
-                          [&](std::ostream& out) { write_steps_csv(out, model_, steps, nodes_); });
+    write_output(args_.csv_steps,
+                 [&](std::ostream& out) { write_steps_csv(out, model_, steps, nodes_); });
 }
 
 }  // namespace fetic::app

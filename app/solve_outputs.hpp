@@ -42,6 +42,8 @@ class SolveOutputs {
   void finish(const std::vector<solver::SweepStep>& steps, const RunInfo& info, bool sweeping);
 
   bool writes_anything() const;
+  // An output goes to standard output ("-"): the command reports on stderr then.
+  bool uses_stdout() const;
   // Time spent in the hooks writing files, so that the solve time can leave it out.
   double writing_seconds() const { return writing_seconds_; }
   // "result file, CSV tables, ParaView series" - what finish() and the hooks write.

@@ -4,7 +4,7 @@
 #include <filesystem>
 #include <system_error>
 
-#include "app/atomic_file.hpp"
+#include "app/output_file.hpp"
 #include "solver/element_results.hpp"
 
 namespace fetic::app {
@@ -128,19 +128,17 @@ std::string VtuSeries::file_name(const char* dataset, int index) const {
 void VtuSeries::write(const solver::Snapshot& state, double time) {
   const int index = frames();
   const std::filesystem::path dir(directory_);
-  write_file_atomically((dir / file_name("struts", index)).string(), [&](std::ostream& out) {
-    write_vtu(out, struts_grid(model_, state), encoding_);
-  });
-  write_file_atomically((dir / file_name("contacts", index)).string(), [&](std::ostream& out) {
-    write_vtu(out, contacts_grid(model_, state), encoding_);
-  });
+  write_output((dir / file_name("struts", index)).string(),
+               [&](std::ostream& out) { write_vtu(out, struts_grid(model_, state), encoding_); });
+  write_output((dir / file_name("contacts", index)).string(),
+               [&](std::ostream& out) { write_vtu(out, contacts_grid(model_, state), encoding_); });
   times_.push_back(time);
   for (const char* dataset : {"struts", "contacts"}) {
     std::vector<PvdEntry> entries;
     for (int k = 0; k < frames(); ++k)
       entries.push_back({times_[static_cast<size_t>(k)], file_name(dataset, k)});
-    write_file_atomically((dir / (std::string(dataset) + ".pvd")).string(),
-                          [&](std::ostream& out) { write_pvd(out, entries); });
+    write_output((dir / (std::string(dataset) + ".pvd")).string(),
+                 [&](std::ostream& out) { write_pvd(out, entries); });
   }
 }
 

@@ -46,8 +46,9 @@ int run_gui(const gui::Options& args) {
       std::cerr << args.script << ":" << error.line << ": " << error.message << '\n';
     if (!errors.empty()) return kExitUsage;
   }
-  const auto scene = load_scene_or_report(args.scene);
-  if (!scene) return kExitInvalidScene;
+  int status = kExitOk;
+  const auto scene = load_scene_or_report(args.scene, status);
+  if (!scene) return status;
   auto model = std::make_shared<const solver::Model>(solver::build_model(*scene));
   const std::string title =
       model->title.empty() ? fs::path(args.scene).filename().string() : model->title;

@@ -33,9 +33,10 @@ namespace fs = std::filesystem;
 }  // namespace
 
 int App::run(render::GlfwWindow& window, std::vector<ScriptAction> script) {
-  if (!log_.open(args_.state_file)) {
-    std::cerr << args_.state_file << ": cannot write the state file\n";
-    return kExitOutput;
+  try {
+    log_.open(args_.state_file);
+  } catch (const OutputError& error) {
+    return report_output_error(error);
   }
   render::FontAtlas font(font_file("DejaVuSans.ttf"), font_file("DejaVuSans-Bold.ttf"));
   render::GlRenderer renderer(window, font);
@@ -166,6 +167,10 @@ int App::run(render::GlfwWindow& window, std::vector<ScriptAction> script) {
   ImGui::DestroyContext();
 
   if (args_.bench > 0) print_bench(window);
+  if (const std::string lost = log_.close(); !lost.empty()) {
+    std::cerr << lost << "; the state file is incomplete\n";
+    return kExitOutput;
+  }
   if (script_failed) return kExitNotConverged;
   return kExitOk;
 }

@@ -136,7 +136,8 @@ void App::step_recording() {
       finished->pool->finish();
       if (program_on_path("ffmpeg")) {
         const std::string movie = (finished->directory / "movie.mp4").string();
-        if (assemble_movie(finished->directory.string(), finished->next, 8, movie) == kExitOk)
+        if (assemble_movie(finished->directory.string(), finished->next, 8, movie, std::cerr) ==
+            kExitOk)
           event["movie"] = movie;
       }
     } catch (const std::exception& error) {
