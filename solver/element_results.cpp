@@ -1,6 +1,7 @@
 #include "solver/element_results.hpp"
 
 #include <cmath>
+#include <limits>
 
 #include "solver/decomposition.hpp"
 #include "solver/stiffness.hpp"
@@ -153,10 +154,16 @@ std::vector<StrutElements> element_results(const Model& model, const Snapshot& s
     const StrutMesh& mesh = model.struts[static_cast<size_t>(piece.strut)];
     const Eigen::VectorXd dofs = piece_dofs(mesh, piece, clamped[static_cast<size_t>(piece.strut)]);
     StrutElements& out = result[static_cast<size_t>(piece.strut)];
-    if (is_plane(mesh))
-      recover_plane(mesh, piece.box, dofs, out);
-    else
+    if (mesh.dofs_per_node == 1) {
       recover_bar(mesh, piece.box, dofs, out);
+    } else if (is_plane(mesh)) {
+      recover_plane(mesh, piece.box, dofs, out);
+    } else {
+      // A model without a recovery here yet: its values are unknown, not zero.
+      for (auto* fields : {&out.stress, &out.resultants})
+        for (NamedValues& field : *fields)
+          field.values.assign(field.values.size(), std::numeric_limits<double>::quiet_NaN());
+    }
   }
   return result;
 }
