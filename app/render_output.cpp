@@ -13,6 +13,8 @@
 #include <thread>
 #include <vector>
 
+#include <omp.h>
+
 #include "app/data_paths.hpp"
 #include "app/exit_codes.hpp"
 #include "app/interrupt.hpp"
@@ -55,6 +57,11 @@ void write_png_atomically(const std::string& path, const render::PngBytes& png) 
   write_output(path, [&](std::ostream& out) {
     out.write(reinterpret_cast<const char*>(png.data()), static_cast<std::streamsize>(png.size()));
   });
+}
+
+void use_solver_threads_for_pictures(const solver::Model& model) {
+  constexpr long long kParallelFrom = 200000;
+  omp_set_num_threads(model.dof_count() < kParallelFrom ? 1 : omp_get_num_procs());
 }
 
 int default_encoder_threads() {

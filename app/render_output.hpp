@@ -13,6 +13,7 @@
 #include "render/font.hpp"
 #include "render/gl_renderer.hpp"
 #include "render/png_writer.hpp"
+#include "solver/model.hpp"
 
 namespace fetic::app {
 
@@ -34,6 +35,12 @@ void write_png_atomically(const std::string& path, const render::PngBytes& png);
 
 // Worker threads for PNG encoding: one per core.
 int default_encoder_threads();
+
+// The solver's OpenMP threads while pictures are drawn beside it: one below 200,000
+// unknowns. On 2 cores a team's start-up and its spinning at barriers cost more than the
+// work and take the core the software rasterizer and the encoders need (a perf profile of
+// `fetic render` on the thesis scene: 19% of the time in libgomp's spin loop).
+void use_solver_threads_for_pictures(const solver::Model& model);
 
 struct Headless {
   std::unique_ptr<render::GlContext> context;

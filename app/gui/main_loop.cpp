@@ -63,8 +63,8 @@ int App::run(render::GlfwWindow& window, std::vector<ScriptAction> script) {
   int frames = 0;
   while (!quit_) {
     const double now = seconds_since(start_);
-    const bool busy = worker_.busy() || playing_ || recording_ || scripted || args_.bench > 0 ||
-                      ImGui::IsAnyMouseDown() || !queue_.empty();
+    const bool busy = (worker_.busy() && !worker_.paused()) || playing_ || recording_ || scripted ||
+                      args_.bench > 0 || ImGui::IsAnyMouseDown() || !queue_.empty();
     if (busy)
       glfwPollEvents();
     else
