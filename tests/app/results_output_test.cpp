@@ -222,3 +222,18 @@ TEST_CASE("solve with a bad --csv-node is a usage error naming the problem") {
   CHECK(range.status == 1);
   CHECK_THAT(range.output, Catch::Contains("strut 'left' has nodes 0..4"));
 }
+
+TEST_CASE("every command's --help ends with an example, its exit statuses and units") {
+  for (const char* command :
+       {"solve", "render", "figures", "bench", "bench-render", "gui", "generate"}) {
+    INFO(command);
+    const Run r = run(std::string(command) + " --help");
+    CHECK(r.status == 0);
+    CHECK_THAT(r.output, Catch::Contains("Example"));
+    CHECK_THAT(r.output, Catch::Contains("fetic " + std::string(command) + " "));
+    CHECK_THAT(r.output, Catch::Contains("Exit status:"));
+    CHECK_THAT(r.output, Catch::Contains("  0    success"));
+    CHECK_THAT(r.output, Catch::Contains("pixels") || Catch::Contains("[m]") ||
+                             Catch::Contains("milliseconds"));
+  }
+}
