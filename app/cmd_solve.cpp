@@ -12,12 +12,15 @@
 #include "app/commands.hpp"
 #include "app/exit_codes.hpp"
 #include "app/interrupt.hpp"
+#include "app/load_factor_check.hpp"
 #include "app/method_options.hpp"
+#include "app/out_of_memory.hpp"
 #include "app/output_file.hpp"
 #include "app/progress.hpp"
 #include "app/result_json.hpp"
 #include "app/scene_input.hpp"
 #include "app/solve_outputs.hpp"
+#include "scenes/scene_error.hpp"
 #include "solver/load_sweep.hpp"
 #include "solver/method.hpp"
 
@@ -83,8 +86,10 @@ void print_summary(std::ostream& out, const solver::Model& model, const solver::
 }
 
 // Displacements of a direct (active-set) solve at every load factor, for error histories.
+// A load factor the reference cannot solve (an unbounded scene) gets no error history; the
+// solve itself then reports the problem with its own status.
 std::map<double, std::vector<std::vector<solver::Vec2>>> reference_solutions(
-    const solver::Model& model, const MethodArgs& args) {
+    const solver::Model& model, const MethodArgs& args, const std::string& scene) {
   solver::SolveOptions options = args.options();
   options.max_iterations = 0;
   auto reference = solver::make_method(solver::MethodKind::ActiveSet, model, options);
@@ -92,9 +97,12 @@ std::map<double, std::vector<std::vector<solver::Vec2>>> reference_solutions(
   for (double t : args.load_factors()) {
     reference->start(t);
     solver::run_to_end(*reference);
-    if (reference->status() != solver::Status::Converged)
-      throw solver::SolverError("the reference solve (active set) failed at load factor " +
-                                std::to_string(t) + ": " + reference->message());
+    if (reference->status() != solver::Status::Converged) {
+      std::cerr << scenes::printable(scene) << ": note: no error history at load factor " << t
+                << ": the reference solve (active set) did not converge: " << reference->message()
+                << '\n';
+      continue;
+    }
     result[t] = solver::strut_displacements(model, reference->snapshot());
   }
   return result;
@@ -104,6 +112,17 @@ int run_solve(const SolveArgs& args) {
   int status = kExitOk;
   const auto scene = load_scene_or_report(args.scene, status);
   if (!scene) return status;
+  if (const std::string problem =
+          load_factor_problem(*scene, args.method.load_factors(),
+                              args.method.load_steps.empty() ? "--load-factor" : "--load-steps");
+      !problem.empty()) {
+    std::cerr << scenes::printable(args.scene) << ": " << problem << '\n';
+    return kExitUsage;
+  }
+  MemoryUse use{{args.method.kind()}, !args.outputs.json.empty(), 0};
+  if (args.reference) use.methods.push_back(solver::MethodKind::ActiveSet);
+  if (!memory_suffices(*scene, args.scene, use, status)) return status;
+  Activity assembling("assembling the model");
   const solver::Model model = solver::build_model(*scene);
 
   RunInfo info;
@@ -112,15 +131,16 @@ int run_solve(const SolveArgs& args) {
   info.preconditioner = args.method.options().preconditioner;
   info.tolerance = args.method.tolerance;
 
+  Activity setting_up("setting up the method (factorizing the subdomains)");
   const auto setup_start = std::chrono::steady_clock::now();
   std::unique_ptr<solver::Method> method;
   std::map<double, std::vector<std::vector<solver::Vec2>>> references;
   try {
     method = solver::make_method(info.method, model, args.method.options());
     info.setup_seconds = seconds_since(setup_start);
-    if (args.reference) references = reference_solutions(model, args.method);
+    if (args.reference) references = reference_solutions(model, args.method, args.scene);
   } catch (const solver::SolverError& error) {
-    std::cerr << args.scene << ": " << error.what() << '\n';
+    std::cerr << scenes::printable(args.scene) << ": " << error.what() << '\n';
     return kExitSolverSetup;
   }
 
@@ -130,7 +150,7 @@ int run_solve(const SolveArgs& args) {
   try {
     outputs = std::make_unique<SolveOutputs>(args.outputs, model, load_factors);
   } catch (const CLI::ValidationError& error) {
-    std::cerr << args.scene << ": " << error.what() << '\n';
+    std::cerr << scenes::printable(args.scene) << ": " << error.what() << '\n';
     return kExitUsage;
   } catch (const OutputError& error) {
     return report_output_error(error);
@@ -140,13 +160,17 @@ int run_solve(const SolveArgs& args) {
   if (sweeping && !args.quiet)
     report << "load steps   " << load_factors.size() << " from " << load_factors.front() << " to "
            << load_factors.back() << ", each warm-started\n";
+  Activity solving("solving");
   ProgressLine progress(progress_mode(args.progress, args.quiet));
   int step_number = 0;
   const auto solve_start = std::chrono::steady_clock::now();
   solver::SweepHooks hooks;
   hooks.before_start = [&](double t) {
     ++step_number;
-    if (args.reference) method->set_reference(references.at(t));
+    if (!args.reference) return;
+    const auto it = references.find(t);
+    method->set_reference(it != references.end() ? it->second
+                                                 : std::vector<std::vector<solver::Vec2>>{});
   };
   hooks.on_iteration = [&](double t, const solver::Method& running) {
     outputs->iteration(running);
@@ -183,6 +207,7 @@ int run_solve(const SolveArgs& args) {
     info.solve_seconds = seconds_since(solve_start) - outputs->writing_seconds();
     // An interrupted solve still writes its outputs, with the current iterate marked
     // "interrupted": true, "converged": false.
+    Activity writing("writing the outputs");
     outputs->finish(steps, info, sweeping);
   } catch (const OutputError& error) {
     progress.clear();
@@ -191,7 +216,7 @@ int run_solve(const SolveArgs& args) {
   if (interrupted()) {
     const bool cut = steps.empty() || steps.size() < load_factors.size() ||
                      steps.back().state.status == solver::Status::Running;
-    std::cerr << args.scene << ": interrupted by " << interrupt_name();
+    std::cerr << scenes::printable(args.scene) << ": interrupted by " << interrupt_name();
     if (!cut)
       std::cerr << " after the solve had finished; the outputs are complete";
     else
@@ -205,7 +230,7 @@ int run_solve(const SolveArgs& args) {
   if (!args.quiet) print_summary(report, model, last.state, info);
   for (const solver::SweepStep& step : steps)
     if (step.state.status != solver::Status::Converged) {
-      std::cerr << args.scene << ": " << solver::to_string(info.method)
+      std::cerr << scenes::printable(args.scene) << ": " << solver::to_string(info.method)
                 << " did not converge at load factor " << step.load_factor << ": "
                 << step.state.message << '\n';
       return kExitNotConverged;
