@@ -34,7 +34,7 @@ set(CPACK_PACKAGE_NAME fetic)
 set(CPACK_PACKAGE_VERSION ${PROJECT_VERSION})
 set(CPACK_PACKAGE_DESCRIPTION_SUMMARY
     "frictionless contact of elastic struts solved by FETI and FETI-C")
-set(CPACK_PACKAGE_DESCRIPTION
+string(CONCAT CPACK_PACKAGE_DESCRIPTION
     "fetic solves the frictionless contact of elastic struts (bar, plane stress) by dual "
     "domain decomposition, writes result files (JSON, CSV, ParaView .vtu) and renders "
     "frames, movies and the thesis' figures without a display.")
