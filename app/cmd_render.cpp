@@ -45,6 +45,7 @@ struct RenderArgs {
   int max_frames = 2000;
   int threads = 0;
   int samples = 4;
+  bool labels = false;
   std::string vtu;  // also write each frame's state as ParaView files here
   std::string vtu_format = "zlib";
   bool progress = false;
@@ -90,7 +91,8 @@ int run_render(const RenderArgs& args) {
     return kExitUsage;
   }
   if (!args.out.empty() && !make_output_directory(args.out)) return kExitOutput;
-  auto headless = open_headless(args.out.empty() ? args.movie : args.out);
+  auto headless = open_headless(args.out.empty() ? args.movie : args.out,
+                                render::base_text_size(size.width, size.height));
   if (!headless) return kExitNoDisplay;
 
   ProgressLine progress(progress_mode(args.progress, args.quiet));
@@ -119,6 +121,7 @@ int run_render(const RenderArgs& args) {
   view.magnification = args.magnification;
   view.color_by = args.color == "stress" ? render::ColorBy::Stress : render::ColorBy::Subdomain;
   view.show_overlay = !args.no_overlay;
+  view.show_labels = args.labels;
   render::OverlayInfo info;
   info.title =
       model.title.empty() ? std::filesystem::path(args.scene).filename().string() : model.title;
@@ -163,9 +166,8 @@ int run_render(const RenderArgs& args) {
                                        ? plan.load_factors[static_cast<size_t>(frame.load_step)]
                                        : frame.index);
       const render::ComposedFrame composed = composer.compose(frame);
-      render::Image image =
-          headless->renderer->render(size.width, size.height, {&composed.scene, &composed.overlay},
-                                     render::palette::background);
+      render::Image image = headless->renderer->render(size.width, size.height, composed.layers(),
+                                                       render::palette::background);
       if (stream && pool) {
         stream->submit(image);  // a copy: the PNG encoder takes the other
       } else if (stream) {
@@ -284,6 +286,8 @@ void register_render(CLI::App& app, int& exit_code) {
       ->check(CLI::IsMember({"subdomain", "stress"}))
       ->capture_default_str();
   command->add_flag("--no-overlay", args->no_overlay, "No information panel");
+  command->add_flag("--labels", args->labels,
+                    "Strut names beside the struts (where there is room)");
   command->add_option("--max-frames", args->max_frames, "Refuse runs with more frames")
       ->check(integer_in(1, 1'000'000))
       ->capture_default_str();

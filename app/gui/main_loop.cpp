@@ -38,7 +38,8 @@ int App::run(render::GlfwWindow& window, std::vector<ScriptAction> script) {
   } catch (const OutputError& error) {
     return report_output_error(error);
   }
-  render::FontAtlas font(font_file("DejaVuSans.ttf"), font_file("DejaVuSans-Bold.ttf"));
+  // The window's text stays at the default sizes (up to 22 pixels).
+  render::FontAtlas font(22.0f, font_file("DejaVuSans.ttf"), font_file("DejaVuSans-Bold.ttf"));
   render::GlRenderer renderer(window, font);
   renderer_ = &renderer;
 
@@ -127,6 +128,7 @@ int App::run(render::GlfwWindow& window, std::vector<ScriptAction> script) {
             std::chrono::duration<double, std::milli>(Clock::now() - draw_start).count());
       }
       redraw_ = false;
+      if (args_.bench > 0 && bench_.phase == 3 && bench_.pan_solving) ++bench_.pan_pictures;
     }
     if (screenshot_requested_) {
       screenshot(pending_screenshot_);
