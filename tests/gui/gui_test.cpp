@@ -97,6 +97,7 @@ class App {
     int status = 0;
     return pid_ > 0 && ::waitpid(pid_, &status, WNOHANG) == 0;
   }
+  void signal(int number) const { ::kill(pid_, number); }
 
  private:
   pid_t pid_ = 0;
@@ -409,6 +410,31 @@ TEST_CASE("a load sweep is recorded as frames; a method that cannot solve is rep
   CHECK(solved.back()["message"].get<std::string>().find("contact") != std::string::npos);
 }
 
+TEST_CASE("a screenshot or recording that cannot be written is an error event and status 5",
+          "[script]") {
+  REQUIRE(have_display());
+  const fs::path dir = fresh_directory("fetic_gui_lost");
+  const fs::path state = dir / "state.jsonl";
+  const fs::path script = dir / "script.txt";
+  const fs::path file = dir / "a_file";
+  std::ofstream(file) << "not a directory\n";
+  std::ofstream(script) << "wait\nscreenshot shot.png\nrecord-sweep 2\nquit\n";
+  App app({scene("two_bars.toml"), "--state-file", state.string(), "--script", script.string(),
+           "--screenshot-dir", file.string(), "--record-dir", file.string()});
+  const auto status = app.wait(90.0);
+  INFO("reported state:\n" << read_text(state));
+  REQUIRE(status);
+  CHECK(*status == 5);
+  std::vector<std::string> errors;
+  for (const json& e : events(state))
+    if (is(e, "error")) errors.push_back(e["message"].get<std::string>());
+  REQUIRE(errors.size() == 2);
+  std::sort(errors.begin(), errors.end());  // the screenshot is written off the UI thread
+  CHECK(errors[0].find((file / "shot.png").string() + ": cannot write") != std::string::npos);
+  CHECK(errors[1].find("cannot create the recording directory") != std::string::npos);
+  CHECK(read_text(file) == "not a directory\n");
+}
+
 TEST_CASE("a changed scene file is reloaded, keeping the app running", "[script]") {
   REQUIRE(have_display());
   const fs::path dir = fresh_directory("fetic_gui_reload");
@@ -431,6 +457,20 @@ TEST_CASE("a changed scene file is reloaded, keeping the app running", "[script]
   CHECK(app.running());
 }
 
+TEST_CASE("SIGTERM closes the window: status 130", "[script]") {
+  REQUIRE(have_display());
+  const fs::path dir = fresh_directory("fetic_gui_sigterm");
+  const fs::path state = dir / "state.jsonl";
+  App app({scene("two_bars.toml"), "--state-file", state.string()});
+  REQUIRE(wait_for(state, [](const json& e) { return is(e, "ready"); }));
+  app.signal(SIGTERM);
+  const auto status = app.wait(30.0);
+  REQUIRE(status);
+  CHECK(*status == 130);
+  CHECK(wait_for(
+      state, [](const json& e) { return is(e, "quit"); }, 1.0));
+}
+
 TEST_CASE("without a display fetic gui says so and points to fetic render", "[no-display]") {
   const auto [status, output] =
       shell("env -u DISPLAY -u WAYLAND_DISPLAY " + std::string(FETIC_EXECUTABLE) + " gui " +
@@ -439,4 +479,33 @@ TEST_CASE("without a display fetic gui says so and points to fetic render", "[no
   CHECK(status == 6);
   CHECK(output.find("no display") != std::string::npos);
   CHECK(output.find("fetic render") != std::string::npos);
+}
+
+TEST_CASE("the ParaView export writes the shown iterate as the next frame of a series",
+          "[script]") {
+  REQUIRE(have_display());
+  const fs::path dir = fresh_directory("fetic_gui_paraview");
+  const fs::path state = dir / "state.jsonl";
+  const fs::path script = dir / "script.txt";
+  std::ofstream(script) << "wait\nexport-vtu\nload 2\nwait\nexport-vtu\nquit\n";
+  App app({scene("two_bars.toml"), "--state-file", state.string(), "--script", script.string(),
+           "--vtu-dir", (dir / "vtu").string()});
+  const auto status = app.wait(90.0);
+  INFO("reported state:\n" << read_text(state));
+  REQUIRE(status);
+  CHECK(*status == 0);
+  std::vector<json> exports;
+  for (const json& e : events(state))
+    if (is(e, "paraview")) exports.push_back(e);
+  REQUIRE(exports.size() == 2);
+  CHECK(exports[1]["frames"] == 2);
+  CHECK(exports[1]["load_factor"].get<double>() == 2.0);
+  const std::string pvd = read_text(dir / "vtu" / "struts.pvd");
+  CHECK(pvd.find("struts_0001.vtu") != std::string::npos);
+  // The frame's field data (ASCII) carries the load factor of the shown solve.
+  const std::string frame = read_text(dir / "vtu" / "struts_0001.vtu");
+  const auto at = frame.find("Name=\"load_factor\"");
+  REQUIRE(at != std::string::npos);
+  CHECK(frame.find("\n2\n", at) < frame.find("</DataArray>", at));
+  CHECK(fs::exists(dir / "vtu" / "contacts_0001.vtu"));
 }

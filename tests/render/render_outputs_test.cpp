@@ -1,12 +1,17 @@
 // `fetic render --movie` onto the targets of app/output_file.hpp: a private full device
 // (status 5, the node stays), a FIFO (a fragmented mp4 arrives through it), a symbolic
-// link (followed) and stdout ("-", the report on stderr).
+// link (followed) and stdout ("-", the report on stderr); SIGTERM while ffmpeg waits for
+// the FIFO's reader.
 
 #include <catch2/catch.hpp>
 
 #include <sys/stat.h>
 
+#include <cerrno>
+#include <csignal>
+
 #include <cstdlib>
+#include <fstream>
 #include <string>
 #include <thread>
 
@@ -82,4 +87,55 @@ TEST_CASE("render --movie onto a private full device: status 5, the device stays
   CHECK(r.status == 5);
   CHECK_THAT(r.err, Catch::Contains(full));
   CHECK(is_char_device(full));
+}
+
+TEST_CASE("SIGTERM while ffmpeg waits for the movie FIFO's reader: 130, ffmpeg ended", "[output]") {
+  if (!has_ffmpeg()) {
+    WARN("skipped: ffmpeg is not installed");
+    return;
+  }
+  TempDir dir;
+  const std::string fifo = dir / "movie.fifo";
+  REQUIRE(::mkfifo(fifo.c_str(), 0600) == 0);
+  std::vector<std::string> steps = render_to(fifo);
+  steps[2] = "--load-steps";  // several frames: fetic blocks on the full pipe as well
+  steps.insert(steps.begin() + 3, "0:1:20");
+  for (const auto& command : {render_to(fifo), steps}) {
+    Process process(command);
+    const pid_t ffmpeg = process.wait_for_child_fifo_open();
+    REQUIRE(ffmpeg > 0);
+    process.signal(SIGTERM);
+    const Result r = process.wait(std::chrono::seconds(30));
+    INFO(r.err);
+    CHECK(r.status == 130);
+    CHECK_THAT(r.err, Catch::Contains(fifo) && Catch::Contains("interrupted by SIGTERM"));
+    // ffmpeg only counts a SIGTERM while it blocks in open(); fetic must end it anyway.
+    CHECK((::kill(ffmpeg, 0) != 0 && errno == ESRCH));
+    CHECK(is_fifo(fifo));
+  }
+}
+
+TEST_CASE("frames onto a file, a dangling link or an empty name: status 5 naming what is there",
+          "[output]") {
+  TempDir dir;
+  const std::string file = dir / "a_file";
+  std::ofstream(file) << "kept\n";
+  const Result onto_file = run_fetic(
+      {"render", bundled_scene("two_bars.toml"), "--final", "--size", "64x48", "--out", file});
+  CHECK(onto_file.status == 5);
+  CHECK_THAT(onto_file.err, Catch::Contains(file + ": is not a directory"));
+  CHECK(read_text(file) == "kept\n");
+
+  const std::string link = dir / "link";
+  fs::create_symlink("missing/frames", link);
+  const Result dangling = run_fetic(
+      {"render", bundled_scene("two_bars.toml"), "--final", "--size", "64x48", "--out", link});
+  CHECK(dangling.status == 5);
+  CHECK_THAT(
+      dangling.err,
+      Catch::Contains(link + ": is a symbolic link to 'missing/frames', which does not exist"));
+
+  const Result empty = run_fetic({"figures", "--figure", "2.1", "--out", ""});
+  CHECK(empty.status == 5);
+  CHECK_THAT(empty.err, Catch::Contains("the output directory is an empty name"));
 }
