@@ -14,8 +14,11 @@
 #include "app/exit_codes.hpp"
 #include "app/interrupt.hpp"
 #include "app/method_options.hpp"
+#include "app/processes.hpp"
 #include "app/result_json.hpp"
+#include "app/solve_profile.hpp"
 #include "app/scene_input.hpp"
+#include "solver/feti_method.hpp"
 #include "solver/load_sweep.hpp"
 #include "solver/method.hpp"
 
@@ -26,6 +29,7 @@ struct SolveArgs {
   std::string scene;
   MethodArgs method;
   std::string json;
+  std::string profile;
   bool reference = false;
   bool quiet = false;
 };
@@ -71,6 +75,10 @@ void print_summary(const solver::Model& model, const solver::Snapshot& state, co
             << format("%.3f", info.solve_seconds * 1e3) << " ms\n";
 }
 
+int report_result(const SolveArgs& args, const solver::Model& model,
+                  const solver::Snapshot& final_state, const std::vector<solver::SweepStep>& steps,
+                  const RunInfo& info);
+
 // Displacements of a direct (active-set) solve at every load factor, for error histories.
 std::map<double, std::vector<std::vector<solver::Vec2>>> reference_solutions(
     const solver::Model& model, const MethodArgs& args) {
@@ -90,6 +98,15 @@ std::map<double, std::vector<std::vector<solver::Vec2>>> reference_solutions(
 }
 
 int run_solve(const SolveArgs& args) {
+  // Under mpirun every process runs this function in step: each reads the scene, builds
+  // the model (replicated metadata) and its own subdomains; every decision that ends the
+  // run is taken alike by all of them, and rank 0 alone prints and writes files.
+  const solver::Communicator& processes = app::processes();
+  if (processes.distributed() && !solver::distributable(args.method.kind())) {
+    std::cerr << "fetic solve: --method " << solver::to_string(args.method.kind())
+              << " runs in one process; under mpirun use --method feti or feti-c\n";
+    return kExitUsage;
+  }
   const auto scene = load_scene_or_report(args.scene);
   if (!scene) return kExitInvalidScene;
   const solver::Model model = solver::build_model(*scene);
@@ -99,19 +116,25 @@ int run_solve(const SolveArgs& args) {
   info.method = args.method.kind();
   info.preconditioner = args.method.options().preconditioner;
   info.tolerance = args.method.tolerance;
+  info.ranks = processes.size();
 
   const auto setup_start = std::chrono::steady_clock::now();
   std::unique_ptr<solver::Method> method;
   std::map<double, std::vector<std::vector<solver::Vec2>>> references;
   try {
-    method = solver::make_method(info.method, model, args.method.options());
+    method = solver::make_method(info.method, model, args.method.options(), processes);
     info.setup_seconds = seconds_since(setup_start);
+    if (auto* dual = dynamic_cast<const solver::FetiMethod*>(method.get()))
+      info.subdomains_per_rank = dual->system().partition().subdomains_per_part();
     if (args.reference) references = reference_solutions(model, args.method);
   } catch (const solver::SolverError& error) {
     std::cerr << args.scene << ": " << error.what() << '\n';
     return kExitSolverSetup;
   }
 
+  auto* dual = dynamic_cast<const solver::FetiMethod*>(method.get());
+  ProfileRun profile;
+  if (dual) profile.before_solve = dual->profile();
   const std::vector<double> load_factors = args.method.load_factors();
   const bool sweeping = !args.method.load_steps.empty();
   if (sweeping && !args.quiet)
@@ -129,20 +152,52 @@ int run_solve(const SolveArgs& args) {
                 step.state.active_set_size(), step.state.residual);
     std::fflush(stdout);
   };
-  hooks.keep_going = [] { return !interrupted(); };
+  // Every process asks between iterations, so all stop at the same one.
+  bool stop = false;
+  hooks.keep_going = [&] {
+    stop = stop || processes.any(interrupted());
+    return !stop;
+  };
   const std::vector<solver::SweepStep> steps = solver::sweep(*method, load_factors, hooks);
-  if (interrupted()) {
-    std::cerr << args.scene << ": interrupted by " << interrupt_name() << " at iteration "
+  if (stop) {
+    // The signal some process received (rank 0 may have received none).
+    const int signal = static_cast<int>(processes.max(static_cast<double>(interrupt_signal())));
+    std::cerr << args.scene << ": interrupted by " << signal_name(signal) << " at iteration "
               << method->iteration() << "; no result file written\n";
     return kExitInterrupted;
   }
   info.solve_seconds = seconds_since(solve_start);
-  const solver::SweepStep& last = steps.back();
+  // The whole final state on rank 0 (the pieces of every process).
+  const solver::Snapshot final_state = method->gathered_snapshot();
 
-  if (!args.quiet) print_summary(model, last.state, info);
+  int status = kExitOk;
+  if (!args.profile.empty() && dual) {
+    profile.after_solve = dual->profile();
+    profile.setup_seconds = info.setup_seconds;
+    profile.solve_seconds = info.solve_seconds;
+    profile.iterations = final_state.iteration;
+    try {
+      write_solve_profile(args.profile, processes, profile);
+    } catch (const OutputError& error) {
+      std::cerr << error.what() << '\n';
+      status = kExitOutput;
+    }
+  }
+  if (processes.root() && status == kExitOk)
+    status = report_result(args, model, final_state, steps, info);
+  status = static_cast<int>(processes.max(static_cast<double>(status)));
+  return status;
+}
+
+int report_result(const SolveArgs& args, const solver::Model& model,
+                  const solver::Snapshot& final_state, const std::vector<solver::SweepStep>& steps,
+                  const RunInfo& info) {
+  const bool sweeping = !args.method.load_steps.empty();
+  const solver::SweepStep& last = steps.back();
+  if (!args.quiet) print_summary(model, final_state, info);
   if (!args.json.empty()) {
     try {
-      nlohmann::json result = result_json(model, last.state, last.history, info);
+      nlohmann::json result = result_json(model, final_state, last.history, info);
       if (sweeping) {
         nlohmann::json list = nlohmann::json::array();
         for (const solver::SweepStep& step : steps)
@@ -181,7 +236,21 @@ void register_solve(CLI::App& app, int& exit_code) {
                     "Record each iteration's displacement error against an active-set solve "
                     "made in the same run");
   command->add_flag("--quiet", args->quiet, "Print no summary");
-  command->callback([args, &exit_code] { exit_code = run_solve(*args); });
+  command->add_option("--profile", args->profile,
+                      "feti, feti-c: write what each process did in the solve (time split, "
+                      "messages, bytes, coarse problem, memory) as JSON here");
+  command->callback([args, &exit_code] {
+    try {
+      exit_code = run_solve(*args);
+    } catch (const std::exception& error) {
+      // Distributed, a failure that only this process met would leave the others
+      // waiting in the next exchange: end them all (mpirun reports the status).
+      if (!processes().distributed()) throw;
+      report_from_any_rank("fetic solve: process " + std::to_string(processes().rank()) +
+                           " failed: " + error.what());
+      solver::mpi_abort(kExitSolverSetup);
+    }
+  });
 }
 
 }  // namespace fetic::app

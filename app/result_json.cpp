@@ -22,6 +22,8 @@ nlohmann::json result_json(const solver::Model& model, const solver::Snapshot& f
   if (!final_state.message.empty()) result["message"] = final_state.message;
   result["iterations"] = final_state.iteration;
   result["time_seconds"] = {{"setup", info.setup_seconds}, {"solve", info.solve_seconds}};
+  result["ranks"] = info.ranks;
+  if (!info.subdomains_per_rank.empty()) result["subdomains_per_rank"] = info.subdomains_per_rank;
 
   const auto displacements = solver::strut_displacements(model, final_state);
   json struts = json::array();

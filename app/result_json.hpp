@@ -17,6 +17,8 @@ struct RunInfo {
   double tolerance = 0.0;
   double setup_seconds = 0.0;
   double solve_seconds = 0.0;
+  int ranks = 1;                         // processes the solve ran on (mpirun -np)
+  std::vector<int> subdomains_per_rank;  // dual methods: subdomains each process held
 };
 
 nlohmann::json result_json(const solver::Model& model, const solver::Snapshot& final_state,

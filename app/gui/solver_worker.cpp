@@ -8,6 +8,7 @@
 #include <omp.h>
 
 #include "solver/load_sweep.hpp"
+#include "solver/threads.hpp"
 
 namespace fetic::app::gui {
 namespace {
@@ -133,7 +134,8 @@ void SolverWorker::run() {
         newer.reset();
         // Small models solve fastest on one thread: an OpenMP team's start-up and spinning
         // cost more than the work and take the cores the window renders on (llvmpipe).
-        omp_set_num_threads(target.model->dof_count() < kParallelFrom ? 1 : omp_get_num_procs());
+        solver::set_thread_budget(target.model->dof_count() < kParallelFrom ? 1
+                                                                           : omp_get_num_procs());
         try {
           made_model = target.model;
           method = solver::make_method(target.method, *made_model, target.options);
