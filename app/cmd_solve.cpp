@@ -9,14 +9,14 @@
 #include <memory>
 #include <string>
 
-#include "app/atomic_file.hpp"
 #include "app/commands.hpp"
 #include "app/exit_codes.hpp"
 #include "app/interrupt.hpp"
 #include "app/method_options.hpp"
+#include "app/output_file.hpp"
 #include "app/processes.hpp"
-#include "app/result_json.hpp"
 #include "app/solve_profile.hpp"
+#include "app/result_json.hpp"
 #include "app/scene_input.hpp"
 #include "solver/feti_method.hpp"
 #include "solver/load_sweep.hpp"
@@ -44,7 +44,8 @@ std::string format(const char* pattern, double value) {
   return buffer;
 }
 
-void print_summary(const solver::Model& model, const solver::Snapshot& state, const RunInfo& info) {
+void print_summary(std::ostream& out, const solver::Model& model, const solver::Snapshot& state,
+                   const RunInfo& info) {
   const auto displacements = solver::strut_displacements(model, state);
   double largest = 0.0;
   int largest_strut = -1, largest_node = -1;
@@ -55,29 +56,29 @@ void print_summary(const solver::Model& model, const solver::Snapshot& state, co
         largest_strut = static_cast<int>(s);
         largest_node = static_cast<int>(n);
       }
-  std::cout << "scene        " << info.scene_path << " (" << scenes::to_string(model.kind) << ", "
-            << model.struts.size() << " struts, " << model.contact_labels.size() << " contacts, "
-            << model.dof_count() << " unknowns)\n";
-  std::cout << "method       " << solver::to_string(info.method);
+  out << "scene        " << info.scene_path << " (" << scenes::to_string(model.kind) << ", "
+      << model.struts.size() << " struts, " << model.contact_labels.size() << " contacts, "
+      << model.dof_count() << " unknowns)\n";
+  out << "method       " << solver::to_string(info.method);
   if (info.method == solver::MethodKind::Feti || info.method == solver::MethodKind::FetiC)
-    std::cout << " (preconditioner " << solver::to_string(info.preconditioner) << ")";
-  std::cout << ", load factor " << state.load_factor << ", tolerance " << info.tolerance << "\n";
-  std::cout << "converged    " << (state.status == solver::Status::Converged ? "yes" : "NO")
-            << " after " << state.iteration << " iterations, relative residual "
-            << format("%.3e", state.residual) << "\n";
-  if (!state.message.empty()) std::cout << "             " << state.message << "\n";
-  std::cout << "contacts     " << state.active_set_size() << " of " << model.pairs.size()
-            << " node pairs active\n";
+    out << " (preconditioner " << solver::to_string(info.preconditioner) << ")";
+  out << ", load factor " << state.load_factor << ", tolerance " << info.tolerance << "\n";
+  out << "converged    " << (state.status == solver::Status::Converged ? "yes" : "NO") << " after "
+      << state.iteration << " iterations, relative residual " << format("%.3e", state.residual)
+      << "\n";
+  if (!state.message.empty()) out << "             " << state.message << "\n";
+  out << "contacts     " << state.active_set_size() << " of " << model.pairs.size()
+      << " node pairs active\n";
   if (largest_strut >= 0)
-    std::cout << "largest displacement " << format("%.6e", largest) << " (strut '"
-              << model.strut_names[largest_strut] << "', node " << largest_node << ")\n";
-  std::cout << "time         set-up " << format("%.3f", info.setup_seconds * 1e3) << " ms, solve "
-            << format("%.3f", info.solve_seconds * 1e3) << " ms\n";
+    out << "largest displacement " << format("%.6e", largest) << " (strut '"
+        << model.strut_names[largest_strut] << "', node " << largest_node << ")\n";
+  out << "time         set-up " << format("%.3f", info.setup_seconds * 1e3) << " ms, solve "
+      << format("%.3f", info.solve_seconds * 1e3) << " ms\n";
 }
 
 int report_result(const SolveArgs& args, const solver::Model& model,
                   const solver::Snapshot& final_state, const std::vector<solver::SweepStep>& steps,
-                  const RunInfo& info);
+                  const RunInfo& info, std::ostream& report);
 
 // Displacements of a direct (active-set) solve at every load factor, for error histories.
 std::map<double, std::vector<std::vector<solver::Vec2>>> reference_solutions(
@@ -107,8 +108,9 @@ int run_solve(const SolveArgs& args) {
               << " runs in one process; under mpirun use --method feti or feti-c\n";
     return kExitUsage;
   }
-  const auto scene = load_scene_or_report(args.scene);
-  if (!scene) return kExitInvalidScene;
+  int status = kExitOk;
+  const auto scene = load_scene_or_report(args.scene, status);
+  if (!scene) return status;
   const solver::Model model = solver::build_model(*scene);
 
   RunInfo info;
@@ -137,9 +139,11 @@ int run_solve(const SolveArgs& args) {
   if (dual) profile.before_solve = dual->profile();
   const std::vector<double> load_factors = args.method.load_factors();
   const bool sweeping = !args.method.load_steps.empty();
+  // With --json - the result goes to stdout: the report goes to stderr then.
+  std::ostream& report = is_stdout(args.json) ? std::cerr : std::cout;
   if (sweeping && !args.quiet)
-    std::cout << "load steps   " << load_factors.size() << " from " << load_factors.front()
-              << " to " << load_factors.back() << ", each warm-started\n";
+    report << "load steps   " << load_factors.size() << " from " << load_factors.front() << " to "
+           << load_factors.back() << ", each warm-started\n";
   const auto solve_start = std::chrono::steady_clock::now();
   solver::SweepHooks hooks;
   hooks.before_start = [&](double t) {
@@ -147,10 +151,12 @@ int run_solve(const SolveArgs& args) {
   };
   hooks.on_step = [&](const solver::SweepStep& step) {
     if (!sweeping || args.quiet) return;
-    std::printf("  t = %-12.6g %-9s %4d iterations  %5d active  residual %.3e\n",
-                step.load_factor, solver::to_string(step.state.status), step.state.iteration,
-                step.state.active_set_size(), step.state.residual);
-    std::fflush(stdout);
+    char line[160];
+    std::snprintf(line, sizeof line,
+                  "  t = %-12.6g %-9s %4d iterations  %5d active  residual %.3e\n",
+                  step.load_factor, solver::to_string(step.state.status), step.state.iteration,
+                  step.state.active_set_size(), step.state.residual);
+    report << line << std::flush;
   };
   // Every process asks between iterations, so all stop at the same one.
   bool stop = false;
@@ -170,7 +176,6 @@ int run_solve(const SolveArgs& args) {
   // The whole final state on rank 0 (the pieces of every process).
   const solver::Snapshot final_state = method->gathered_snapshot();
 
-  int status = kExitOk;
   if (!args.profile.empty() && dual) {
     profile.after_solve = dual->profile();
     profile.setup_seconds = info.setup_seconds;
@@ -179,22 +184,20 @@ int run_solve(const SolveArgs& args) {
     try {
       write_solve_profile(args.profile, processes, profile);
     } catch (const OutputError& error) {
-      std::cerr << error.what() << '\n';
-      status = kExitOutput;
+      status = report_output_error(error);
     }
   }
   if (processes.root() && status == kExitOk)
-    status = report_result(args, model, final_state, steps, info);
-  status = static_cast<int>(processes.max(static_cast<double>(status)));
-  return status;
+    status = report_result(args, model, final_state, steps, info, report);
+  return static_cast<int>(processes.max(static_cast<double>(status)));
 }
 
 int report_result(const SolveArgs& args, const solver::Model& model,
                   const solver::Snapshot& final_state, const std::vector<solver::SweepStep>& steps,
-                  const RunInfo& info) {
+                  const RunInfo& info, std::ostream& report) {
   const bool sweeping = !args.method.load_steps.empty();
   const solver::SweepStep& last = steps.back();
-  if (!args.quiet) print_summary(model, final_state, info);
+  if (!args.quiet) print_summary(report, model, final_state, info);
   if (!args.json.empty()) {
     try {
       nlohmann::json result = result_json(model, final_state, last.history, info);
@@ -208,10 +211,9 @@ int report_result(const SolveArgs& args, const solver::Model& model,
                           {"residual", step.state.residual}});
         result["steps"] = list;
       }
-      write_file_atomically(args.json, [&](std::ostream& out) { out << result.dump(1) << '\n'; });
+      write_output(args.json, [&](std::ostream& out) { out << result.dump(1) << '\n'; });
     } catch (const OutputError& error) {
-      std::cerr << error.what() << '\n';
-      return kExitOutput;
+      return report_output_error(error);
     }
   }
   for (const solver::SweepStep& step : steps)
@@ -231,7 +233,7 @@ void register_solve(CLI::App& app, int& exit_code) {
   CLI::App* command = app.add_subcommand("solve", "Solve a scene and report the result");
   command->add_option("scene", args->scene, "Scene file (TOML, see docs/SCENES.md)")->required();
   add_method_options(command, args->method);
-  command->add_option("--json", args->json, "Write the result file (JSON) here");
+  command->add_option("--json", args->json, "Write the result file (JSON) here (- for stdout)");
   command->add_flag("--reference", args->reference,
                     "Record each iteration's displacement error against an active-set solve "
                     "made in the same run");

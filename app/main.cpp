@@ -2,6 +2,7 @@
 // The command line only wires the layers together; each command lives in its own file.
 
 #include <iostream>
+#include <string>
 
 #include <CLI/CLI.hpp>
 
@@ -9,8 +10,17 @@
 #include "app/exit_codes.hpp"
 #include "app/interrupt.hpp"
 #include "app/processes.hpp"
+#include "app/standard_streams.hpp"
+#include "scenes/scene_error.hpp"
 
 namespace {
+
+// CLI11 reports an unknown command as "A subcommand is required": name it instead.
+bool known_command(const CLI::App& app, const std::string& word) {
+  for (const CLI::App* command : app.get_subcommands({}))
+    if (command->check_name(word)) return true;
+  return false;
+}
 
 // Under mpirun only `fetic solve` runs distributed; every other command is refused
 // before anything is loaded, with one message (rank 0) and status 1 on every process.
@@ -19,7 +29,8 @@ bool refuse_under_mpi(int argc, char** argv) {
   const std::string command = argc > 1 ? argv[1] : "";
   if (command == "solve" || command == "--help" || command == "-h" || command == "--version")
     return false;
-  std::cerr << "fetic " << command << " runs in one process: start it without mpirun "
+  std::cerr << "fetic " << fetic::scenes::printable(command)
+            << " runs in one process: start it without mpirun "
             << "(under mpirun only 'fetic solve' runs, distributed over the processes)\n";
   return true;
 }
@@ -37,23 +48,32 @@ int main(int argc, char** argv) {
 }
 
 int fetic::app::run_command_line(int argc, char** argv) {
+  guard_standard_streams();
   CLI::App app{"fetic - frictionless contact of elastic struts by FETI and FETI-C"};
   app.require_subcommand(1);
   app.set_version_flag("--version", "fetic 0.1.0");
-  fetic::app::install_interrupt_handlers();
-  int exit_code = fetic::app::kExitOk;
-  fetic::app::register_solve(app, exit_code);
-  fetic::app::register_bench(app, exit_code);
-  fetic::app::register_generate(app, exit_code);
-  fetic::app::register_render(app, exit_code);
-  fetic::app::register_figures(app, exit_code);
-  fetic::app::register_bench_render(app, exit_code);
-  fetic::app::register_gui(app, exit_code);
+  install_interrupt_handlers();
+  int exit_code = kExitOk;
+  register_solve(app, exit_code);
+  register_bench(app, exit_code);
+  register_generate(app, exit_code);
+  register_render(app, exit_code);
+  register_figures(app, exit_code);
+  register_bench_render(app, exit_code);
+  register_gui(app, exit_code);
+  if (argc > 1 && argv[1][0] != '-' && !known_command(app, argv[1])) {
+    std::string commands;
+    for (const CLI::App* command : app.get_subcommands({}))
+      commands += (commands.empty() ? "" : ", ") + command->get_name();
+    std::cerr << "fetic: unknown command '" << scenes::printable(argv[1])
+              << "' (commands: " << commands << "; fetic --help)\n";
+    return kExitUsage;
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {
     const int code = app.exit(error);
-    return code == 0 ? fetic::app::kExitOk : fetic::app::kExitUsage;
+    return finish_standard_output(code == 0 ? kExitOk : kExitUsage);
   }
-  return exit_code;
+  return finish_standard_output(exit_code);
 }
