@@ -4,7 +4,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "app/atomic_file.hpp"
+#include "app/output_file.hpp"
 
 namespace fetic::app {
 namespace {
@@ -74,7 +74,7 @@ void write_solve_profile(const std::string& path, const solver::Communicator& pr
     list.push_back(entry);
   }
   profile["processes"] = list;
-  write_file_atomically(path, [&](std::ostream& out) { out << profile.dump(1) << '\n'; });
+  write_output(path, [&](std::ostream& out) { out << profile.dump(1) << "\n"; });
 }
 
 }  // namespace fetic::app
