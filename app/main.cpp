@@ -2,6 +2,7 @@
 // The command line only wires the layers together; each command lives in its own file.
 
 #include <iostream>
+#include <new>
 #include <string>
 
 #include <CLI/CLI.hpp>
@@ -10,6 +11,7 @@
 #include "app/exit_codes.hpp"
 #include "app/interrupt.hpp"
 #include "app/processes.hpp"
+#include "app/out_of_memory.hpp"
 #include "app/standard_streams.hpp"
 #include "scenes/scene_error.hpp"
 
@@ -49,6 +51,7 @@ int main(int argc, char** argv) {
 
 int fetic::app::run_command_line(int argc, char** argv) {
   guard_standard_streams();
+  install_out_of_memory_handler();
   CLI::App app{"fetic - frictionless contact of elastic struts by FETI and FETI-C"};
   app.require_subcommand(1);
   app.set_version_flag("--version", "fetic 0.1.0");
@@ -74,6 +77,8 @@ int fetic::app::run_command_line(int argc, char** argv) {
   } catch (const CLI::ParseError& error) {
     const int code = app.exit(error);
     return finish_standard_output(code == 0 ? kExitOk : kExitUsage);
+  } catch (const std::bad_alloc&) {
+    return finish_standard_output(report_out_of_memory());
   }
   return finish_standard_output(exit_code);
 }

@@ -21,7 +21,8 @@ class CholmodFactor {
   CholmodFactor(CholmodFactor&&) noexcept;
   CholmodFactor& operator=(CholmodFactor&&) noexcept;
 
-  // Factorizes the symmetric matrix A (only its lower triangle is read).
+  // Factorizes the symmetric matrix A (only its lower triangle is read). Throws
+  // std::bad_alloc when CHOLMOD runs out of memory (OutOfMemory is never returned).
   Result factorize(const SparseMatrix& A);
   // The same for a matrix with the nonzero pattern of the last factorize(): the fill-
   // reducing ordering and symbolic analysis are kept, only the numbers are factorized
