@@ -9,6 +9,7 @@
 
 #include "app/commands.hpp"
 #include "app/exit_codes.hpp"
+#include "app/help_text.hpp"
 #include "app/interrupt.hpp"
 #include "app/processes.hpp"
 #include "app/out_of_memory.hpp"
@@ -64,6 +65,7 @@ int fetic::app::run_command_line(int argc, char** argv) {
   register_figures(app, exit_code);
   register_bench_render(app, exit_code);
   register_gui(app, exit_code);
+  add_help_footers(app);
   if (argc > 1 && argv[1][0] != '-' && !known_command(app, argv[1])) {
     std::string commands;
     for (const CLI::App* command : app.get_subcommands({}))
