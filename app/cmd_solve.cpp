@@ -18,6 +18,7 @@
 #include "app/output_file.hpp"
 #include "app/result_json.hpp"
 #include "app/scene_input.hpp"
+#include "app/solve_monitor.hpp"
 #include "scenes/scene_error.hpp"
 #include "solver/load_sweep.hpp"
 #include "solver/method.hpp"
@@ -29,6 +30,8 @@ struct SolveArgs {
   std::string scene;
   MethodArgs method;
   std::string json;
+  std::string monitor;
+  int monitor_full = 0;
   bool reference = false;
   bool quiet = false;
 };
@@ -107,6 +110,14 @@ std::map<double, std::vector<std::vector<solver::Vec2>>> reference_solutions(
 }
 
 int run_solve(const SolveArgs& args) {
+  if (args.monitor_full > 0 && args.monitor.empty()) {
+    std::cerr << "fetic solve: --monitor-full needs --monitor FILE\n";
+    return kExitUsage;
+  }
+  if (is_stdout(args.json) && is_stdout(args.monitor)) {
+    std::cerr << "fetic solve: --json - and --monitor - cannot both go to standard output\n";
+    return kExitUsage;
+  }
   int status = kExitOk;
   const auto scene = load_scene_or_report(args.scene, status);
   if (!scene) return status;
@@ -144,8 +155,14 @@ int run_solve(const SolveArgs& args) {
 
   const std::vector<double> load_factors = args.method.load_factors();
   const bool sweeping = !args.method.load_steps.empty();
-  // With --json - the result goes to stdout: the report goes to stderr then.
-  std::ostream& report = is_stdout(args.json) ? std::cerr : std::cout;
+  // With --json - or --monitor - that output goes to stdout: the report goes to stderr then.
+  std::ostream& report = is_stdout(args.json) || is_stdout(args.monitor) ? std::cerr : std::cout;
+  SolveMonitor monitor(model, args.monitor_full, true);
+  if (!args.monitor.empty()) try {
+      monitor.open(args.monitor);
+    } catch (const OutputError& error) {
+      return report_output_error(error);
+    }
   if (sweeping && !args.quiet)
     report << "load steps   " << load_factors.size() << " from " << load_factors.front() << " to "
            << load_factors.back() << ", each warm-started\n";
@@ -153,6 +170,7 @@ int run_solve(const SolveArgs& args) {
   const auto solve_start = std::chrono::steady_clock::now();
   solver::SweepHooks hooks;
   hooks.before_start = [&](double t) {
+    monitor.begin_load(t);
     if (!args.reference) return;
     const auto it = references.find(t);
     method->set_reference(it != references.end() ? it->second
@@ -168,6 +186,7 @@ int run_solve(const SolveArgs& args) {
     report << line << std::flush;
   };
   hooks.keep_going = [] { return !interrupted(); };
+  if (!args.monitor.empty()) hooks.on_iteration = [&](const solver::Method& m) { monitor.observe(m); };
   const std::vector<solver::SweepStep> steps = solver::sweep(*method, load_factors, hooks);
   if (interrupted()) {
     std::cerr << scenes::printable(args.scene) << ": interrupted by " << interrupt_name()
@@ -176,6 +195,11 @@ int run_solve(const SolveArgs& args) {
   }
   info.solve_seconds = seconds_since(solve_start);
   const solver::SweepStep& last = steps.back();
+  if (!args.monitor.empty())
+    if (const std::string problem = monitor.close(); !problem.empty()) {
+      std::cerr << problem << '\n';
+      status = kExitOutput;
+    }
 
   if (!args.quiet) print_summary(report, model, last.state, info);
   if (!args.json.empty()) {
@@ -197,6 +221,7 @@ int run_solve(const SolveArgs& args) {
       return report_output_error(error);
     }
   }
+  if (status != kExitOk) return status;
   for (const solver::SweepStep& step : steps)
     if (step.state.status != solver::Status::Converged) {
       std::cerr << scenes::printable(args.scene) << ": " << solver::to_string(info.method)
@@ -219,6 +244,16 @@ void register_solve(CLI::App& app, int& exit_code) {
                     "Record each iteration's displacement error against an active-set solve "
                     "made in the same run");
   command->add_flag("--quiet", args->quiet, "Print no summary");
+  command->add_option("--monitor", args->monitor,
+                      "Write one JSON line per iteration here as the solve runs (- for stdout; "
+                      "a FIFO or pipe can follow it live; docs/COMMANDS.md)");
+  command
+      ->add_option("--monitor-full", args->monitor_full,
+                   "With --monitor: add the state (displacements, contact multipliers) every "
+                   "N-th iteration (N = 1 when not given)")
+      ->expected(0, 1)
+      ->default_str("1")
+      ->check(CLI::PositiveNumber);
   command->callback([args, &exit_code] { exit_code = run_solve(*args); });
 }
 

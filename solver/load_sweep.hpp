@@ -28,6 +28,8 @@ struct SweepHooks {
   std::function<void(double)> before_start;       // e.g. to set a reference
   std::function<void(const SweepStep&)> on_step;  // sees each finished step
   std::function<bool()> keep_going;               // false stops the sweep
+  // Sees the method after each start (history entry 0) and after each iteration.
+  std::function<void(const Method&)> on_iteration;
 };
 
 // Runs `method` at every load factor, warm-starting each solve from the previous ones.

@@ -94,6 +94,9 @@ class Method {
   int iteration() const { return iteration_; }
   int max_iterations() const { return max_iterations_; }
   const std::vector<HistoryEntry>& history() const { return history_; }
+  // Per contact pair: in the working set now (snapshot().in_working_set, cheaper where a
+  // method overrides it; the same on every process of a distributed solve).
+  virtual std::vector<char> working_set() const { return snapshot().in_working_set; }
   // Records, per iteration from now on, the relative displacement error against it.
   void set_reference(std::vector<std::vector<Vec2>> reference) {
     reference_ = std::move(reference);
