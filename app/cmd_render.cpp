@@ -19,6 +19,7 @@
 #include "app/output_file.hpp"
 #include "app/render_output.hpp"
 #include "app/scene_input.hpp"
+#include "app/view_file.hpp"
 #include "render/colormap.hpp"
 #include "render/frame_composer.hpp"
 #include "render/frame_sequence.hpp"
@@ -43,9 +44,19 @@ struct RenderArgs {
   int max_frames = 2000;
   int threads = 0;
   int samples = 4;
+  std::string view;  // a saved view (app/view_file.hpp)
+  // Given on the command line: these win over the view's entries.
+  bool size_given = false, magnification_given = false, color_given = false;
 };
 
 int run_render(const RenderArgs& args) {
+  SavedView saved;
+  if (!args.view.empty()) try {
+      saved = read_view_file(args.view);
+    } catch (const ViewFileError& error) {
+      std::cerr << error.what() << '\n';
+      return kExitUsage;
+    }
   int status = kExitOk;
   const auto scene = load_scene_or_report(args.scene, status);
   if (!scene) return status;
@@ -60,7 +71,11 @@ int run_render(const RenderArgs& args) {
   Activity rendering("rendering");
   const solver::Model model = solver::build_model(*scene);
   use_solver_threads_for_pictures(model);
-  const ImageSize size = *parse_image_size(args.size);
+  ImageSize size = *parse_image_size(args.size);
+  if (saved.width && saved.height && !args.size_given) {
+    size.width = *saved.width;
+    size.height = *saved.height;
+  }
 
   render::FramePlan plan;
   plan.load_factors = args.method.load_factors();
@@ -88,7 +103,7 @@ int run_render(const RenderArgs& args) {
   if (!headless) return kExitNoDisplay;
 
   // Survey pass: the same deterministic run, for fixed scales and the frame count.
-  const render::RunExtent extent =
+  render::RunExtent extent =
       render::survey(model, *method, plan, [] { return !interrupted(); });
   if (interrupted()) {
     std::cerr << scenes::printable(args.scene) << ": interrupted by " << interrupt_name()
@@ -108,6 +123,15 @@ int run_render(const RenderArgs& args) {
   view.magnification = args.magnification;
   view.color_by = args.color == "stress" ? render::ColorBy::Stress : render::ColorBy::Subdomain;
   view.show_overlay = !args.no_overlay;
+  // A saved view: its entries, then the options given on the command line.
+  apply_view(saved, view);
+  view.width = size.width;
+  view.height = size.height;
+  if (args.magnification_given) view.magnification = args.magnification;
+  if (args.color_given)
+    view.color_by = args.color == "stress" ? render::ColorBy::Stress : render::ColorBy::Subdomain;
+  if (args.no_overlay) view.show_overlay = false;
+  apply_scales(saved.scales, extent);
   render::OverlayInfo info;
   info.title =
       model.title.empty() ? std::filesystem::path(args.scene).filename().string() : model.title;
@@ -233,9 +257,12 @@ void register_render(CLI::App& app, int& exit_code) {
   command->add_option("--out", args->out,
                       "Write PNG frames frame_0000.png, frame_0001.png, ... into this directory");
   add_method_options(command, args->method);
-  command->add_option("--size", args->size, "Image size in pixels")
-      ->check(image_size_check())
-      ->capture_default_str();
+  CLI::Option* size = command->add_option("--size", args->size, "Image size in pixels")
+                          ->check(image_size_check())
+                          ->capture_default_str();
+  command->add_option("--view", args->view,
+                      "Draw with a view saved in the window (size, centre, zoom, magnification, "
+                      "colouring, toggles, scales; options given here win)");
   auto* every = command->add_flag("--every-iteration", args->every_iteration,
                                   "One frame per iteration, from the initial state (default for "
                                   "one load factor)");
@@ -248,12 +275,13 @@ void register_render(CLI::App& app, int& exit_code) {
   command->add_option("--fps", args->fps, "Frames per second of the movie")
       ->check(CLI::Range(1, 120))
       ->capture_default_str();
-  command
-      ->add_option("--magnification", args->magnification,
+  CLI::Option* magnification =
+      command->add_option("--magnification", args->magnification,
                    "Displacement (and gap) magnification; 0 chooses one from the largest")
       ->check(number_in(0.0, 0.0, Bound::Closed, Bound::None))
       ->capture_default_str();
-  command->add_option("--color", args->color, "Colour struts by subdomain or by axial stress")
+  CLI::Option* color =
+      command->add_option("--color", args->color, "Colour struts by subdomain or by axial stress")
       ->check(CLI::IsMember({"subdomain", "stress"}))
       ->capture_default_str();
   command->add_flag("--no-overlay", args->no_overlay, "No information panel");
@@ -267,7 +295,12 @@ void register_render(CLI::App& app, int& exit_code) {
                    "Multisampling: samples per pixel (1: none; the GL's maximum at most)")
       ->check(CLI::Range(1, 32))
       ->capture_default_str();
-  command->callback([args, &exit_code] { exit_code = run_render(*args); });
+  command->callback([args, size, magnification, color, &exit_code] {
+    args->size_given = size->count() > 0;
+    args->magnification_given = magnification->count() > 0;
+    args->color_given = color->count() > 0;
+    exit_code = run_render(*args);
+  });
 }
 
 }  // namespace fetic::app

@@ -23,20 +23,21 @@ void SolveMonitor::observe(const solver::Method& method) {
   const std::vector<solver::HistoryEntry>& history = method.history();
   if (written_ >= history.size()) return;
   const bool full = full_every_ > 0 && method.iteration() % full_every_ == 0;
-  // The whole state (collective under MPI: every process gathers, rank 0 writes).
+  // The whole state (collective under MPI: every process gathers, rank 0 writes). The
+  // working set is the same on every process.
   solver::Snapshot state;
   if (full) state = method.snapshot();
+  std::vector<char> working_set;
+  if (full)
+    working_set = state.in_working_set;
+  else if (!model_.pairs.empty())
+    working_set = method.working_set();
   if (!writes_) {
     written_ = history.size();
     return;
   }
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
-  std::vector<char> working_set;
-  if (full)
-    working_set = state.in_working_set;
-  else if (!model_.pairs.empty())
-    working_set = method.working_set();
   working_set.resize(model_.pairs.size(), 0);
   if (working_set_.size() != working_set.size()) working_set_.assign(working_set.size(), 0);
 

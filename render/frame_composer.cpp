@@ -1,5 +1,6 @@
 #include "render/frame_composer.hpp"
 
+#include "render/colormap.hpp"
 #include "render/scene_drawing.hpp"
 
 namespace fetic::render {
@@ -21,7 +22,15 @@ ComposedFrame FrameComposer::compose(const Frame& frame) const {
     if (load_steps_ > 1)
       info.load_step =
           "step " + std::to_string(frame.load_step + 1) + " of " + std::to_string(load_steps_);
-    composed.overlay = draw_overlay(info, model_, frame.snapshot, frame.history, extent_, view_);
+    // Zoomed or moved, the scene may reach under the panel: mask it there, as the window does.
+    if (view_.zoom != 1.0 || view_.centered) {
+      const Rect region = scene_region(view_);
+      composed.overlay.rect({region.x1, 0.0f, static_cast<float>(view_.width),
+                             static_cast<float>(view_.height)},
+                            palette::background);
+    }
+    composed.overlay.append(
+        draw_overlay(info, model_, frame.snapshot, frame.history, extent_, view_));
   }
   return composed;
 }

@@ -189,7 +189,18 @@ SceneFraming frame_scene(const solver::Model& model, const View& view, const Run
     width = std::min(std::clamp(std::min(region.width(), region.height()) / 100.0f, 3.0f, 9.0f),
                      std::max(2.0f, 0.5f * framing.lane));
   framing.bar_width = width;
+  place_view(framing, view);
   return framing;
+}
+
+void place_view(SceneFraming& framing, const View& view) {
+  framing.pixels_per_unit *= view.zoom;
+  if (!view.centered) return;
+  const Point middle{0.5f * (framing.region.x0 + framing.region.x1),
+                     0.5f * (framing.region.y0 + framing.region.y1)};
+  const Point at = framing.to_pixel(Vec2(view.center_x, view.center_y));
+  framing.pixel_center = {middle.x - (at.x - framing.pixel_center.x),
+                          middle.y - (at.y - framing.pixel_center.y)};
 }
 
 }  // namespace fetic::render

@@ -51,4 +51,8 @@ double automatic_magnification(const solver::Model& model, const RunExtent& exte
 SceneFraming frame_scene(const solver::Model& model, const View& view, const RunExtent& extent,
                          const Rect& region);
 
+// Applies the view's zoom and centre to a fitted framing (frame_scene does; the window,
+// which pans and zooms by itself, places a loaded view's centre with it).
+void place_view(SceneFraming& framing, const View& view);
+
 }  // namespace fetic::render

@@ -24,6 +24,12 @@ struct View {
   bool show_forces = true;    // contact force glyphs scaled by lambda
   bool show_overlay = true;   // title, method, iteration, residual, plots
   float bar_width = 0.0f;     // on-screen width of bars in pixels; 0: from the image size
+  // A window's pan and zoom (a saved view, app/view_file.hpp): the fit is scaled by
+  // `zoom`, and when `centered` the world point (center_x, center_y) is drawn at the
+  // centre of the scene region.
+  double zoom = 1.0;
+  bool centered = false;
+  double center_x = 0.0, center_y = 0.0;
 };
 
 // Text height in pixels that suits an image of this size.

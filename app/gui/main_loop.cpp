@@ -81,6 +81,8 @@ int App::run(render::GlfwWindow& window, std::vector<ScriptAction> script) {
     const int view_height = std::max(16, fb_height);
     mouse(static_cast<float>(view_x), static_cast<float>(view_width),
           static_cast<float>(view_height));
+    picking(static_cast<float>(view_x), static_cast<float>(view_width),
+            static_cast<float>(view_height));
     if (scripted) run_script(script, next_action, now, script_failed);
     if (args_.bench > 0) bench_step(now);
     panels(static_cast<float>(fb_height));
@@ -138,6 +140,7 @@ int App::run(render::GlfwWindow& window, std::vector<ScriptAction> script) {
     glClear(GL_COLOR_BUFFER_BIT);
     renderer.blit_to_default(view_x, 0, fb_height);
     ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+    capture_window(fb_width, fb_height);
     const auto swap_start = Clock::now();
     glfwSwapBuffers(window.handle());
     if (args_.bench > 0 && bench_.phase == 0)

@@ -44,6 +44,9 @@ void App::load_controls() {
   ImGui::SetNextItemWidth(-1);
   if (ImGui::SliderScalar("##load", ImGuiDataType_Double, &load, &zero, &slider_max_, "%.4f"))
     push({RequestKind::SetLoad, load, {}});
+  // Double-click: back to the scene's loads as written (load factor 1).
+  if (ImGui::IsItemHovered() && ImGui::IsMouseDoubleClicked(ImGuiMouseButton_Left))
+    push({RequestKind::SetLoad, 1.0, {}});
   if (ImGui::IsItemActive() != dragging_slider_) {
     dragging_slider_ = ImGui::IsItemActive();
     log_.write({{"event", "slider"}, {"held", dragging_slider_}, {"load_factor", load}});
@@ -144,6 +147,7 @@ void App::output_buttons() {
   if (ImGui::Button("Screenshot (S)")) push({RequestKind::Screenshot, 0.0, {}});
   ImGui::SameLine();
   if (ImGui::Button("Reload (F5)")) push({RequestKind::Reload, 0.0, {}});
+  view_buttons();
   if (ImGui::Button("Record iterations")) push({RequestKind::RecordIterations, 0.0, {}});
   if (ImGui::Button("Record load sweep"))
     push({RequestKind::RecordSweep, static_cast<double>(sweep_steps_), {}});

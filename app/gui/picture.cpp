@@ -59,11 +59,17 @@ void App::draw_picture(int width, int height) {
       shown_->history.begin() +
           std::min<std::ptrdiff_t>(index + 1, static_cast<std::ptrdiff_t>(shown_->history.size())));
   const render::View v = view(width, height);
+  // The run's scales: the survey's, or those of a loaded view (app/gui/views.cpp).
+  render::RunExtent extent = *shown_->extent;
+  if (scales_) apply_scales(scales_, extent);
   render::SceneFraming framing =
-      render::frame_scene(*shown_->model, v, *shown_->extent, render::scene_region(v));
+      render::frame_scene(*shown_->model, v, extent, render::scene_region(v));
   base_center_ = framing.pixel_center;
   framing.pixels_per_unit *= zoom_;
+  place_pending_center(framing);
   framing.pixel_center = {base_center_.x + pan_.x, base_center_.y + pan_.y};
+  placed_ = framing;
+  index_picture(snapshot, framing);
   shown_magnification_ = framing.magnification;
   const render::DrawList scene = render::draw_scene(*shown_->model, snapshot, v, framing);
   render::DrawList overlay;
@@ -74,8 +80,12 @@ void App::draw_picture(int width, int height) {
     if (shown_->method == solver::MethodKind::Feti || shown_->method == solver::MethodKind::FetiC)
       info.method += std::string(" (") + solver::to_string(shown_->preconditioner) + ")";
     info.status = shown_status();
-    overlay = render::draw_overlay(info, *shown_->model, snapshot, history, plot_extent(), v);
+    render::RunExtent plots = plot_extent();
+    if (scales_) apply_scales(scales_, plots);
+    overlay = render::draw_overlay(info, *shown_->model, snapshot, history, plots, v);
+    extent.largest_iteration = plots.largest_iteration;
   }
+  drawn_extent_ = extent;
   if (args_.bench > 0 && bench_.phase == 0)
     bench_.lists_ms.push_back(
         std::chrono::duration<double, std::milli>(Clock::now() - lists_start).count());
