@@ -47,6 +47,7 @@ struct RenderArgs {
   std::string view;  // a saved view (app/view_file.hpp)
   // Given on the command line: these win over the view's entries.
   bool size_given = false, magnification_given = false, color_given = false;
+  bool labels = false;
 };
 
 int run_render(const RenderArgs& args) {
@@ -99,7 +100,8 @@ int run_render(const RenderArgs& args) {
     return kExitUsage;
   }
   if (!args.out.empty() && !make_output_directory(args.out)) return kExitOutput;
-  auto headless = open_headless(args.out.empty() ? args.movie : args.out);
+  auto headless = open_headless(args.out.empty() ? args.movie : args.out,
+                                render::base_text_size(size.width, size.height));
   if (!headless) return kExitNoDisplay;
 
   // Survey pass: the same deterministic run, for fixed scales and the frame count.
@@ -123,6 +125,7 @@ int run_render(const RenderArgs& args) {
   view.magnification = args.magnification;
   view.color_by = args.color == "stress" ? render::ColorBy::Stress : render::ColorBy::Subdomain;
   view.show_overlay = !args.no_overlay;
+  view.show_labels = args.labels;
   // A saved view: its entries, then the options given on the command line.
   apply_view(saved, view);
   view.width = size.width;
@@ -131,6 +134,7 @@ int run_render(const RenderArgs& args) {
   if (args.color_given)
     view.color_by = args.color == "stress" ? render::ColorBy::Stress : render::ColorBy::Subdomain;
   if (args.no_overlay) view.show_overlay = false;
+  if (args.labels) view.show_labels = true;
   apply_scales(saved.scales, extent);
   render::OverlayInfo info;
   info.title =
@@ -164,9 +168,8 @@ int run_render(const RenderArgs& args) {
     render::run_frames(*method, plan, [&](const render::Frame& frame) {
       if (interrupted()) return false;
       const render::ComposedFrame composed = composer.compose(frame);
-      render::Image image =
-          headless->renderer->render(size.width, size.height, {&composed.scene, &composed.overlay},
-                                     render::palette::background);
+      render::Image image = headless->renderer->render(size.width, size.height, composed.layers(),
+                                                       render::palette::background);
       if (stream && pool) {
         stream->submit(image);  // a copy: the PNG encoder takes the other
       } else if (stream) {
@@ -285,6 +288,8 @@ void register_render(CLI::App& app, int& exit_code) {
       ->check(CLI::IsMember({"subdomain", "stress"}))
       ->capture_default_str();
   command->add_flag("--no-overlay", args->no_overlay, "No information panel");
+  command->add_flag("--labels", args->labels,
+                    "Strut names beside the struts (where there is room)");
   command->add_option("--max-frames", args->max_frames, "Refuse runs with more frames")
       ->check(integer_in(1, 1'000'000))
       ->capture_default_str();

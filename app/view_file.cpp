@@ -130,10 +130,11 @@ SavedView read_view_file(const std::string& path) {
   }
   if (const json* show = r.find(root, "show")) {
     if (!show->is_object()) r.fail("show", "must be an object of true/false toggles");
-    r.only(*show, {"forces", "gaps", "overlay"}, " in 'show'");
+    r.only(*show, {"forces", "gaps", "overlay", "labels"}, " in 'show'");
     view.forces = r.boolean(*show, "forces");
     view.gaps = r.boolean(*show, "gaps");
     view.overlay = r.boolean(*show, "overlay");
+    view.labels = r.boolean(*show, "labels");
   }
   if (const json* scales = r.find(root, "scales")) {
     if (!scales->is_object()) r.fail("scales", "must be an object");
@@ -168,6 +169,7 @@ std::string view_json(const SavedView& view) {
   if (view.forces) show["forces"] = *view.forces;
   if (view.gaps) show["gaps"] = *view.gaps;
   if (view.overlay) show["overlay"] = *view.overlay;
+  if (view.labels) show["labels"] = *view.labels;
   if (!show.empty()) root["show"] = show;
   if (view.scales) {
     const render::RunExtent& e = *view.scales;
@@ -194,6 +196,7 @@ void apply_view(const SavedView& saved, render::View& view) {
   if (saved.forces) view.show_forces = *saved.forces;
   if (saved.gaps) view.show_gaps = *saved.gaps;
   if (saved.overlay) view.show_overlay = *saved.overlay;
+  if (saved.labels) view.show_labels = *saved.labels;
   if (saved.zoom) view.zoom = *saved.zoom;
   if (saved.center_x && saved.center_y) {
     view.centered = true;

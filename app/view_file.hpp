@@ -22,7 +22,7 @@ struct SavedView {
   std::optional<double> zoom;                // 1: the scene fits the region
   std::optional<double> magnification;       // 0: automatic
   std::optional<render::ColorBy> color_by;
-  std::optional<bool> forces, gaps, overlay;
+  std::optional<bool> forces, gaps, overlay, labels;
   // The run's scales the picture was drawn with (colour map and glyph ends, axes).
   std::optional<render::RunExtent> scales;
 };

@@ -36,6 +36,7 @@ SavedView App::current_view() const {
   saved.forces = forces_;
   saved.gaps = gaps_;
   saved.overlay = show_overlay_;
+  saved.labels = labels_;
   if (shown_ && shown_->extent) saved.scales = drawn_extent_;
   return saved;
 }
@@ -84,6 +85,7 @@ void App::use_view(const SavedView& saved) {
   if (saved.forces) forces_ = *saved.forces;
   if (saved.gaps) gaps_ = *saved.gaps;
   if (saved.overlay) show_overlay_ = *saved.overlay;
+  if (saved.labels) labels_ = *saved.labels;
   if (saved.zoom) zoom_ = static_cast<float>(*saved.zoom);
   if (saved.center_x && saved.center_y) {
     // Placed when the picture is next framed (the fit depends on the frame's size).
@@ -91,17 +93,20 @@ void App::use_view(const SavedView& saved) {
     pending_center_ = {*saved.center_x, *saved.center_y};
   }
   scales_ = saved.scales;
+  framing_key_ = {};  // fitted again, with the view's scales
   redraw_ = true;
 }
 
-void App::place_pending_center(const render::SceneFraming& framing) {
+void App::place_pending_center() {
   if (!center_pending_) return;
   center_pending_ = false;
-  const render::Point middle{0.5f * (framing.region.x0 + framing.region.x1),
-                             0.5f * (framing.region.y0 + framing.region.y1)};
-  const render::Point at = framing.to_pixel(pending_center_);
-  pan_ = {middle.x - (at.x - framing.pixel_center.x) - base_center_.x,
-          middle.y - (at.y - framing.pixel_center.y) - base_center_.y};
+  render::View v;
+  v.zoom = zoom_;
+  v.centered = true;
+  v.center_x = pending_center_.x();
+  v.center_y = pending_center_.y();
+  const render::Point center = render::placed(framing_, v).pixel_center;
+  pan_ = {center.x - base_center_.x, center.y - base_center_.y};
 }
 
 std::string App::next_view_name() {
