@@ -55,13 +55,16 @@ class Reader {
     if (!value->is_boolean()) fail(key, "must be true or false");
     return value->get<bool>();
   }
-  void only(const json& in, std::initializer_list<const char*> keys, const std::string& where) const {
+  void only(const json& in, std::initializer_list<const char*> keys,
+            const std::string& where) const {
     for (const auto& [key, value] : in.items()) {
       bool known = false;
-      for (const char* k : keys) known = known || key == k;
+      for (const char* k : keys)
+        known = known || key == k;
       if (!known) {
         std::string list;
-        for (const char* k : keys) list += (list.empty() ? "" : ", ") + std::string(k);
+        for (const char* k : keys)
+          list += (list.empty() ? "" : ", ") + std::string(k);
         throw ViewFileError(scenes::printable(path_) + ": unknown entry '" +
                             scenes::printable(key) + "'" + where + " (known: " + list + ")");
       }
@@ -86,7 +89,9 @@ SavedView read_view_file(const std::string& path) {
     // nlohmann gives the byte; say the line.
     const std::string content = text.str();
     const std::size_t byte = std::min<std::size_t>(error.byte, content.size());
-    const long line = 1 + std::count(content.begin(), content.begin() + static_cast<long>(byte > 0 ? byte - 1 : 0), '\n');
+    const long line =
+        1 + std::count(content.begin(),
+                       content.begin() + static_cast<long>(byte > 0 ? byte - 1 : 0), '\n');
     throw ViewFileError(scenes::printable(path) + ":" + std::to_string(line) +
                         ": not a JSON view file (" + error.what() + ")");
   }
@@ -146,8 +151,7 @@ SavedView read_view_file(const std::string& path) {
     extent.largest_displacement = r.number(*scales, "displacement", 0.0).value_or(0.0);
     extent.largest_force = r.number(*scales, "force", 0.0).value_or(0.0);
     extent.largest_stress = r.number(*scales, "stress", 0.0).value_or(0.0);
-    extent.largest_iteration =
-        static_cast<int>(r.number(*scales, "iterations", 0.0).value_or(0.0));
+    extent.largest_iteration = static_cast<int>(r.number(*scales, "iterations", 0.0).value_or(0.0));
     extent.largest_active_set =
         static_cast<int>(r.number(*scales, "active_set", 0.0).value_or(0.0));
     extent.smallest_residual = r.number(*scales, "residual_low", 0.0).value_or(0.0);

@@ -17,7 +17,7 @@
 namespace fetic::app {
 
 struct SavedView {
-  std::optional<int> width, height;     // the picture (the window: without its panel)
+  std::optional<int> width, height;          // the picture (the window: without its panel)
   std::optional<double> center_x, center_y;  // world point at the centre of the scene region
   std::optional<double> zoom;                // 1: the scene fits the region
   std::optional<double> magnification;       // 0: automatic

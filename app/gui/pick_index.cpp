@@ -18,11 +18,14 @@ void PickIndex::build(std::vector<Pickable> items, float width, float height, fl
   });
   // Counting sort by cell.
   cell_start_.assign(static_cast<std::size_t>(columns_) * rows_ + 1, 0);
-  for (const Pickable& item : items) ++cell_start_[static_cast<std::size_t>(cell_of(item.at)) + 1];
-  for (std::size_t c = 1; c < cell_start_.size(); ++c) cell_start_[c] += cell_start_[c - 1];
+  for (const Pickable& item : items)
+    ++cell_start_[static_cast<std::size_t>(cell_of(item.at)) + 1];
+  for (std::size_t c = 1; c < cell_start_.size(); ++c)
+    cell_start_[c] += cell_start_[c - 1];
   items_.resize(items.size());
   std::vector<std::uint32_t> next(cell_start_.begin(), cell_start_.end() - 1);
-  for (const Pickable& item : items) items_[next[static_cast<std::size_t>(cell_of(item.at))]++] = item;
+  for (const Pickable& item : items)
+    items_[next[static_cast<std::size_t>(cell_of(item.at))]++] = item;
 }
 
 std::optional<Pickable> PickIndex::nearest(render::Point at, float radius) const {

@@ -32,7 +32,7 @@ class PickIndex {
   std::size_t size() const { return items_.size(); }
 
  private:
-  std::vector<Pickable> items_;  // sorted by cell
+  std::vector<Pickable> items_;            // sorted by cell
   std::vector<std::uint32_t> cell_start_;  // per cell, first item; back(): items_.size()
   int columns_ = 0, rows_ = 0;
   float cell_ = 12.0f;

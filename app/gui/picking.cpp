@@ -50,16 +50,14 @@ void App::index_picture(const solver::Snapshot& snapshot, const render::SceneFra
     items.push_back(
         {Pickable::Kind::Pair, static_cast<int>(k), 0, {0.5f * (a.x + b.x), 0.5f * (a.y + b.y)}});
   }
-  picks_.build(std::move(items), static_cast<float>(view_width_),
-               static_cast<float>(view_height_));
+  picks_.build(std::move(items), static_cast<float>(view_width_), static_cast<float>(view_height_));
 }
 
 nlohmann::json App::pick_values(const Pickable& item) const {
   nlohmann::json values;
   if (!shown_ || shown_->iterates.empty()) return values;
   const solver::Model& model = *shown_->model;
-  const solver::Snapshot& snapshot =
-      *shown_->iterates[static_cast<std::size_t>(shown_index())];
+  const solver::Snapshot& snapshot = *shown_->iterates[static_cast<std::size_t>(shown_index())];
   values["load_factor"] = shown_->load_factor;
   values["iteration"] = snapshot.iteration;
   const auto displacement_of = [&](int strut, int node) {
@@ -123,10 +121,11 @@ std::string App::pick_text(const Pickable& item) const {
     text = "strut " + v["strut"].get<std::string>() + ", node " + std::to_string(item.b) + "\n";
     text += "position      " + number(v["position"][0]) + ", " + number(v["position"][1]) + " " +
             length + "\n";
-    text += "displacement  " + number(v["displacement"][0]) + ", " +
-            number(v["displacement"][1]) + " " + length + "\n";
+    text += "displacement  " + number(v["displacement"][0]) + ", " + number(v["displacement"][1]) +
+            " " + length + "\n";
     text += "subdomain     ";
-    for (const auto& p : v["subdomains"]) text += std::to_string(p.get<int>()) + " ";
+    for (const auto& p : v["subdomains"])
+      text += std::to_string(p.get<int>()) + " ";
     text += "\n";
   } else {
     text = "contact " + v["contact"].get<std::string>() + ", pair " +
@@ -144,8 +143,8 @@ std::string App::pick_text(const Pickable& item) const {
 void App::picking(float view_x, float view_width, float view_height) {
   const ImGuiIO& io = ImGui::GetIO();
   const render::Point at{io.MousePos.x - view_x, io.MousePos.y};
-  const bool over_picture = !io.WantCaptureMouse && at.x >= 0 && at.y >= 0 &&
-                            at.x < view_width && at.y < view_height;
+  const bool over_picture =
+      !io.WantCaptureMouse && at.x >= 0 && at.y >= 0 && at.x < view_width && at.y < view_height;
   hovered_.reset();
   if (over_picture && shown_ && !ImGui::IsMouseDragging(ImGuiMouseButton_Left)) {
     const auto start = Clock::now();

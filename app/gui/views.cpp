@@ -22,12 +22,12 @@ SavedView App::current_view() const {
     // The world point drawn at the centre of the scene region.
     const render::Point middle{0.5f * (placed_.region.x0 + placed_.region.x1),
                                0.5f * (placed_.region.y0 + placed_.region.y1)};
-    saved.center_x = placed_.world_center.x() +
-                     (static_cast<double>(middle.x) - placed_.pixel_center.x) /
-                         placed_.pixels_per_unit;
-    saved.center_y = placed_.world_center.y() -
-                     (static_cast<double>(middle.y) - placed_.pixel_center.y) /
-                         placed_.pixels_per_unit;
+    saved.center_x =
+        placed_.world_center.x() +
+        (static_cast<double>(middle.x) - placed_.pixel_center.x) / placed_.pixels_per_unit;
+    saved.center_y =
+        placed_.world_center.y() -
+        (static_cast<double>(middle.y) - placed_.pixel_center.y) / placed_.pixels_per_unit;
   }
   saved.zoom = zoom_;
   saved.magnification = shown_magnification_ > 0.0 ? shown_magnification_ : magnification_;

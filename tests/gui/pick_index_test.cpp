@@ -16,7 +16,9 @@ TEST_CASE("the pick index finds what a brute-force search finds") {
   std::uniform_real_distribution<float> x(-20.0f, 520.0f), y(-20.0f, 420.0f);
   std::vector<Pickable> items;
   for (int i = 0; i < 5000; ++i)
-    items.push_back({i % 3 == 0 ? Pickable::Kind::Pair : Pickable::Kind::Node, i, i % 7,
+    items.push_back({i % 3 == 0 ? Pickable::Kind::Pair : Pickable::Kind::Node,
+                     i,
+                     i % 7,
                      {x(random), y(random)}});
   PickIndex index;
   index.build(items, 500.0f, 400.0f);
@@ -29,7 +31,8 @@ TEST_CASE("the pick index finds what a brute-force search finds") {
     float best = 0.0f;
     for (const Pickable& item : items) {
       if (!(item.at.x >= 0 && item.at.y >= 0 && item.at.x < 500 && item.at.y < 400)) continue;
-      const float d = (item.at.x - at.x) * (item.at.x - at.x) + (item.at.y - at.y) * (item.at.y - at.y);
+      const float d =
+          (item.at.x - at.x) * (item.at.x - at.x) + (item.at.y - at.y) * (item.at.y - at.y);
       if (d > radius * radius) continue;
       const float score = d - (item.kind == Pickable::Kind::Pair ? 9.0f : 0.0f);
       if (!expected || score < best) {

@@ -87,7 +87,8 @@ TEST_CASE("a saved view is read back as written") {
 }
 
 TEST_CASE("a bad view file is refused naming the entry") {
-  CHECK_THAT(error_of("{\"zoom\": 2,\n \"size\": [1, }"), Catch::Contains(":2: not a JSON view file"));
+  CHECK_THAT(error_of("{\"zoom\": 2,\n \"size\": [1, }"),
+             Catch::Contains(":2: not a JSON view file"));
   CHECK_THAT(error_of("[1, 2]"), Catch::Contains("a view file is a JSON object"));
   CHECK_THAT(error_of(R"({"zoom": -1})"), Catch::Contains("'zoom' must be a positive number"));
   CHECK_THAT(error_of(R"({"zoom": "big"})"), Catch::Contains("'zoom' must be a number"));
@@ -97,7 +98,8 @@ TEST_CASE("a bad view file is refused naming the entry") {
   CHECK_THAT(error_of(R"({"zom": 2})"), Catch::Contains("unknown entry 'zom'"));
   CHECK_THAT(error_of(R"({"show": {"force": true}})"),
              Catch::Contains("unknown entry 'force' in 'show'"));
-  CHECK_THAT(error_of(R"({"show": {"forces": 1}})"), Catch::Contains("'forces' must be true or false"));
+  CHECK_THAT(error_of(R"({"show": {"forces": 1}})"),
+             Catch::Contains("'forces' must be true or false"));
   CHECK_THROWS_WITH(fetic::app::read_view_file("/nonexistent/view.json"),
                     Catch::Contains("/nonexistent/view.json: cannot read the view file"));
 }
