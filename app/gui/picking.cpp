@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include <imgui.h>
 
@@ -22,6 +23,26 @@ namespace {
 
 constexpr float kPickRadius = 8.0f;  // pixels
 
+// What hovering costs, reported as a "hover" event in the state file after every 200
+// frames spent over the picture (docs/WINDOW.md, "Picking"): frames per second while the
+// pointer moves over the scene, the pick query's and the index build's time. One window
+// per process, so the figures live here rather than in App.
+struct HoverStats {
+  int frames = 0;
+  Clock::time_point first{};
+  std::vector<double> query_ms;
+  double build_ms = 0.0;  // the last index build
+  std::size_t items = 0;
+};
+HoverStats hover_stats;
+
+double median(std::vector<double> values) {
+  if (values.empty()) return 0.0;
+  std::nth_element(values.begin(), values.begin() + static_cast<long>(values.size() / 2),
+                   values.end());
+  return values[values.size() / 2];
+}
+
 std::string number(double x) {
   char text[32];
   std::snprintf(text, sizeof text, "%.6g", x);
@@ -31,6 +52,7 @@ std::string number(double x) {
 }  // namespace
 
 void App::index_picture(const solver::Snapshot& snapshot, const render::SceneFraming& framing) {
+  const auto start = Clock::now();
   const solver::Model& model = *shown_->model;
   const auto displacements = solver::strut_displacements(model, snapshot);
   std::vector<Pickable> items;
@@ -51,6 +73,8 @@ void App::index_picture(const solver::Snapshot& snapshot, const render::SceneFra
         {Pickable::Kind::Pair, static_cast<int>(k), 0, {0.5f * (a.x + b.x), 0.5f * (a.y + b.y)}});
   }
   picks_.build(std::move(items), static_cast<float>(view_width_), static_cast<float>(view_height_));
+  hover_stats.build_ms = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+  hover_stats.items = picks_.size();
 }
 
 nlohmann::json App::pick_values(const Pickable& item) const {
@@ -150,6 +174,21 @@ void App::picking(float view_x, float view_width, float view_height) {
     const auto start = Clock::now();
     hovered_ = picks_.nearest(at, kPickRadius);
     pick_query_ms_ = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+    if (hover_stats.frames++ == 0) hover_stats.first = start;
+    hover_stats.query_ms.push_back(pick_query_ms_);
+    if (hover_stats.frames == 201) {
+      const double seconds = std::chrono::duration<double>(start - hover_stats.first).count();
+      log_.write({{"event", "hover"},
+                  {"frames", 200},
+                  {"seconds", seconds},
+                  {"frames_per_second", seconds > 0.0 ? 200.0 / seconds : 0.0},
+                  {"query_ms_median", median(hover_stats.query_ms)},
+                  {"query_ms_max",
+                   *std::max_element(hover_stats.query_ms.begin(), hover_stats.query_ms.end())},
+                  {"index_items", hover_stats.items},
+                  {"index_build_ms", hover_stats.build_ms}});
+      hover_stats = HoverStats{0, {}, {}, hover_stats.build_ms, hover_stats.items};
+    }
   }
   if (hovered_) {
     ImGui::BeginTooltip();
