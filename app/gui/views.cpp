@@ -60,7 +60,7 @@ void App::save_view(const std::string& path) {
     say("view saved as " + file);
   } catch (const OutputError& error) {
     say(error.what(), true);
-    log_.write({{"event", "error"}, {"message", error.what()}});
+    log_.output_lost(error.what());
   }
 }
 

@@ -45,7 +45,7 @@ void App::capture_window(int width, int height) {
       write_png_atomically(path, png);
       log_.write({{"event", "screenshot"}, {"path", path}, {"window", true}});
     } catch (const std::exception& error) {
-      log_.write({{"event", "error"}, {"message", error.what()}});
+      log_.output_lost(error.what());
     }
   });
 }
