@@ -19,8 +19,8 @@
 #include <cstdint>
 #include <filesystem>
 #include <map>
-#include <optional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <thread>
 #include <vector>
@@ -122,7 +122,7 @@ class App {
   void load_view(const std::string& path);
   void use_view(const SavedView& saved);
   void place_pending_center();  // a loaded view's centre, into pan_ (framing_ is fitted)
-  void view_buttons();  // in the panel: save and load views
+  void view_buttons();          // in the panel: save and load views
   std::string next_view_name();
   std::string in_screenshot_dir(const std::string& path) const;
 
@@ -226,12 +226,14 @@ class App {
   BenchMeasurement bench_;
 
   // Saved views (views.cpp).
-  render::SceneFraming placed_;         // the framing of the last picture
-  render::RunExtent drawn_extent_;      // and the scales it was drawn with
+  render::SceneFraming placed_;              // the framing of the last picture
+  render::RunExtent drawn_extent_;           // and the scales it was drawn with
   std::optional<render::RunExtent> scales_;  // a loaded view's scales
-  bool center_pending_ = false;         // place pending_center_ at the next picture
+  bool center_pending_ = false;              // place pending_center_ at the next picture
   solver::Vec2 pending_center_{0, 0};
   int views_saved_ = 0;
+  // Save view and Locate read the picture: they wait for the next one to be drawn.
+  std::vector<Request> after_picture_;
 
   // Picking (picking.cpp).
   PickIndex picks_;

@@ -111,7 +111,7 @@ int App::run(render::GlfwWindow& window, std::vector<ScriptAction> script) {
     // software renderer) is redrawn at most every other such period, so the panels and
     // the slider keep answering between pictures.
     const bool picture_due =
-        last_picture_ms_ < 16.0 || screenshot_requested_ || recording_ ||
+        last_picture_ms_ < 16.0 || screenshot_requested_ || recording_ || !after_picture_.empty() ||
         std::chrono::duration<double, std::milli>(Clock::now() - last_picture_end_).count() >=
             last_picture_ms_;
     if (redraw_ && picture_due) {
@@ -129,6 +129,9 @@ int App::run(render::GlfwWindow& window, std::vector<ScriptAction> script) {
       redraw_ = false;
       if (args_.bench > 0 && bench_.phase == 3 && bench_.pan_solving) ++bench_.pan_pictures;
     }
+    for (const Request& r : after_picture_)  // the picture they read is drawn now
+      r.kind == RequestKind::SaveView ? save_view(r.text) : locate(r.text);
+    after_picture_.clear();
     if (screenshot_requested_) {
       screenshot(pending_screenshot_);
       screenshot_requested_ = false;

@@ -191,7 +191,8 @@ void App::apply(const Request& r) {
       redraw_ = true;
       break;
     case RequestKind::SaveView:
-      save_view(r.text);
+      after_picture_.push_back(r);
+      redraw_ = true;
       break;
     case RequestKind::LoadView:
       load_view(r.text);
@@ -201,7 +202,8 @@ void App::apply(const Request& r) {
       pending_window_shot_ = r.text;
       break;
     case RequestKind::Locate:
-      locate(r.text);
+      after_picture_.push_back(r);
+      redraw_ = true;
       break;
     case RequestKind::Quit:
       quit_ = true;
