@@ -145,7 +145,7 @@ SavedView read_view_file(const std::string& path) {
     if (!scales->is_object()) r.fail("scales", "must be an object");
     r.only(*scales,
            {"displacement", "force", "stress", "iterations", "active_set", "residual_low",
-            "residual_high"},
+            "residual_high", "stretch", "lateral"},
            " in 'scales'");
     render::RunExtent extent;
     extent.largest_displacement = r.number(*scales, "displacement", 0.0).value_or(0.0);
@@ -156,6 +156,15 @@ SavedView read_view_file(const std::string& path) {
         static_cast<int>(r.number(*scales, "active_set", 0.0).value_or(0.0));
     extent.smallest_residual = r.number(*scales, "residual_low", 0.0).value_or(0.0);
     extent.largest_residual = r.number(*scales, "residual_high", 0.0).value_or(0.0);
+    extent.largest_stretch = r.number(*scales, "stretch", 0.0).value_or(0.0);
+    if (const json* lateral = r.find(*scales, "lateral")) {
+      if (!lateral->is_array()) r.fail("lateral", "must be a list of numbers, one per strut");
+      for (const json& x : *lateral) {
+        if (!x.is_number() || !std::isfinite(x.get<double>()) || x.get<double>() < 0.0)
+          r.fail("lateral", "must be a list of numbers, one per strut");
+        extent.strut_lateral.push_back(x.get<double>());
+      }
+    }
     view.scales = extent;
   }
   return view;
@@ -183,7 +192,9 @@ std::string view_json(const SavedView& view) {
                       {"iterations", e.largest_iteration},
                       {"active_set", e.largest_active_set},
                       {"residual_low", e.smallest_residual},
-                      {"residual_high", e.largest_residual}};
+                      {"residual_high", e.largest_residual},
+                      {"stretch", e.largest_stretch},
+                      {"lateral", e.strut_lateral}};
   }
   return root.dump(1) + '\n';
 }
@@ -219,6 +230,8 @@ void apply_scales(const std::optional<render::RunExtent>& scales, render::RunExt
   extent.largest_active_set = s.largest_active_set;
   extent.smallest_residual = s.smallest_residual;
   extent.largest_residual = s.largest_residual;
+  extent.largest_stretch = s.largest_stretch;
+  extent.strut_lateral = s.strut_lateral;
 }
 
 }  // namespace fetic::app

@@ -30,7 +30,8 @@ SavedView App::current_view() const {
         (static_cast<double>(middle.y) - placed_.pixel_center.y) / placed_.pixels_per_unit;
   }
   saved.zoom = zoom_;
-  saved.magnification = shown_magnification_ > 0.0 ? shown_magnification_ : magnification_;
+  // 0: automatic, chosen again from the scales (as the window does, with its caption note).
+  saved.magnification = magnification_;
   const render::View v = view(view_width_, view_height_);
   saved.color_by = v.color_by;
   saved.forces = forces_;

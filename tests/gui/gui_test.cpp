@@ -494,7 +494,7 @@ TEST_CASE("a view saved in the window is drawn again by fetic render --view", "[
   CHECK(saved["show"]["overlay"] == false);
   CHECK(saved["show"]["gaps"] == false);
   CHECK(saved["show"]["forces"] == true);
-  CHECK(saved["magnification"].get<double>() > 0.0);
+  CHECK(saved["magnification"].get<double>() == 0.0);  // automatic, from the scales
   CHECK(saved["scales"]["stress"].get<double>() > 0.0);
 
   const auto [render_status, output] =
