@@ -16,9 +16,11 @@
 #include <omp.h>
 
 #include "app/child_process.hpp"
+#include "app/data_paths.hpp"
 #include "app/exit_codes.hpp"
 #include "app/interrupt.hpp"
 #include "app/output_file.hpp"
+#include "solver/threads.hpp"
 #include "scenes/scene_error.hpp"
 
 extern char** environ;
@@ -62,7 +64,7 @@ void write_png_atomically(const std::string& path, const render::PngBytes& png) 
 
 void use_solver_threads_for_pictures(const solver::Model& model) {
   constexpr long long kParallelFrom = 200000;
-  omp_set_num_threads(model.dof_count() < kParallelFrom ? 1 : omp_get_num_procs());
+  solver::set_thread_budget(model.dof_count() < kParallelFrom ? 1 : omp_get_num_procs());
 }
 
 int default_encoder_threads() {
@@ -78,7 +80,8 @@ std::optional<Headless> open_headless(const std::string& output, float text_size
     std::cerr << scenes::printable(output) << ": cannot render: " << error.what() << '\n';
     return std::nullopt;
   }
-  headless.font = std::make_unique<render::FontAtlas>(1.3f * text_size);
+  headless.font = std::make_unique<render::FontAtlas>(
+      1.3f * text_size, font_file("DejaVuSans.ttf"), font_file("DejaVuSans-Bold.ttf"));
   if (!headless.font->note().empty()) std::cerr << "note: " << headless.font->note() << '\n';
   try {
     headless.renderer = std::make_unique<render::GlRenderer>(*headless.context, *headless.font);
@@ -90,8 +93,26 @@ std::optional<Headless> open_headless(const std::string& output, float text_size
 }
 
 bool make_output_directory(const std::string& directory) {
+  namespace fs = std::filesystem;
+  if (directory.empty()) {
+    std::cerr << "the output directory is an empty name; give the name of a directory\n";
+    return false;
+  }
   std::error_code error;
-  std::filesystem::create_directories(directory, error);
+  // What is there already, named: "File exists" or "Not a directory" would not say it.
+  const fs::file_status there = fs::symlink_status(directory, error);
+  if (fs::is_symlink(there) && !fs::exists(fs::status(directory, error))) {
+    std::cerr << scenes::printable(directory) << ": is a symbolic link to '"
+              << scenes::printable(fs::read_symlink(directory, error).string())
+              << "', which does not exist; give the name of a directory\n";
+    return false;
+  }
+  if (fs::exists(there) && !fs::is_directory(fs::status(directory, error))) {
+    std::cerr << scenes::printable(directory)
+              << ": is not a directory; the frames need a directory of their own\n";
+    return false;
+  }
+  fs::create_directories(directory, error);
   if (error || !std::filesystem::is_directory(directory)) {
     std::cerr << scenes::printable(directory) << ": cannot create the output directory"
               << (error ? " (" + error.message() + ")" : std::string()) << '\n';

@@ -1,6 +1,7 @@
 #pragma once
 // The result file of SCENES.md: scene, method, load factor, convergence, per-strut nodes
-// and displacements, per-contact pairs with gap, force and activity, and the history.
+// and displacements, per-contact pairs with gap, force and activity, and the history;
+// extended by stresses, axial forces, reactions and pair geometry (app/state_json.hpp).
 
 #include <string>
 
@@ -17,9 +18,13 @@ struct RunInfo {
   double tolerance = 0.0;
   double setup_seconds = 0.0;
   double solve_seconds = 0.0;
+  int ranks = 1;                         // processes the solve ran on (mpirun -np)
+  std::vector<int> subdomains_per_rank;  // dual methods: subdomains each process held
 };
 
-nlohmann::json result_json(const solver::Model& model, const solver::Snapshot& final_state,
-                           const std::vector<solver::HistoryEntry>& history, const RunInfo& info);
+// Keys in insertion order; app/json_layout.hpp puts the plain values first when written.
+nlohmann::ordered_json result_json(const solver::Model& model, const solver::Snapshot& final_state,
+                                   const std::vector<solver::HistoryEntry>& history,
+                                   const RunInfo& info);
 
 }  // namespace fetic::app

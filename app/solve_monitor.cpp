@@ -26,7 +26,7 @@ void SolveMonitor::observe(const solver::Method& method) {
   // The whole state (collective under MPI: every process gathers, rank 0 writes). The
   // working set is the same on every process.
   solver::Snapshot state;
-  if (full) state = method.snapshot();
+  if (full) state = method.gathered_snapshot();
   std::vector<char> working_set;
   if (full)
     working_set = state.in_working_set;

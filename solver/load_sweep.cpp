@@ -43,10 +43,10 @@ std::vector<SweepStep> sweep(Method& method, const std::vector<double>& load_fac
       method.start(t, &warm);
     }
     if (hooks.on_iteration) {
-      hooks.on_iteration(method);
+      hooks.on_iteration(t, method);
       while (method.status() == Status::Running && (!hooks.keep_going || hooks.keep_going())) {
         method.step();
-        hooks.on_iteration(method);
+        hooks.on_iteration(t, method);
       }
     } else {
       run_to_end(method, hooks.keep_going);

@@ -14,6 +14,7 @@
 //   scene_file.cpp     reloading the scene file
 //   state_reports.cpp  the "solved" events of the state file after each swap
 //   bench.cpp          the --bench measurement
+//   paraview_export.cpp  the shown iterate as ParaView files
 
 #include <chrono>
 #include <cstdint>
@@ -34,6 +35,7 @@
 #include "app/gui/solver_worker.hpp"
 #include "app/gui/state_log.hpp"
 #include "app/view_file.hpp"
+#include "app/vtu_export.hpp"
 #include "render/draw_list.hpp"
 #include "render/frame_sequence.hpp"
 #include "render/png_writer.hpp"
@@ -136,6 +138,8 @@ class App {
   void locate(const std::string& what);
   // window_shot.cpp
   void capture_window(int width, int height);
+  // paraview_export.cpp
+  void export_paraview(const std::string& directory);
 
   // bench.cpp
   void bench_step(double now);
@@ -244,6 +248,9 @@ class App {
   std::string pending_window_shot_;
   int window_shots_ = 0;
   std::string view_path_;  // the view file the panel loads: --view, or the last saved
+  // ParaView export: one series per directory and model.
+  std::unique_ptr<VtuSeries> vtu_;
+  std::shared_ptr<const solver::Model> vtu_model_;
 };
 
 }  // namespace fetic::app::gui

@@ -19,6 +19,7 @@ struct Options {
   std::string screenshot_dir = ".";
   std::string view;  // a saved view to start with (app/view_file.hpp)
   std::string record_dir = "fetic-recordings";
+  std::string vtu_dir = "fetic-paraview";  // where "ParaView export" writes
   bool no_overlay = false;
   int bench = 0;  // load changes of the benchmark drag; 0: no benchmark
 };

@@ -32,6 +32,7 @@ enum class RequestKind {
   LoadView,          // text: a view file (app/view_file.hpp)
   ScreenshotWindow,  // text: file; the whole window, panels included
   Locate,            // text: "pair:K" | "node:STRUT:N": report where it is drawn
+  ExportParaView,    // text: directory (empty: --vtu-dir); the shown iterate as a .vtu frame
   Quit,
 };
 

@@ -97,6 +97,7 @@ class App {
     int status = 0;
     return pid_ > 0 && ::waitpid(pid_, &status, WNOHANG) == 0;
   }
+  void signal(int number) const { ::kill(pid_, number); }
 
  private:
   pid_t pid_ = 0;
@@ -456,6 +457,20 @@ TEST_CASE("a changed scene file is reloaded, keeping the app running", "[script]
   CHECK(app.running());
 }
 
+TEST_CASE("SIGTERM closes the window: status 130", "[script]") {
+  REQUIRE(have_display());
+  const fs::path dir = fresh_directory("fetic_gui_sigterm");
+  const fs::path state = dir / "state.jsonl";
+  App app({scene("two_bars.toml"), "--state-file", state.string()});
+  REQUIRE(wait_for(state, [](const json& e) { return is(e, "ready"); }));
+  app.signal(SIGTERM);
+  const auto status = app.wait(30.0);
+  REQUIRE(status);
+  CHECK(*status == 130);
+  CHECK(wait_for(
+      state, [](const json& e) { return is(e, "quit"); }, 1.0));
+}
+
 TEST_CASE("without a display fetic gui says so and points to fetic render", "[no-display]") {
   const auto [status, output] =
       shell("env -u DISPLAY -u WAYLAND_DISPLAY " + std::string(FETIC_EXECUTABLE) + " gui " +
@@ -610,4 +625,31 @@ TEST_CASE("clicking a node of a plane scene pins its values", "[e2e]") {
   for (int c = 0; c < 2; ++c)
     CHECK(std::abs(picked["displacement"][c].get<double>() - u[c].get<double>()) <= 1e-6 * size);
   CHECK(picked["subdomains"].size() >= 1);
+TEST_CASE("the ParaView export writes the shown iterate as the next frame of a series",
+          "[script]") {
+  REQUIRE(have_display());
+  const fs::path dir = fresh_directory("fetic_gui_paraview");
+  const fs::path state = dir / "state.jsonl";
+  const fs::path script = dir / "script.txt";
+  std::ofstream(script) << "wait\nexport-vtu\nload 2\nwait\nexport-vtu\nquit\n";
+  App app({scene("two_bars.toml"), "--state-file", state.string(), "--script", script.string(),
+           "--vtu-dir", (dir / "vtu").string()});
+  const auto status = app.wait(90.0);
+  INFO("reported state:\n" << read_text(state));
+  REQUIRE(status);
+  CHECK(*status == 0);
+  std::vector<json> exports;
+  for (const json& e : events(state))
+    if (is(e, "paraview")) exports.push_back(e);
+  REQUIRE(exports.size() == 2);
+  CHECK(exports[1]["frames"] == 2);
+  CHECK(exports[1]["load_factor"].get<double>() == 2.0);
+  const std::string pvd = read_text(dir / "vtu" / "struts.pvd");
+  CHECK(pvd.find("struts_0001.vtu") != std::string::npos);
+  // The frame's field data (ASCII) carries the load factor of the shown solve.
+  const std::string frame = read_text(dir / "vtu" / "struts_0001.vtu");
+  const auto at = frame.find("Name=\"load_factor\"");
+  REQUIRE(at != std::string::npos);
+  CHECK(frame.find("\n2\n", at) < frame.find("</DataArray>", at));
+  CHECK(fs::exists(dir / "vtu" / "contacts_0001.vtu"));
 }
