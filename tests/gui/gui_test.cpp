@@ -625,6 +625,8 @@ TEST_CASE("clicking a node of a plane scene pins its values", "[e2e]") {
   for (int c = 0; c < 2; ++c)
     CHECK(std::abs(picked["displacement"][c].get<double>() - u[c].get<double>()) <= 1e-6 * size);
   CHECK(picked["subdomains"].size() >= 1);
+}
+
 TEST_CASE("the ParaView export writes the shown iterate as the next frame of a series",
           "[script]") {
   REQUIRE(have_display());
