@@ -353,7 +353,7 @@ std::vector<nlohmann::json> monitor_lines(const std::string& path) {
 // iterations, a collective that would hang if any process skipped it).
 TEST_CASE("mpirun -np 2 fetic solve --monitor writes the serial stream, the full state gathered") {
   const std::string serial = temporary("serial.jsonl"), distributed = temporary("mpi.jsonl");
-  const std::string arguments = "solve " + scene("chain.toml") +
+  const std::string arguments = "solve " + scene("plane_pair.toml") +
                                 " --method feti-c --load-steps 0.5:1:2 --monitor-full 2 --monitor ";
   REQUIRE(fetic(arguments + serial).status == 0);
   const Run r = fetic(arguments + distributed, 2);
