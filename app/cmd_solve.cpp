@@ -55,7 +55,7 @@ void print_summary(const solver::Model& model, const solver::Snapshot& state, co
             << model.struts.size() << " struts, " << model.contact_labels.size() << " contacts, "
             << model.dof_count() << " unknowns)\n";
   std::cout << "method       " << solver::to_string(info.method);
-  if (info.method == solver::MethodKind::Feti || info.method == solver::MethodKind::FetiC)
+  if (solver::is_dual(info.method))
     std::cout << " (preconditioner " << solver::to_string(info.preconditioner) << ")";
   std::cout << ", load factor " << state.load_factor << ", tolerance " << info.tolerance << "\n";
   std::cout << "converged    " << (state.status == solver::Status::Converged ? "yes" : "NO")

@@ -51,7 +51,7 @@ CLI::Validator finite_number() {
 }
 
 CLI::Validator method_name() {
-  return CLI::IsMember({"sd", "cg", "active-set", "feti", "feti-c"});
+  return CLI::IsMember({"sd", "cg", "active-set", "feti", "feti-c", "mprgp"});
 }
 
 CLI::Validator preconditioner_name() {
@@ -59,7 +59,7 @@ CLI::Validator preconditioner_name() {
 }
 
 void add_method_options(CLI::App* command, MethodArgs& args) {
-  command->add_option("--method", args.method, "Method: sd, cg, active-set, feti, feti-c")
+  command->add_option("--method", args.method, "Method: sd, cg, active-set, feti, feti-c, mprgp")
       ->check(method_name())
       ->capture_default_str();
   command

@@ -13,7 +13,7 @@ nlohmann::json result_json(const solver::Model& model, const solver::Snapshot& f
   result["title"] = model.title;
   result["model"] = scenes::to_string(model.kind);
   result["method"] = solver::to_string(info.method);
-  if (info.method == solver::MethodKind::Feti || info.method == solver::MethodKind::FetiC)
+  if (solver::is_dual(info.method))
     result["preconditioner"] = solver::to_string(info.preconditioner);
   result["load_factor"] = final_state.load_factor;
   result["tolerance"] = info.tolerance;
@@ -57,6 +57,7 @@ nlohmann::json result_json(const solver::Model& model, const solver::Snapshot& f
                  {"residual", entry.residual},
                  {"active_set", entry.active_set}};
     if (!std::isnan(entry.error)) item["error"] = entry.error;
+    if (entry.f_applications >= 0) item["f_applications"] = entry.f_applications;
     entries.push_back(item);
   }
   result["history"] = entries;

@@ -94,12 +94,14 @@ void FetiSystem::gather_rows(Eigen::VectorXd& out) const {
 
 void FetiSystem::residual(const Eigen::VectorXd& lambda, double load_factor,
                           Eigen::VectorXd& out) const {
+  ++f_applications_;
   solve_subdomains(&lambda, -1.0, load_factor);
   gather_rows(out);
   out -= c_;
 }
 
 void FetiSystem::apply_F(const Eigen::VectorXd& p, Eigen::VectorXd& out) const {
+  ++f_applications_;
   solve_subdomains(&p, 1.0, 0.0);
   gather_rows(out);
 }

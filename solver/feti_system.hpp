@@ -72,6 +72,8 @@ class FetiSystem {
 
   // Peak memory of the subdomain factors in bytes (CHOLMOD's own accounting).
   std::size_t factor_memory() const;
+  // Applications of F so far (apply_F and residual), the dual methods' measure of cost.
+  long long f_applications() const { return f_applications_; }
 
  private:
   // Y_j = K_j^+ (t f_j + s B_j' lambda) for every subdomain, into y_ (concatenated).
@@ -86,6 +88,7 @@ class FetiSystem {
   Eigen::VectorXd c_;
   SparseMatrix G_;
   mutable Eigen::VectorXd x_, y_;  // workspaces over all subdomain DOFs
+  mutable long long f_applications_ = 0;
 };
 
 }  // namespace fetic::solver

@@ -3,6 +3,7 @@
 // is the state the last sync point left.
 
 #include <algorithm>
+#include <iterator>
 #include <string>
 
 #include <imgui.h>
@@ -60,13 +61,14 @@ void App::load_controls() {
 
 // Method, preconditioner and magnification (automatic or locked).
 void App::solver_controls() {
-  static const char* methods[] = {"feti-c", "active-set", "feti", "cg", "sd"};
+  static const char* methods[] = {"feti-c", "mprgp", "active-set", "feti", "cg", "sd"};
+  constexpr int method_count = static_cast<int>(std::size(methods));
   static const char* preconditioners[] = {"dirichlet", "lumped", "none"};
   int method = 0;
-  for (int i = 0; i < 5; ++i)
+  for (int i = 0; i < method_count; ++i)
     if (solver::to_string(target_.method) == std::string(methods[i])) method = i;
   ImGui::SetNextItemWidth(140);
-  if (ImGui::Combo("method", &method, methods, 5))
+  if (ImGui::Combo("method", &method, methods, method_count))
     push({RequestKind::SetMethod, 0.0, methods[method]});
   int pre =
       static_cast<int>(target_.options.preconditioner == solver::Preconditioner::Dirichlet ? 0

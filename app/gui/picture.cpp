@@ -71,7 +71,7 @@ void App::draw_picture(int width, int height) {
     render::OverlayInfo info;
     info.title = title_;
     info.method = solver::to_string(shown_->method);
-    if (shown_->method == solver::MethodKind::Feti || shown_->method == solver::MethodKind::FetiC)
+    if (solver::is_dual(shown_->method))
       info.method += std::string(" (") + solver::to_string(shown_->preconditioner) + ")";
     overlay = render::draw_overlay(info, *shown_->model, snapshot, history, plot_extent(), v);
   }
