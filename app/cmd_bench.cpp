@@ -13,10 +13,10 @@
 #include <string>
 #include <vector>
 
-#include "app/atomic_file.hpp"
 #include "app/commands.hpp"
 #include "app/exit_codes.hpp"
 #include "app/interrupt.hpp"
+#include "app/output_file.hpp"
 #include "app/scene_input.hpp"
 #include "solver/method.hpp"
 
@@ -160,8 +160,9 @@ int run_bench(const BenchArgs& args) {
   std::vector<Measurement> rows;
   bool warmed_up = false;
   for (const std::string& path : scenes) {
-    const auto scene = load_scene_or_report(path);
-    if (!scene) return kExitInvalidScene;
+    int status = kExitOk;
+    const auto scene = load_scene_or_report(path, status);
+    if (!scene) return status;
     const solver::Model model = solver::build_model(*scene);
     if (!warmed_up) {
       // The first parallel region starts OpenMP's threads: keep that out of the table.
@@ -181,17 +182,19 @@ int run_bench(const BenchArgs& args) {
       }
     }
   }
-  std::cout << "Median of " << args.repeat
-            << " solves per row. solve/AS, total/AS: time relative to the active-set method on "
-               "the same scene, measured in this run (total = set-up + solve). warm/cold: "
-               "iterations of a re-solve after a 5% load change, warm-started against cold. F: "
-               "applications of the FETI operator F in the solve (MPRGP's power method for "
-               "||F|| runs once, in the set-up). "
-               "'!' marks a solve that did not converge.\n\n"
-            << table(rows);
+  // With --csv - the CSV goes to stdout: the table goes to stderr then.
+  std::ostream& report = is_stdout(args.csv) ? std::cerr : std::cout;
+  report << "Median of " << args.repeat
+         << " solves per row. solve/AS, total/AS: time relative to the active-set method on "
+            "the same scene, measured in this run (total = set-up + solve). warm/cold: "
+            "iterations of a re-solve after a 5% load change, warm-started against cold. F: "
+            "applications of the FETI operator F in the solve (MPRGP's power method for "
+            "||F|| runs once, in the set-up). "
+            "'!' marks a solve that did not converge.\n\n"
+         << table(rows);
   if (!args.csv.empty()) {
     try {
-      write_file_atomically(args.csv, [&](std::ostream& out) {
+      write_output(args.csv, [&](std::ostream& out) {
         out << "scene,method,unknowns,iterations,converged,setup_ms,solve_ms,warm_iterations,"
                "cold_iterations,f_applications\n";
         for (const Measurement& m : rows)
@@ -200,8 +203,7 @@ int run_bench(const BenchArgs& args) {
               << ',' << m.cold_iterations << ',' << m.f_applications << '\n';
       });
     } catch (const OutputError& error) {
-      std::cerr << error.what() << '\n';
-      return kExitOutput;
+      return report_output_error(error);
     }
   }
   return kExitOk;
@@ -217,7 +219,7 @@ void register_bench(CLI::App& app, int& exit_code) {
   command->add_option("--repeat", args->repeat, "Solves per measurement (median)")
       ->check(CLI::Range(1, 1000))
       ->capture_default_str();
-  command->add_option("--csv", args->csv, "Also write the table as CSV");
+  command->add_option("--csv", args->csv, "Also write the table as CSV (- for stdout)");
   command->callback([args, &exit_code] { exit_code = run_bench(*args); });
 }
 

@@ -1,22 +1,26 @@
-// fetic bench-render: frames per second of an iteration movie including PNG writing, with
-// the split between drawing (draw lists, GL, read-back) and encoding (PNG, file), and the
-// speed-up of encoding on worker threads over encoding on the rendering thread, measured
-// in the same run on the same frames. A benchmark, not a test: it asserts nothing.
+// fetic bench-render: frames per second of an iteration movie, measured in one run on the
+// same frames: the split between drawing (draw lists, GL, read-back) and PNG encoding,
+// libspng against the stb_image_write encoder fetic used before, PNG frames on worker
+// threads with either, and the movie streamed into ffmpeg. A benchmark, not a test: it
+// asserts nothing.
 
 #include <unistd.h>
 
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
 #include <memory>
 #include <string>
+#include <thread>
 
-#include "app/atomic_file.hpp"
 #include "app/commands.hpp"
 #include "app/exit_codes.hpp"
 #include "app/interrupt.hpp"
 #include "app/method_options.hpp"
+#include "app/movie_stream.hpp"
+#include "app/output_file.hpp"
 #include "app/render_output.hpp"
 #include "app/scene_input.hpp"
 #include "render/colormap.hpp"
@@ -34,6 +38,7 @@ struct BenchArgs {
   std::string size = "1280x720";
   int frames = 40;
   int threads = 0;
+  int samples = 4;
   std::string out;
 };
 
@@ -45,10 +50,23 @@ struct Timing {
   double compose = 0, render = 0, encode = 0, write = 0, total = 0;
 };
 
+// How busy the machine was (benchmarks here share it): /proc/loadavg's first three.
+std::string load_average() {
+  std::ifstream in("/proc/loadavg");
+  double one = 0, five = 0, fifteen = 0;
+  if (!(in >> one >> five >> fifteen)) return "unknown";
+  char text[96];
+  std::snprintf(text, sizeof text, "load average %.2f, %.2f, %.2f (1, 5, 15 min) on %u cores", one,
+                five, fifteen, std::thread::hardware_concurrency());
+  return text;
+}
+
 int run_bench(const BenchArgs& args) {
-  const auto scene = load_scene_or_report(args.scene);
-  if (!scene) return kExitInvalidScene;
+  int status = kExitOk;
+  const auto scene = load_scene_or_report(args.scene, status);
+  if (!scene) return status;
   const solver::Model model = solver::build_model(*scene);
+  use_solver_threads_for_pictures(model);
   const ImageSize size = *parse_image_size(args.size);
   std::unique_ptr<solver::Method> method;
   try {
@@ -73,7 +91,7 @@ int run_bench(const BenchArgs& args) {
   view.width = size.width;
   view.height = size.height;
   const render::FrameComposer composer(model, view, extent,
-                                       {model.title, args.method, std::string()});
+                                       {model.title, args.method, std::string(), std::string()});
   // Frames of the iteration movie, repeated until there are enough.
   const auto for_each_frame = [&](const std::function<void(const render::Frame&, int)>& use) {
     int index = 0;
@@ -99,39 +117,63 @@ int run_bench(const BenchArgs& args) {
   };
 
   try {
+    headless->renderer->set_samples(args.samples);
     // Warm-up: caches, llvmpipe's shader compilation.
     for_each_frame([&](const render::Frame& frame, int) {
       Timing ignored;
       draw(frame, ignored);
     });
 
-    Timing serial;
-    auto start = Clock::now();
+    // One after another on this thread: drawing, then both encoders on the same image.
+    Timing serial, serial_stb;
+    std::size_t spng_bytes = 0, stb_bytes = 0;
     for_each_frame([&](const render::Frame& frame, int index) {
       const render::Image image = draw(frame, serial);
       auto step = Clock::now();
+      const render::PngBytes reference = render::encode_png_stb(image);
+      serial_stb.encode += seconds(step);
+      stb_bytes += reference.size();
+      step = Clock::now();
       const render::PngBytes png = render::encode_png(image);
       serial.encode += seconds(step);
+      spng_bytes += png.size();
       step = Clock::now();
       write_png_atomically(path_of(index), png);
       serial.write += seconds(step);
     });
-    serial.total = seconds(start);
 
+    // The PNG frames of `fetic render`: drawing here, encoding and writing on the pool.
     const int threads = args.threads > 0 ? args.threads : default_encoder_threads();
-    Timing pooled;
-    start = Clock::now();
-    {
-      render::PngEncoderPool pool(threads);
+    const auto pooled_run = [&](render::PngEncoderPool::Encoder encoder, Timing& timing) {
+      const auto start = Clock::now();
+      render::PngEncoderPool pool(threads, 0, encoder);
       for_each_frame([&](const render::Frame& frame, int index) {
-        render::Image image = draw(frame, pooled);
+        render::Image image = draw(frame, timing);
         const std::string path = path_of(index);
         pool.submit(std::move(image),
                     [path](render::PngBytes png) { write_png_atomically(path, png); });
       });
       pool.finish();
+      timing.total = seconds(start);
+    };
+    Timing pooled_stb, pooled;
+    pooled_run(&render::encode_png_stb, pooled_stb);
+    pooled_run(&render::encode_png, pooled);
+
+    // The movie of `fetic render --movie` (no PNG): frames streamed into ffmpeg.
+    Timing streamed;
+    const bool have_ffmpeg = program_on_path("ffmpeg");
+    if (have_ffmpeg) {
+      const std::string movie = (std::filesystem::path(directory) / "bench.mp4").string();
+      const auto start = Clock::now();
+      write_output_by(movie, [&](const ExternalTarget& target) {
+        MovieStream stream(target, size.width, size.height, 30);
+        for_each_frame(
+            [&](const render::Frame& frame, int) { stream.submit(draw(frame, streamed)); });
+        return stream.finish();
+      });
+      streamed.total = seconds(start);
     }
-    pooled.total = seconds(start);
     if (interrupted()) {
       std::cerr << directory << ": fetic bench-render interrupted by " << interrupt_name()
                 << "; the frames written are complete\n";
@@ -144,24 +186,34 @@ int run_bench(const BenchArgs& args) {
     std::printf("bench-render %s, %s, %dx%d, %d frames (iteration movie of %d frames, repeated)\n",
                 args.scene.c_str(), args.method.c_str(), size.width, size.height, args.frames,
                 extent.frame_count);
-    std::printf("renderer     %s\n", headless->context->description().c_str());
+    std::printf("renderer     %s, %d samples per pixel\n", headless->context->description().c_str(),
+                headless->renderer->samples());
     std::printf(
-        "per frame    draw lists %.2f ms, GL render + read-back %.2f ms, PNG encode %.2f ms, "
-        "file write %.2f ms\n",
-        ms(serial.compose), ms(serial.render), ms(serial.encode), ms(serial.write));
-    std::printf("split        render %.0f%% / encode+write %.0f%% of the single-threaded time\n",
-                100.0 * (serial.compose + serial.render) / serial.total,
-                100.0 * (serial.encode + serial.write) / serial.total);
+        "per frame    draw lists %.2f ms, GL render + read-back %.2f ms, file write %.2f ms\n",
+        ms(serial.compose), ms(serial.render), ms(serial.write));
+    std::printf(
+        "PNG encode   libspng %.2f ms (%.0f kB) against stb_image_write %.2f ms (%.0f kB): "
+        "%.1fx faster, %.2fx the size\n",
+        ms(serial.encode), spng_bytes / n / 1e3, ms(serial_stb.encode), stb_bytes / n / 1e3,
+        serial_stb.encode / serial.encode, static_cast<double>(spng_bytes) / stb_bytes);
+    const double serial_total = serial.compose + serial.render + serial.encode + serial.write;
     std::printf("single thread  %.2f frames/s (render, encode and write one after another)\n",
-                n / serial.total);
-    std::printf("%d encoder threads  %.2f frames/s (rendering on the main thread)\n", threads,
-                n / pooled.total);
-    std::printf("             (rendering on the main thread took %.2f ms per frame meanwhile)\n",
-                ms(pooled.compose + pooled.render));
-    std::printf("speed-up     %.2fx\n", serial.total / pooled.total);
+                n / serial_total);
+    std::printf(
+        "PNG frames   %d encoder threads: %.2f frames/s with libspng, %.2f with "
+        "stb_image_write (before): %.2fx\n",
+        threads, n / pooled.total, n / pooled_stb.total, pooled_stb.total / pooled.total);
+    if (have_ffmpeg)
+      std::printf(
+          "movie        streamed to ffmpeg (H.264, no PNG): %.2f frames/s (%.2fx the PNG "
+          "frames with libspng); drawing took %.2f ms per frame meanwhile\n",
+          n / streamed.total, pooled.total / streamed.total,
+          ms(streamed.compose + streamed.render));
+    else
+      std::printf("movie        not measured: ffmpeg is not installed\n");
+    std::printf("load         %s\n", load_average().c_str());
   } catch (const OutputError& error) {
-    std::cerr << error.what() << '\n';
-    return kExitOutput;
+    return report_output_error(error);
   } catch (const render::RenderError& error) {
     std::cerr << directory << ": rendering failed: " << error.what() << '\n';
     return kExitOutput;
@@ -188,6 +240,9 @@ void register_bench_render(CLI::App& app, int& exit_code) {
       ->capture_default_str();
   command->add_option("--threads", args->threads, "Encoder threads (0: one per core)")
       ->check(CLI::Range(0, 64));
+  command->add_option("--samples", args->samples, "Multisampling: samples per pixel")
+      ->check(CLI::Range(1, 32))
+      ->capture_default_str();
   command->add_option("--out", args->out,
                       "Keep the frames here (default: a temporary directory, removed after)");
   command->callback([args, &exit_code] { exit_code = run_bench(*args); });

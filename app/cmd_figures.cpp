@@ -9,10 +9,10 @@
 #include <string>
 #include <vector>
 
-#include "app/atomic_file.hpp"
 #include "app/commands.hpp"
 #include "app/exit_codes.hpp"
 #include "app/interrupt.hpp"
+#include "app/output_file.hpp"
 #include "app/render_output.hpp"
 #include "app/scene_input.hpp"
 #include "render/figures.hpp"
@@ -43,13 +43,13 @@ int run_figures(const FiguresArgs& args) {
   std::optional<scenes::Scene> scene;
   std::optional<solver::Model> thesis;
   std::string thesis_problem;
-  bool scene_failed = false;
+  int scene_status = kExitOk;
   if (needs_thesis) {
-    scene = load_scene_or_report(args.scene);
+    scene = load_scene_or_report(args.scene, scene_status);
+    if (scene_status == kExitInterrupted) return scene_status;
     if (scene) {
       thesis = solver::build_model(*scene);
     } else {
-      scene_failed = true;
       thesis_problem = args.scene + ": the thesis scene could not be loaded (--scene)";
     }
   }
@@ -77,8 +77,7 @@ int run_figures(const FiguresArgs& args) {
           size.width, size.height, {&*figure.drawing}, render::Color{255, 255, 255, 255});
       write_png_atomically(path, render::encode_png(image));
     } catch (const OutputError& error) {
-      std::cerr << error.what() << '\n';
-      return kExitOutput;
+      return report_output_error(error);
     } catch (const render::RenderError& error) {
       std::cerr << path << ": rendering failed: " << error.what() << '\n';
       return kExitOutput;
@@ -90,7 +89,7 @@ int run_figures(const FiguresArgs& args) {
   std::cout << written << " figure(s) written to " << args.out;
   if (skipped > 0) std::cout << ", " << skipped << " skipped (reasons above)";
   std::cout << '\n';
-  if (scene_failed) return kExitInvalidScene;
+  if (scene_status != kExitOk) return scene_status;
   return written > 0 ? kExitOk : kExitSolverSetup;
 }
 

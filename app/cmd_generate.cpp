@@ -6,9 +6,9 @@
 #include <sstream>
 #include <string>
 
-#include "app/atomic_file.hpp"
 #include "app/commands.hpp"
 #include "app/exit_codes.hpp"
+#include "app/output_file.hpp"
 #include "scenes/generate_scene.hpp"
 #include "scenes/load_scene.hpp"
 #include "scenes/write_scene.hpp"
@@ -63,15 +63,10 @@ int run_generate(const GenerateArgs& args) {
     std::cerr << error.what() << '\n';
     return kExitUsage;
   }
-  if (args.out.empty()) {
-    std::cout << text;
-    return kExitOk;
-  }
   try {
-    write_file_atomically(args.out, [&](std::ostream& out) { out << text; });
+    write_output(args.out.empty() ? "-" : args.out, text);
   } catch (const OutputError& error) {
-    std::cerr << error.what() << '\n';
-    return kExitOutput;
+    return report_output_error(error);
   }
   return kExitOk;
 }
@@ -93,7 +88,7 @@ void register_generate(CLI::App& app, int& exit_code) {
   command->add_option("--subdomains", args->subdomains, "Subdomains per strut: along[,across]")
       ->capture_default_str();
   command->add_option("--seed", args->seed, "Seed of the variations")->capture_default_str();
-  command->add_option("-o,--out", args->out, "Write to this file instead of stdout");
+  command->add_option("-o,--out", args->out, "Write to this file instead of stdout (- for stdout)");
   command->callback([args, &exit_code] { exit_code = run_generate(*args); });
 }
 

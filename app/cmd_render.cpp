@@ -9,11 +9,12 @@
 #include <string>
 #include <vector>
 
-#include "app/atomic_file.hpp"
 #include "app/commands.hpp"
 #include "app/exit_codes.hpp"
 #include "app/interrupt.hpp"
 #include "app/method_options.hpp"
+#include "app/movie_stream.hpp"
+#include "app/output_file.hpp"
 #include "app/render_output.hpp"
 #include "app/scene_input.hpp"
 #include "render/colormap.hpp"
@@ -38,12 +39,15 @@ struct RenderArgs {
   bool no_overlay = false;
   int max_frames = 2000;
   int threads = 0;
+  int samples = 4;
 };
 
 int run_render(const RenderArgs& args) {
-  const auto scene = load_scene_or_report(args.scene);
-  if (!scene) return kExitInvalidScene;
+  int status = kExitOk;
+  const auto scene = load_scene_or_report(args.scene, status);
+  if (!scene) return status;
   const solver::Model model = solver::build_model(*scene);
+  use_solver_threads_for_pictures(model);
   const ImageSize size = *parse_image_size(args.size);
 
   render::FramePlan plan;
@@ -62,8 +66,13 @@ int run_render(const RenderArgs& args) {
     return kExitSolverSetup;
   }
   // Before the (possibly long) survey: the output directory and a display must exist.
-  if (!make_output_directory(args.out)) return kExitOutput;
-  auto headless = open_headless(args.out);
+  if (args.out.empty() && args.movie.empty()) {
+    std::cerr << "fetic render: nothing to write: give --out DIR (PNG frames), --movie "
+                 "FILE.mp4, or both\n";
+    return kExitUsage;
+  }
+  if (!args.out.empty() && !make_output_directory(args.out)) return kExitOutput;
+  auto headless = open_headless(args.out.empty() ? args.movie : args.out);
   if (!headless) return kExitNoDisplay;
 
   // Survey pass: the same deterministic run, for fixed scales and the frame count.
@@ -93,29 +102,72 @@ int run_render(const RenderArgs& args) {
   const render::FrameComposer composer(model, view, extent, info,
                                        static_cast<int>(plan.load_factors.size()));
 
+  // PNG frames when --out is given, a movie streamed to ffmpeg when --movie is: both
+  // from the same rendered images.
+  const bool frames_wanted = !args.out.empty();
+  bool movie_wanted = !args.movie.empty();
+  status = kExitOk;
+  if (movie_wanted && !program_on_path("ffmpeg")) {
+    std::cerr << args.movie << ": ffmpeg is not installed, so no movie can be made"
+              << (frames_wanted ? "; writing the PNG frames only" : "")
+              << " (apt-get install ffmpeg)\n";
+    if (!frames_wanted) return kExitOutput;
+    movie_wanted = false;
+    status = kExitOutput;
+  }
+  headless->renderer->set_samples(args.samples);
   const int threads = args.threads > 0 ? args.threads : default_encoder_threads();
-  render::PngEncoderPool pool(threads);
+  std::unique_ptr<render::PngEncoderPool> pool;
+  if (frames_wanted) pool = std::make_unique<render::PngEncoderPool>(threads);
   int written = 0;
-  try {
+  const auto render_frames = [&](MovieStream* stream) {
     render::run_frames(*method, plan, [&](const render::Frame& frame) {
       if (interrupted()) return false;
       const render::ComposedFrame composed = composer.compose(frame);
       render::Image image =
           headless->renderer->render(size.width, size.height, {&composed.scene, &composed.overlay},
                                      render::palette::background);
-      const std::string path =
-          (std::filesystem::path(args.out) / frame_name(frame.index, extent.frame_count)).string();
-      pool.submit(std::move(image),
-                  [path](render::PngBytes png) { write_png_atomically(path, png); });
+      if (stream && pool) {
+        stream->submit(image);  // a copy: the PNG encoder takes the other
+      } else if (stream) {
+        stream->submit(std::move(image));
+      }
+      if (pool) {
+        const std::string path =
+            (std::filesystem::path(args.out) / frame_name(frame.index, extent.frame_count))
+                .string();
+        pool->submit(std::move(image),
+                     [path](render::PngBytes png) { write_png_atomically(path, png); });
+      }
       ++written;
       return true;
     });
-    pool.finish();
+    if (pool) pool->finish();
+  };
+  try {
+    if (movie_wanted) {
+      write_output_by(args.movie, [&](const ExternalTarget& target) {
+        MovieStream stream(target, size.width, size.height, args.fps);
+        render_frames(&stream);
+        return stream.finish();
+      });
+    } else {
+      render_frames(nullptr);
+    }
   } catch (const OutputError& error) {
-    std::cerr << error.what() << '\n';
-    return kExitOutput;
+    if (interrupted()) {
+      std::cerr << (movie_wanted ? args.movie : args.out) << ": interrupted by " << interrupt_name()
+                << (movie_wanted ? " while streaming frames to ffmpeg; no movie written" : "")
+                << (frames_wanted
+                        ? ", " + std::to_string(written) + " complete frames in " + args.out
+                        : std::string())
+                << "\n";
+      return kExitInterrupted;
+    }
+    return report_output_error(error);
   } catch (const render::RenderError& error) {
-    std::cerr << args.out << ": rendering failed: " << error.what() << '\n';
+    std::cerr << (frames_wanted ? args.out : args.movie) << ": rendering failed: " << error.what()
+              << '\n';
     return kExitOutput;
   }
   if (interrupted()) {
@@ -124,19 +176,26 @@ int run_render(const RenderArgs& args) {
     return kExitInterrupted;
   }
 
-  std::cout << "frames       " << written << " in " << args.out << " ("
-            << frame_name(0, extent.frame_count) << " .. "
-            << frame_name(written - 1, extent.frame_count) << "), " << size.width << "x"
-            << size.height << ", magnification " << composer.framing().magnification << "\n";
-  std::cout << "renderer     " << headless->context->description() << "\n";
-  const std::string next =
-      (std::filesystem::path(args.out) / frame_name(written, extent.frame_count)).string();
-  if (std::filesystem::exists(next))
-    std::cout << "note         " << next
-              << " and later frames are from an earlier run; they were left alone\n";
+  // With --movie - the movie goes to stdout: the report goes to stderr then.
+  std::ostream& report = is_stdout(args.movie) ? std::cerr : std::cout;
+  if (frames_wanted) {
+    report << "frames       " << written << " in " << args.out << " ("
+           << frame_name(0, extent.frame_count) << " .. "
+           << frame_name(written - 1, extent.frame_count) << "), " << size.width << "x"
+           << size.height << ", magnification " << composer.framing().magnification << "\n";
+    const std::string next =
+        (std::filesystem::path(args.out) / frame_name(written, extent.frame_count)).string();
+    if (std::filesystem::exists(next))
+      report << "note         " << next
+             << " and later frames are from an earlier run; they were left alone\n";
+  }
+  if (movie_wanted)
+    report << "movie        " << args.movie << " (" << written << " frames at " << args.fps
+           << " per second, " << size.width << "x" << size.height << ", magnification "
+           << composer.framing().magnification << ")\n";
+  report << "renderer     " << headless->context->description() << ", " << args.samples
+         << (args.samples == 1 ? " sample" : " samples") << " per pixel\n";
 
-  int status = kExitOk;
-  if (!args.movie.empty()) status = assemble_movie(args.out, written, args.fps, args.movie);
   if (extent.final_status != solver::Status::Converged) {
     std::cerr << args.scene << ": " << method_name << " did not converge: " << extent.final_message
               << " (the frames show it)\n";
@@ -151,10 +210,11 @@ void register_render(CLI::App& app, int& exit_code) {
   auto args = std::make_shared<RenderArgs>();
   CLI::App* command = app.add_subcommand(
       "render",
-      "Render solver states to PNG frames: an iteration movie, the final state or load steps");
+      "Render solver states as PNG frames and/or a movie: an iteration movie, the final state "
+      "or load steps");
   command->add_option("scene", args->scene, "Scene file (TOML, see docs/SCENES.md)")->required();
-  command->add_option("--out", args->out, "Directory for frame_0000.png, frame_0001.png, ...")
-      ->required();
+  command->add_option("--out", args->out,
+                      "Write PNG frames frame_0000.png, frame_0001.png, ... into this directory");
   add_method_options(command, args->method);
   command->add_option("--size", args->size, "Image size in pixels")
       ->check(image_size_check())
@@ -165,7 +225,9 @@ void register_render(CLI::App& app, int& exit_code) {
   auto* final_only =
       command->add_flag("--final", args->final_only, "Only the final state of each solve");
   every->excludes(final_only);
-  command->add_option("--movie", args->movie, "Also assemble the frames into this mp4 (ffmpeg)");
+  command->add_option("--movie", args->movie,
+                      "Stream the frames into this H.264 mp4 (ffmpeg; - for stdout; no PNG files "
+                      "unless --out)");
   command->add_option("--fps", args->fps, "Frames per second of the movie")
       ->check(CLI::Range(1, 120))
       ->capture_default_str();
@@ -184,6 +246,11 @@ void register_render(CLI::App& app, int& exit_code) {
       ->capture_default_str();
   command->add_option("--threads", args->threads, "PNG encoding threads (0: one per core)")
       ->check(CLI::Range(0, 64));
+  command
+      ->add_option("--samples", args->samples,
+                   "Multisampling: samples per pixel (1: none; the GL's maximum at most)")
+      ->check(CLI::Range(1, 32))
+      ->capture_default_str();
   command->callback([args, &exit_code] { exit_code = run_render(*args); });
 }
 

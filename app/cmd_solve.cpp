@@ -9,11 +9,11 @@
 #include <memory>
 #include <string>
 
-#include "app/atomic_file.hpp"
 #include "app/commands.hpp"
 #include "app/exit_codes.hpp"
 #include "app/interrupt.hpp"
 #include "app/method_options.hpp"
+#include "app/output_file.hpp"
 #include "app/result_json.hpp"
 #include "app/scene_input.hpp"
 #include "solver/load_sweep.hpp"
@@ -40,7 +40,8 @@ std::string format(const char* pattern, double value) {
   return buffer;
 }
 
-void print_summary(const solver::Model& model, const solver::Snapshot& state, const RunInfo& info) {
+void print_summary(std::ostream& out, const solver::Model& model, const solver::Snapshot& state,
+                   const RunInfo& info) {
   const auto displacements = solver::strut_displacements(model, state);
   double largest = 0.0;
   int largest_strut = -1, largest_node = -1;
@@ -51,24 +52,24 @@ void print_summary(const solver::Model& model, const solver::Snapshot& state, co
         largest_strut = static_cast<int>(s);
         largest_node = static_cast<int>(n);
       }
-  std::cout << "scene        " << info.scene_path << " (" << scenes::to_string(model.kind) << ", "
-            << model.struts.size() << " struts, " << model.contact_labels.size() << " contacts, "
-            << model.dof_count() << " unknowns)\n";
-  std::cout << "method       " << solver::to_string(info.method);
+  out << "scene        " << info.scene_path << " (" << scenes::to_string(model.kind) << ", "
+      << model.struts.size() << " struts, " << model.contact_labels.size() << " contacts, "
+      << model.dof_count() << " unknowns)\n";
+  out << "method       " << solver::to_string(info.method);
   if (solver::is_dual(info.method))
-    std::cout << " (preconditioner " << solver::to_string(info.preconditioner) << ")";
-  std::cout << ", load factor " << state.load_factor << ", tolerance " << info.tolerance << "\n";
-  std::cout << "converged    " << (state.status == solver::Status::Converged ? "yes" : "NO")
-            << " after " << state.iteration << " iterations, relative residual "
-            << format("%.3e", state.residual) << "\n";
-  if (!state.message.empty()) std::cout << "             " << state.message << "\n";
-  std::cout << "contacts     " << state.active_set_size() << " of " << model.pairs.size()
-            << " node pairs active\n";
+    out << " (preconditioner " << solver::to_string(info.preconditioner) << ")";
+  out << ", load factor " << state.load_factor << ", tolerance " << info.tolerance << "\n";
+  out << "converged    " << (state.status == solver::Status::Converged ? "yes" : "NO") << " after "
+      << state.iteration << " iterations, relative residual " << format("%.3e", state.residual)
+      << "\n";
+  if (!state.message.empty()) out << "             " << state.message << "\n";
+  out << "contacts     " << state.active_set_size() << " of " << model.pairs.size()
+      << " node pairs active\n";
   if (largest_strut >= 0)
-    std::cout << "largest displacement " << format("%.6e", largest) << " (strut '"
-              << model.strut_names[largest_strut] << "', node " << largest_node << ")\n";
-  std::cout << "time         set-up " << format("%.3f", info.setup_seconds * 1e3) << " ms, solve "
-            << format("%.3f", info.solve_seconds * 1e3) << " ms\n";
+    out << "largest displacement " << format("%.6e", largest) << " (strut '"
+        << model.strut_names[largest_strut] << "', node " << largest_node << ")\n";
+  out << "time         set-up " << format("%.3f", info.setup_seconds * 1e3) << " ms, solve "
+      << format("%.3f", info.solve_seconds * 1e3) << " ms\n";
 }
 
 // Displacements of a direct (active-set) solve at every load factor, for error histories.
@@ -90,8 +91,9 @@ std::map<double, std::vector<std::vector<solver::Vec2>>> reference_solutions(
 }
 
 int run_solve(const SolveArgs& args) {
-  const auto scene = load_scene_or_report(args.scene);
-  if (!scene) return kExitInvalidScene;
+  int status = kExitOk;
+  const auto scene = load_scene_or_report(args.scene, status);
+  if (!scene) return status;
   const solver::Model model = solver::build_model(*scene);
 
   RunInfo info;
@@ -114,9 +116,11 @@ int run_solve(const SolveArgs& args) {
 
   const std::vector<double> load_factors = args.method.load_factors();
   const bool sweeping = !args.method.load_steps.empty();
+  // With --json - the result goes to stdout: the report goes to stderr then.
+  std::ostream& report = is_stdout(args.json) ? std::cerr : std::cout;
   if (sweeping && !args.quiet)
-    std::cout << "load steps   " << load_factors.size() << " from " << load_factors.front()
-              << " to " << load_factors.back() << ", each warm-started\n";
+    report << "load steps   " << load_factors.size() << " from " << load_factors.front() << " to "
+           << load_factors.back() << ", each warm-started\n";
   const auto solve_start = std::chrono::steady_clock::now();
   solver::SweepHooks hooks;
   hooks.before_start = [&](double t) {
@@ -124,10 +128,12 @@ int run_solve(const SolveArgs& args) {
   };
   hooks.on_step = [&](const solver::SweepStep& step) {
     if (!sweeping || args.quiet) return;
-    std::printf("  t = %-12.6g %-9s %4d iterations  %5d active  residual %.3e\n",
-                step.load_factor, solver::to_string(step.state.status), step.state.iteration,
-                step.state.active_set_size(), step.state.residual);
-    std::fflush(stdout);
+    char line[160];
+    std::snprintf(line, sizeof line,
+                  "  t = %-12.6g %-9s %4d iterations  %5d active  residual %.3e\n",
+                  step.load_factor, solver::to_string(step.state.status), step.state.iteration,
+                  step.state.active_set_size(), step.state.residual);
+    report << line << std::flush;
   };
   hooks.keep_going = [] { return !interrupted(); };
   const std::vector<solver::SweepStep> steps = solver::sweep(*method, load_factors, hooks);
@@ -139,7 +145,7 @@ int run_solve(const SolveArgs& args) {
   info.solve_seconds = seconds_since(solve_start);
   const solver::SweepStep& last = steps.back();
 
-  if (!args.quiet) print_summary(model, last.state, info);
+  if (!args.quiet) print_summary(report, model, last.state, info);
   if (!args.json.empty()) {
     try {
       nlohmann::json result = result_json(model, last.state, last.history, info);
@@ -153,10 +159,9 @@ int run_solve(const SolveArgs& args) {
                           {"residual", step.state.residual}});
         result["steps"] = list;
       }
-      write_file_atomically(args.json, [&](std::ostream& out) { out << result.dump(1) << '\n'; });
+      write_output(args.json, [&](std::ostream& out) { out << result.dump(1) << '\n'; });
     } catch (const OutputError& error) {
-      std::cerr << error.what() << '\n';
-      return kExitOutput;
+      return report_output_error(error);
     }
   }
   for (const solver::SweepStep& step : steps)
@@ -176,7 +181,7 @@ void register_solve(CLI::App& app, int& exit_code) {
   CLI::App* command = app.add_subcommand("solve", "Solve a scene and report the result");
   command->add_option("scene", args->scene, "Scene file (TOML, see docs/SCENES.md)")->required();
   add_method_options(command, args->method);
-  command->add_option("--json", args->json, "Write the result file (JSON) here");
+  command->add_option("--json", args->json, "Write the result file (JSON) here (- for stdout)");
   command->add_flag("--reference", args->reference,
                     "Record each iteration's displacement error against an active-set solve "
                     "made in the same run");

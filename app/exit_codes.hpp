@@ -11,6 +11,7 @@ enum ExitCode : int {
   kExitNotConverged = 4,   // no convergence, unbounded scene, numerical breakdown
   kExitOutput = 5,         // an output file could not be written
   kExitNoDisplay = 6,      // no display or EGL device for rendering
+  kExitOutOfMemory = 7,    // the scene needs more memory than is available
   kExitInterrupted = 130,  // SIGINT or SIGTERM: outputs written so far are complete
 };
 

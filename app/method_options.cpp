@@ -62,11 +62,20 @@ void add_method_options(CLI::App* command, MethodArgs& args) {
   command->add_option("--method", args.method, "Method: sd, cg, active-set, feti, feti-c, mprgp")
       ->check(method_name())
       ->capture_default_str();
-  command
-      ->add_option("--preconditioner", args.preconditioner,
-                   "FETI preconditioner: none, lumped, dirichlet")
-      ->check(preconditioner_name())
-      ->capture_default_str();
+  CLI::Option* preconditioner =
+      command
+          ->add_option("--preconditioner", args.preconditioner,
+                       "FETI preconditioner (feti, feti-c, mprgp): none, lumped, dirichlet")
+          ->check(preconditioner_name())
+          ->capture_default_str();
+  // A preconditioner asked for a method that has none would be silently ignored.
+  command->parse_complete_callback([&args, preconditioner] {
+    const auto kind = solver::parse_method(args.method);
+    if (preconditioner->count() > 0 && kind && !solver::is_dual(*kind))
+      throw CLI::ValidationError("--preconditioner",
+                                 "only feti, feti-c and mprgp have a preconditioner; " +
+                                     args.method + " does not use one");
+  });
   command->add_flag("--no-scaling", args.no_scaling,
                     "FETI preconditioners without stiffness scaling");
   command->add_option("--tol", args.tolerance, "Relative tolerance")

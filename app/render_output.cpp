@@ -13,9 +13,11 @@
 #include <thread>
 #include <vector>
 
-#include "app/atomic_file.hpp"
+#include <omp.h>
+
 #include "app/exit_codes.hpp"
 #include "app/interrupt.hpp"
+#include "app/output_file.hpp"
 
 extern char** environ;
 
@@ -51,9 +53,14 @@ std::string frame_name(int index, int count) {
 
 void write_png_atomically(const std::string& path, const render::PngBytes& png) {
   if (png.empty()) throw OutputError(path + ": PNG encoding failed");
-  write_file_atomically(path, [&](std::ostream& out) {
+  write_output(path, [&](std::ostream& out) {
     out.write(reinterpret_cast<const char*>(png.data()), static_cast<std::streamsize>(png.size()));
   });
+}
+
+void use_solver_threads_for_pictures(const solver::Model& model) {
+  constexpr long long kParallelFrom = 200000;
+  omp_set_num_threads(model.dof_count() < kParallelFrom ? 1 : omp_get_num_procs());
 }
 
 int default_encoder_threads() {
@@ -107,7 +114,8 @@ bool program_on_path(const std::string& name) {
 }
 
 // Runs ffmpeg on frames 0 .. count-1 of `directory`; the movie appears atomically.
-int assemble_movie(const std::string& directory, int count, int fps, const std::string& movie) {
+int assemble_movie(const std::string& directory, int count, int fps, const std::string& movie,
+                   std::ostream& report) {
   if (!program_on_path("ffmpeg")) {
     std::cerr << movie << ": ffmpeg is not installed, so no movie was made; the " << count
               << " frames are in " << directory << " (apt-get install ffmpeg)\n";
@@ -119,7 +127,7 @@ int assemble_movie(const std::string& directory, int count, int fps, const std::
   const std::string input =
       (std::filesystem::path(directory) / ("frame_%0" + digits + "d.png")).string();
   try {
-    write_via_temporary(movie, [&](const std::string& temporary) {
+    write_output_by(movie, [&](const ExternalTarget& target) {
       std::vector<std::string> arguments{"ffmpeg",
                                          "-y",
                                          "-loglevel",
@@ -139,14 +147,29 @@ int assemble_movie(const std::string& directory, int count, int fps, const std::
                                          "-vf",
                                          "pad=ceil(iw/2)*2:ceil(ih/2)*2",
                                          "-f",
-                                         "mp4",
-                                         temporary};
+                                         "mp4"};
+      // A stream cannot be rewound to write the index at the front: a fragmented mp4.
+      if (target.stream)
+        arguments.insert(arguments.end(), {"-movflags", "frag_keyframe+empty_moov"});
+      // "file:" keeps a ':' in the name from being read as a protocol.
+      arguments.push_back(target.file.empty() ? "pipe:1" : "file:" + target.file);
       std::vector<char*> argv;
       for (std::string& argument : arguments)
         argv.push_back(argument.data());
       argv.push_back(nullptr);
+      // fetic ignores SIGPIPE (a lost write is reported, not fatal); ffmpeg gets the default.
+      posix_spawnattr_t attributes;
+      posix_spawnattr_init(&attributes);
+      sigset_t defaults;
+      sigemptyset(&defaults);
+      sigaddset(&defaults, SIGPIPE);
+      posix_spawnattr_setsigdefault(&attributes, &defaults);
+      posix_spawnattr_setflags(&attributes, POSIX_SPAWN_SETSIGDEF);
       pid_t child = 0;
-      if (posix_spawnp(&child, "ffmpeg", nullptr, nullptr, argv.data(), environ) != 0) return false;
+      const int spawned =
+          posix_spawnp(&child, "ffmpeg", nullptr, &attributes, argv.data(), environ);
+      posix_spawnattr_destroy(&attributes);
+      if (spawned != 0) return false;
       // SIGINT/SIGTERM interrupt waitpid (no SA_RESTART): stop ffmpeg then, and wait for
       // it, so that its temporary file is removed only once nobody writes it any more.
       int status = 0;
@@ -158,7 +181,6 @@ int assemble_movie(const std::string& directory, int count, int fps, const std::
           stopped = true;
         }
       }
-      errno = 0;
       return !interrupted() && WIFEXITED(status) && WEXITSTATUS(status) == 0;
     });
   } catch (const OutputError& error) {
@@ -171,8 +193,7 @@ int assemble_movie(const std::string& directory, int count, int fps, const std::
     std::cerr << error.what() << " (ffmpeg failed)\n";
     return kExitOutput;
   }
-  std::cout << "movie        " << movie << " (" << count << " frames at " << fps
-            << " per second)\n";
+  report << "movie        " << movie << " (" << count << " frames at " << fps << " per second)\n";
   return kExitOk;
 }
 

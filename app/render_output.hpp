@@ -13,6 +13,7 @@
 #include "render/font.hpp"
 #include "render/gl_renderer.hpp"
 #include "render/png_writer.hpp"
+#include "solver/model.hpp"
 
 namespace fetic::app {
 
@@ -28,12 +29,18 @@ CLI::Validator image_size_check();
 // frame_0000.png ... with at least 4 digits, more when `count` needs them.
 std::string frame_name(int index, int count);
 
-// Writes the PNG to a temporary file beside `path` and renames it: a reader never sees a
+// Writes the PNG through write_output (app/output_file.hpp): a reader never sees a
 // half-written PNG. Throws OutputError naming the file.
 void write_png_atomically(const std::string& path, const render::PngBytes& png);
 
 // Worker threads for PNG encoding: one per core.
 int default_encoder_threads();
+
+// The solver's OpenMP threads while pictures are drawn beside it: one below 200,000
+// unknowns. On 2 cores a team's start-up and its spinning at barriers cost more than the
+// work and take the core the software rasterizer and the encoders need (a perf profile of
+// `fetic render` on the thesis scene: 19% of the time in libgomp's spin loop).
+void use_solver_threads_for_pictures(const solver::Model& model);
 
 struct Headless {
   std::unique_ptr<render::GlContext> context;
@@ -51,8 +58,10 @@ bool make_output_directory(const std::string& directory);
 bool program_on_path(const std::string& name);
 
 // Runs ffmpeg on frames 0 .. count-1 of `directory` (frame_0000.png, ...): an H.264 mp4 at
-// `fps` appears atomically as `movie`. Returns an exit status (kExitOutput when ffmpeg is
-// missing or fails, saying so).
-int assemble_movie(const std::string& directory, int count, int fps, const std::string& movie);
+// `fps` is written to `movie` through write_output_by (app/output_file.hpp: atomically to
+// a file; a fragmented mp4 to a FIFO, a device or "-", stdout). Prints what it made to
+// `report`. Returns an exit status (kExitOutput when ffmpeg is missing or fails, saying so).
+int assemble_movie(const std::string& directory, int count, int fps, const std::string& movie,
+                   std::ostream& report);
 
 }  // namespace fetic::app

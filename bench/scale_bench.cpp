@@ -23,8 +23,8 @@
 
 #include <CLI/CLI.hpp>
 
-#include "app/atomic_file.hpp"
 #include "app/exit_codes.hpp"
+#include "app/output_file.hpp"
 #include "bench/ipopt_qp.hpp"
 #include "scenes/generate_scene.hpp"
 #include "solver/direct_floor.hpp"
@@ -90,7 +90,7 @@ struct Table {
   void write_csv(const std::string& directory, const std::string& file) const {
     if (directory.empty()) return;
     std::filesystem::create_directories(directory);
-    app::write_file_atomically(directory + "/" + file, [&](std::ostream& out) {
+    app::write_output(directory + "/" + file, [&](std::ostream& out) {
       auto write = [&](const std::vector<std::string>& cells) {
         for (size_t c = 0; c < cells.size(); ++c)
           out << (c ? "," : "") << csv_cell(cells[c]);

@@ -215,17 +215,22 @@ Image GlRenderer::read_back() {
   image.width = width_;
   image.height = height_;
   image.rgba.resize(static_cast<std::size_t>(width_) * static_cast<std::size_t>(height_) * 4);
-  std::vector<std::uint8_t> bottom_up(image.rgba.size());
   glPixelStorei(GL_PACK_ALIGNMENT, 1);
-  glReadPixels(0, 0, width_, height_, GL_RGBA, GL_UNSIGNED_BYTE, bottom_up.data());
+  // Alpha is 1 everywhere: cleared to 1, and the blend keeps it (1 * a + 1 * (1 - a)).
+  glReadPixels(0, 0, width_, height_, GL_RGBA, GL_UNSIGNED_BYTE, image.rgba.data());
   glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
   check("while reading a frame back");
+  // GL's rows run bottom to top: turn them over in place (no second frame-sized buffer,
+  // whose allocation and zeroing cost more than the copy).
   const std::size_t row = static_cast<std::size_t>(width_) * 4;
-  for (int y = 0; y < height_; ++y)
-    std::memcpy(image.rgba.data() + static_cast<std::size_t>(y) * row,
-                bottom_up.data() + static_cast<std::size_t>(height_ - 1 - y) * row, row);
-  for (std::size_t i = 3; i < image.rgba.size(); i += 4)
-    image.rgba[i] = 255;
+  std::vector<std::uint8_t> spare(row);
+  for (int top = 0, bottom = height_ - 1; top < bottom; ++top, --bottom) {
+    std::uint8_t* a = image.rgba.data() + static_cast<std::size_t>(top) * row;
+    std::uint8_t* b = image.rgba.data() + static_cast<std::size_t>(bottom) * row;
+    std::memcpy(spare.data(), a, row);
+    std::memcpy(a, b, row);
+    std::memcpy(b, spare.data(), row);
+  }
   return image;
 }
 

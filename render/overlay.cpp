@@ -68,7 +68,8 @@ DrawList draw_overlay(const OverlayInfo& info, const solver::Model& model,
   const Color status_color = snapshot.status == solver::Status::Failed      ? palette::contact
                              : snapshot.status == solver::Status::Converged ? Color{0, 130, 70, 255}
                                                                             : palette::ink;
-  row("status", solver::to_string(snapshot.status), status_color);
+  row("status", info.status.empty() ? solver::to_string(snapshot.status) : info.status,
+      status_color);
   row("colour",
       view.color_by == ColorBy::Stress  ? "axial stress"
       : view.color_by == ColorBy::Strut ? "struts"

@@ -19,6 +19,9 @@ struct OverlayInfo {
   std::string title;
   std::string method;     // e.g. "feti-c (dirichlet)"
   std::string load_step;  // e.g. "step 3 of 10"; empty for a single load factor
+  // The status row; empty: the snapshot's own status. A window that shows an earlier
+  // iterate of a finished solve says so ("converged at iteration 6; showing 3").
+  std::string status;
 };
 
 // The panel's place (right side of the image) and the scene's (the rest).

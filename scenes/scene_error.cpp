@@ -1,7 +1,6 @@
 #include "scenes/scene_error.hpp"
 
 namespace fetic::scenes {
-namespace {
 
 // Messages quote the file (toml++'s "saw 'x'", names given in the scene): a newline or
 // another control character there would start a line that does not name the file (found
@@ -26,13 +25,11 @@ std::string printable(const std::string& message) {
   return text;
 }
 
-}  // namespace
-
 std::string format_problems(const std::string& path, const std::vector<Problem>& problems) {
   std::string text;
   for (const Problem& problem : problems) {
     if (!text.empty()) text += '\n';
-    text += path;
+    text += printable(path);
     if (problem.line > 0) text += ':' + std::to_string(problem.line);
     text += ": " + printable(problem.message);
   }

@@ -23,6 +23,10 @@ class SceneError : public std::runtime_error {
   std::vector<Problem> problems_;
 };
 
+// The text with control characters escaped (\n, \r, \xHH), so that a message quoting a
+// file name or a value stays on one line.
+std::string printable(const std::string& text);
+
 // "path:line: message" (or "path: message" without a line), one problem per line.
 std::string format_problems(const std::string& path, const std::vector<Problem>& problems);
 

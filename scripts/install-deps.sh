@@ -5,7 +5,8 @@ packages=(
   cmake ninja-build g++ pkg-config
   libeigen3-dev libsuitesparse-dev          # linear algebra, CHOLMOD
   libtomlplusplus-dev libcli11-dev nlohmann-json3-dev   # scenes, command line, results
-  libimgui-dev libglfw3-dev libstb-dev      # window, overlay, PNG
+  libimgui-dev libglfw3-dev libstb-dev      # window, overlay, PNG decoding in tests
+  libspng-dev                               # PNG frames (8x faster than stb_image_write)
   libegl-dev libegl1-mesa-dev libgl-dev libgles-dev libopengl-dev libegl-mesa0 libgl1-mesa-dri
   fonts-dejavu-core                         # text in rendered frames
   catch2 libcgal-dev libgmp-dev libmpfr-dev # tests: Catch2, CGAL's exact QP solver

@@ -67,6 +67,11 @@ class App {
   void apply(const Request& request);
   void sync();  // the sync point: applies the queued requests, takes the newest state
   int shown_index() const;
+  int last_index() const;  // the newest iterate of the shown solve
+  // Live stepping: lets the solver make one more iteration when the newest is on screen.
+  bool advance_live();
+  // The shown iterate against its solve: "converged; showing iteration 3 of 6", ...
+  std::string shown_status() const;
 
   // picture.cpp
   render::View view(int width, int height) const;
@@ -93,6 +98,12 @@ class App {
   void screenshot(const std::string& path);
   void step_recording();
 
+  // The status line under the panel; errors are shown in red.
+  void say(std::string line, bool error = false) {
+    status_line_ = std::move(line);
+    status_is_error_ = error;
+  }
+
   // scene_file.cpp
   void reload();
   void watch_scene_file(double now);
@@ -118,6 +129,7 @@ class App {
   std::shared_ptr<const SolveState> error_;  // the newest request could not be solved
   bool follow_ = true;                       // show the newest iterate
   bool playing_ = false;
+  bool live_ = false;  // Step and Play advance the solver itself (SolverTarget::live)
   int cursor_ = 0;
   double play_rate_ = 4.0;  // iterations per second
   double next_tick_ = 0.0;
@@ -149,6 +161,7 @@ class App {
   std::filesystem::file_time_type scene_time_{};
   double next_file_check_ = 0.0;
   std::string status_line_;
+  bool status_is_error_ = false;  // the status line reports a failure (shown in red)
 
   // Screenshots and recordings.
   std::unique_ptr<render::PngEncoderPool> screenshot_pool_;

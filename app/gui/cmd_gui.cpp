@@ -46,8 +46,9 @@ int run_gui(const gui::Options& args) {
       std::cerr << args.script << ":" << error.line << ": " << error.message << '\n';
     if (!errors.empty()) return kExitUsage;
   }
-  const auto scene = load_scene_or_report(args.scene);
-  if (!scene) return kExitInvalidScene;
+  int status = kExitOk;
+  const auto scene = load_scene_or_report(args.scene, status);
+  if (!scene) return status;
   auto model = std::make_shared<const solver::Model>(solver::build_model(*scene));
   const std::string title =
       model->title.empty() ? fs::path(args.scene).filename().string() : model->title;
@@ -97,7 +98,8 @@ void register_gui(CLI::App& app, int& exit_code) {
       ->capture_default_str();
   command->add_option("--state-file", args->state_file,
                       "Write what the app does as JSON lines to this file (- for stdout)");
-  command->add_option("--script", args->script, "Run timed actions from this file (see docs/WINDOW.md)");
+  command->add_option("--script", args->script,
+                      "Run timed actions from this file (see docs/WINDOW.md)");
   command->add_option("--screenshot-dir", args->screenshot_dir, "Where S saves screenshots")
       ->capture_default_str();
   command->add_option("--record-dir", args->record_dir, "Where recordings go")

@@ -37,6 +37,9 @@ void App::key_event(GLFWwindow* window, int key, int /*scancode*/, int action, i
     case GLFW_KEY_S:
       if (!repeat) app->push({RequestKind::Screenshot, 0.0, {}});
       break;
+    case GLFW_KEY_C:
+      if (!repeat) app->push({RequestKind::Cancel, 0.0, {}});
+      break;
     case GLFW_KEY_F5:
       if (!repeat) app->push({RequestKind::Reload, 0.0, {}});
       break;
@@ -88,7 +91,12 @@ void App::run_script(std::vector<ScriptAction>& script, std::size_t& next, doubl
     if (action.at >= 0 && now < action.at) return;
     if (action.wait) {
       if (wait_started_ < 0) wait_started_ = now;
-      if (!solved_on_screen_ || worker_.busy() || recording_ || !queue_.empty()) {
+      // Stepping live, a solve that stopped for the next step counts as settled once its
+      // newest iterate is on screen.
+      const bool settled_live = live_ && worker_.paused() && shown_ && shown_ == worker_.latest() &&
+                                shown_index() == last_index();
+      const bool settled = (solved_on_screen_ && !worker_.busy()) || settled_live;
+      if (!settled || recording_ || !queue_.empty()) {
         if (now - wait_started_ > 120.0) {
           std::cerr << args_.script << ":" << action.line
                     << ": wait: the solve did not finish within 120 s\n";

@@ -32,9 +32,10 @@ namespace fs = std::filesystem;
 }  // namespace
 
 int App::run(render::GlfwWindow& window, std::vector<ScriptAction> script) {
-  if (!log_.open(args_.state_file)) {
-    std::cerr << args_.state_file << ": cannot write the state file\n";
-    return kExitOutput;
+  try {
+    log_.open(args_.state_file);
+  } catch (const OutputError& error) {
+    return report_output_error(error);
   }
   render::FontAtlas font;
   render::GlRenderer renderer(window, font);
@@ -60,8 +61,8 @@ int App::run(render::GlfwWindow& window, std::vector<ScriptAction> script) {
   int frames = 0;
   while (!quit_) {
     const double now = seconds_since(start_);
-    const bool busy = worker_.busy() || playing_ || recording_ || scripted || args_.bench > 0 ||
-                      ImGui::IsAnyMouseDown() || !queue_.empty();
+    const bool busy = (worker_.busy() && !worker_.paused()) || playing_ || recording_ || scripted ||
+                      args_.bench > 0 || ImGui::IsAnyMouseDown() || !queue_.empty();
     if (busy)
       glfwPollEvents();
     else
@@ -164,6 +165,10 @@ int App::run(render::GlfwWindow& window, std::vector<ScriptAction> script) {
   ImGui::DestroyContext();
 
   if (args_.bench > 0) print_bench(window);
+  if (const std::string lost = log_.close(); !lost.empty()) {
+    std::cerr << lost << "; the state file is incomplete\n";
+    return kExitOutput;
+  }
   if (script_failed) return kExitNotConverged;
   return kExitOk;
 }

@@ -3,6 +3,7 @@
 // is the state the last sync point left.
 
 #include <algorithm>
+#include <cmath>
 #include <iterator>
 #include <string>
 
@@ -74,9 +75,13 @@ void App::solver_controls() {
       static_cast<int>(target_.options.preconditioner == solver::Preconditioner::Dirichlet ? 0
                        : target_.options.preconditioner == solver::Preconditioner::Lumped  ? 1
                                                                                            : 2);
+  // Only the FETI methods have a preconditioner: the box is greyed out for the others.
+  const bool has_preconditioner = solver::is_dual(target_.method);
+  ImGui::BeginDisabled(!has_preconditioner);
   ImGui::SetNextItemWidth(140);
   if (ImGui::Combo("preconditioner", &pre, preconditioners, 3))
     push({RequestKind::SetPreconditioner, 0.0, preconditioners[pre]});
+  ImGui::EndDisabled();
   bool locked = magnification_ > 0.0;
   if (ImGui::Checkbox("lock magnification", &locked))
     push({RequestKind::SetMagnification, locked ? shown_magnification_ : 0.0, {}});
@@ -95,6 +100,13 @@ void App::solver_controls() {
 // Playback of the iterations of the shown solve.
 void App::history_controls() {
   ImGui::Text("Iterations of this solve");
+  bool live = live_;
+  if (ImGui::Checkbox("step the solver live", &live))
+    push({RequestKind::SetLive, live ? 1.0 : 0.0, {}});
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip(
+        "On: a new solve stops at iteration 0; Step and Play make the solver itself take\n"
+        "the next iteration. Off: every solve runs to the end and Step and Play replay it.");
   if (ImGui::Button(playing_ ? "Pause" : "Play")) push({RequestKind::TogglePlay, 0.0, {}});
   ImGui::SameLine();
   if (ImGui::Button("Step")) push({RequestKind::Step, 0.0, {}});
@@ -141,27 +153,59 @@ void App::output_buttons() {
   ImGui::SliderInt("##steps", &sweep_steps_, 2, 200, "%d steps");
 }
 
-// What the solver is doing, or why it cannot.
+// What the solver is doing, or why it cannot: a running solve shows its progress and can
+// be cancelled; the state of the shown iterate reads as in the information panel.
 void App::status_text() {
-  if (error_) {
-    ImGui::TextColored(ImVec4(0.8f, 0.1f, 0.1f, 1),
-                       "%s cannot solve this scene:", solver::to_string(error_->method));
+  const ImVec4 red(0.8f, 0.1f, 0.1f, 1);
+  if (error_ && error_->cancelled) {
+    ImGui::TextColored(red, "%s", error_->message.c_str());
+    ImGui::TextWrapped("(move the load slider to solve again)");
+  } else if (error_) {
+    ImGui::TextColored(red, "%s cannot solve this scene:", solver::to_string(error_->method));
     ImGui::TextWrapped("%s", error_->error.c_str());
     ImGui::TextWrapped("(the picture is the last solve; choose another method)");
-  } else if (shown_) {
-    const bool busy = !shown_->finished || shown_->request != requests_sent_;
-    const int active = shown_->iterates.empty() ? 0 : shown_->iterates.back()->active_set_size();
-    ImGui::Text("%s at load %.4f", busy ? "solving" : solver::to_string(shown_->status),
-                shown_->load_factor);
-    ImGui::Text("%d iterations, %.2f ms", static_cast<int>(shown_->iterates.size()) - 1,
-                shown_->solve_seconds * 1e3);
-    ImGui::Text("active contacts: %d of %d", active, static_cast<int>(shown_->model->pairs.size()));
+  }
+  const bool working = worker_.busy() && !worker_.paused();
+  const WorkerProgress progress = worker_.progress();
+  if (working && (progress.surveying || !shown_)) {
+    ImGui::Text("fixing the scales: solving at load %.4g", slider_max_);
+    ImGui::Text("iteration %d, residual %.2e", progress.iteration, progress.residual);
+  }
+  if (shown_ && !error_) {
+    const int last = last_index();
+    const solver::Snapshot* newest =
+        shown_->iterates.empty() ? nullptr : shown_->iterates.back().get();
+    ImGui::Text("load %.4f: %s", shown_->load_factor, shown_status().c_str());
+    if (shown_->cancelled) ImGui::TextColored(red, "%s", shown_->message.c_str());
+    ImGui::Text("%d iterations, %.2f ms", last, shown_->solve_seconds * 1e3);
+    ImGui::Text("residual %.3e, active contacts %d of %d", newest ? newest->residual : 0.0,
+                newest ? newest->active_set_size() : 0,
+                static_cast<int>(shown_->model->pairs.size()));
     if (!shown_->message.empty() && shown_->status == solver::Status::Failed)
-      ImGui::TextWrapped("%s", shown_->message.c_str());
-  } else {
+      ImGui::TextColored(red, "%s", shown_->message.c_str());
+  } else if (!shown_ && !working) {
     ImGui::Text("setting up the solver ...");
   }
-  if (!status_line_.empty()) ImGui::TextWrapped("%s", status_line_.c_str());
+  if (working) {
+    // Progress of a solve: the residual's way down from iteration 0 to the tolerance, on a
+    // log scale (iterations to go are not known in advance).
+    double fraction = 0.0;
+    if (shown_ && !shown_->history.empty() && !progress.surveying) {
+      const double first = shown_->history.front().residual;
+      const double tolerance = target_.options.tolerance;
+      if (first > tolerance && progress.residual > 0.0)
+        fraction = std::log(first / progress.residual) / std::log(first / tolerance);
+    }
+    ImGui::ProgressBar(static_cast<float>(std::clamp(fraction, 0.0, 1.0)), ImVec2(-90, 0),
+                       progress.surveying ? "scales" : "residual");
+    ImGui::SameLine();
+    if (ImGui::Button("Cancel (C)")) push({RequestKind::Cancel, 0.0, {}});
+  }
+  if (!status_line_.empty()) {
+    if (status_is_error_) ImGui::PushStyleColor(ImGuiCol_Text, red);
+    ImGui::TextWrapped("%s", status_line_.c_str());
+    if (status_is_error_) ImGui::PopStyleColor();
+  }
   ImGui::TextDisabled("H: keys   drag: pan   wheel: zoom");
 }
 
@@ -172,6 +216,7 @@ void App::help_window() {
   static const char* keys[][2] = {{"Space", "play / pause the iterations"},
                                   {"Right, Left", "one iteration forward / back"},
                                   {"R", "reset to iteration 0"},
+                                  {"C", "cancel the running solve"},
                                   {"S", "screenshot (PNG of the picture)"},
                                   {"F5", "reload the scene file"},
                                   {"Home", "reset pan and zoom (or double-click)"},

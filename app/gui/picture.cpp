@@ -73,6 +73,7 @@ void App::draw_picture(int width, int height) {
     info.method = solver::to_string(shown_->method);
     if (solver::is_dual(shown_->method))
       info.method += std::string(" (") + solver::to_string(shown_->preconditioner) + ")";
+    info.status = shown_status();
     overlay = render::draw_overlay(info, *shown_->model, snapshot, history, plot_extent(), v);
   }
   if (args_.bench > 0 && bench_.phase == 0)

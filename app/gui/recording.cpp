@@ -23,7 +23,7 @@ namespace fs = std::filesystem;
 // --record-dir; step_recording then renders one frame per UI frame.
 void App::start_recording(const Request& r) {
   if (recording_) {
-    status_line_ = "a recording is already running";
+    say("a recording is already running", true);
     return;
   }
   auto rec = std::make_unique<Recording>();
@@ -34,7 +34,7 @@ void App::start_recording(const Request& r) {
   std::error_code error;
   fs::create_directories(rec->directory, error);
   if (error) {
-    status_line_ = rec->directory.string() + ": " + error.message();
+    say(rec->directory.string() + ": " + error.message(), true);
     return;
   }
   rec->pool = std::make_unique<render::PngEncoderPool>(default_encoder_threads(), 8);
@@ -44,34 +44,39 @@ void App::start_recording(const Request& r) {
       rec->loads.push_back(slider_max_ * i / (n - 1));
   } else {
     if (!shown_ || shown_->iterates.empty()) {
-      status_line_ = "nothing to record yet";
+      say("nothing to record yet", true);
       return;
     }
     rec->iterations = shown_;
   }
-  status_line_ = "recording into " + rec->directory.string();
+  say("recording into " + rec->directory.string());
   recording_ = std::move(rec);
 }
 
 void App::screenshot(const std::string& requested) {
+  // A name without a directory goes into --screenshot-dir, like the numbered ones.
   std::string path = requested;
   if (path.empty()) {
     char name[64];
     std::snprintf(name, sizeof name, "fetic_screenshot_%04d.png", screenshot_count_++);
     path = (fs::path(args_.screenshot_dir) / name).string();
+  } else if (fs::path(path).is_relative()) {
+    path = (fs::path(args_.screenshot_dir) / path).string();
   }
   if (!screenshot_pool_) screenshot_pool_ = std::make_unique<render::PngEncoderPool>(1, 4);
   const double load = shown_ ? shown_->load_factor : 0.0;
   const int iteration = shown_index();
-  status_line_ = "screenshot " + path;
+  const int newest = last_index();  // how far the shown solve has got
+  say("screenshot " + path);
   screenshot_pool_->submit(renderer_->read_back(),
-                           [this, path, load, iteration](render::PngBytes png) {
+                           [this, path, load, iteration, newest](render::PngBytes png) {
                              try {
                                write_png_atomically(path, png);
                                log_.write({{"event", "screenshot"},
                                            {"path", path},
                                            {"load_factor", load},
-                                           {"iteration", iteration}});
+                                           {"iteration", iteration},
+                                           {"newest_iteration", newest}});
                              } catch (const std::exception& error) {
                                log_.write({{"event", "error"}, {"message", error.what()}});
                              }
@@ -126,8 +131,7 @@ void App::step_recording() {
   if (!done) return;
   // Encoding and the movie finish off the UI thread.
   auto finished = std::shared_ptr<Recording>(std::move(recording_));
-  status_line_ =
-      "recorded " + std::to_string(finished->next) + " frames in " + finished->directory.string();
+  say("recorded " + std::to_string(finished->next) + " frames in " + finished->directory.string());
   finishers_.emplace_back([this, finished] {
     nlohmann::json event{{"event", "recorded"},
                          {"directory", finished->directory.string()},
@@ -136,7 +140,8 @@ void App::step_recording() {
       finished->pool->finish();
       if (program_on_path("ffmpeg")) {
         const std::string movie = (finished->directory / "movie.mp4").string();
-        if (assemble_movie(finished->directory.string(), finished->next, 8, movie) == kExitOk)
+        if (assemble_movie(finished->directory.string(), finished->next, 8, movie, std::cerr) ==
+            kExitOk)
           event["movie"] = movie;
       }
     } catch (const std::exception& error) {

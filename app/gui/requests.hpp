@@ -19,6 +19,8 @@ enum class RequestKind {
   Step,              // one iteration forward in the history of the current solve
   StepBack,          // one iteration back
   Reset,             // back to iteration 0, paused
+  SetLive,           // value: 1 = Step and Play advance the solver itself, 0 = solve at once
+  Cancel,            // stop the running solve (it stays on screen, marked cancelled)
   Scrub,             // value: iteration to show
   Toggle,            // text: subdomains | forces | gaps | stress | overlay | help
   Screenshot,        // text: file (empty: next name in the screenshot directory)

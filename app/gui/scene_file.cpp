@@ -21,10 +21,10 @@ void App::reload() {
     ++target_.model_generation;
     follow_ = true;
     send_to_worker();
-    status_line_ = "reloaded " + args_.scene;
+    say("reloaded " + args_.scene);
     log_.write({{"event", "reloaded"}, {"scene", args_.scene}});
   } catch (const std::exception& error) {
-    status_line_ = std::string("reload failed: ") + error.what();
+    say(std::string("reload failed: ") + error.what(), true);
     log_.write({{"event", "error"}, {"message", status_line_}});
   }
 }

@@ -4,6 +4,8 @@
 #include <cstdlib>
 #include <sstream>
 
+#include "solver/method.hpp"
+
 namespace fetic::app::gui {
 namespace {
 
@@ -75,9 +77,18 @@ std::vector<ScriptAction> parse_script(const std::string& text, std::vector<Scri
     if (verb == "load") {
       ok = need_number(RequestKind::SetLoad, 0.0, 1e300);
     } else if (verb == "method" || verb == "preconditioner") {
-      ok = !argument.empty();
-      if (!ok) errors.push_back({line, "'" + verb + "' needs a name"});
-      r.kind = verb == "method" ? RequestKind::SetMethod : RequestKind::SetPreconditioner;
+      const bool method = verb == "method";
+      const bool known = method ? solver::parse_method(argument).has_value()
+                                : solver::parse_preconditioner(argument).has_value();
+      ok = !argument.empty() && known;
+      if (argument.empty())
+        errors.push_back({line, "'" + verb + "' needs a name"});
+      else if (!known)
+        errors.push_back({line, "unknown " + verb + " '" + argument + "' (" +
+                                    (method ? "feti-c, mprgp, active-set, feti, cg or sd"
+                                            : "dirichlet, lumped or none") +
+                                    ")"});
+      r.kind = method ? RequestKind::SetMethod : RequestKind::SetPreconditioner;
       r.text = argument;
     } else if (verb == "magnification") {
       if (argument == "auto") {
@@ -97,6 +108,13 @@ std::vector<ScriptAction> parse_script(const std::string& text, std::vector<Scri
       ok = no_argument(RequestKind::StepBack);
     } else if (verb == "reset") {
       ok = no_argument(RequestKind::Reset);
+    } else if (verb == "cancel") {
+      ok = no_argument(RequestKind::Cancel);
+    } else if (verb == "live") {
+      ok = argument == "on" || argument == "off";
+      if (!ok) errors.push_back({line, "'live' needs on or off"});
+      r.kind = RequestKind::SetLive;
+      r.value = argument == "on" ? 1.0 : 0.0;
     } else if (verb == "scrub") {
       ok = need_number(RequestKind::Scrub, 0.0, 1e9);
     } else if (verb == "toggle") {

@@ -5,17 +5,10 @@
 #include <cmath>
 #include <limits>
 
-#include <omp.h>
-
+#include "app/render_output.hpp"
 #include "solver/load_sweep.hpp"
 
 namespace fetic::app::gui {
-namespace {
-
-// Unknowns from which the solver thread uses an OpenMP team (one thread a core).
-constexpr long kParallelFrom = 200000;
-
-}  // namespace
 
 double automatic_max_load(const solver::Model& model, const solver::Snapshot& at_one) {
   if (at_one.status != solver::Status::Converged || at_one.active_set_size() > 0) return 2.0;
@@ -55,8 +48,65 @@ void SolverWorker::request(const SolverTarget& target) {
     target_ = target;
     ++version_;
     idle_ = false;
+    cancel_ = false;
+    allowed_ = target.live ? 0 : -1;
   }
   changed_.notify_all();
+}
+
+void SolverWorker::cancel() {
+  {
+    std::lock_guard lock(mutex_);
+    if (idle_) return;
+    cancel_ = true;
+  }
+  changed_.notify_all();
+}
+
+void SolverWorker::allow(int iterations) {
+  {
+    std::lock_guard lock(mutex_);
+    allowed_ = iterations;
+  }
+  changed_.notify_all();
+}
+
+bool SolverWorker::paused() const {
+  std::lock_guard lock(mutex_);
+  return paused_;
+}
+
+WorkerProgress SolverWorker::progress() const {
+  std::lock_guard lock(mutex_);
+  WorkerProgress progress = progress_;
+  progress.paused = paused_;
+  return progress;
+}
+
+void SolverWorker::set_progress(const WorkerProgress& progress) {
+  std::lock_guard lock(mutex_);
+  progress_ = progress;
+}
+
+bool SolverWorker::cancel_requested() const {
+  std::lock_guard lock(mutex_);
+  return cancel_;
+}
+
+bool SolverWorker::wait_for_allowance(int iteration) {
+  std::unique_lock lock(mutex_);
+  const auto free = [&] {
+    return stop_ || version_ != seen_ || cancel_ || allowed_ < 0 || iteration < allowed_;
+  };
+  if (!free()) {
+    paused_ = true;
+    lock.unlock();
+    if (wake_) wake_();  // the UI may stop polling while the solver waits
+    lock.lock();
+    changed_.wait(lock, free);
+    paused_ = false;
+  }
+  return !(stop_ || version_ != seen_ || cancel_);
 }
 
 std::shared_ptr<const SolveState> SolverWorker::latest() const {
@@ -85,10 +135,29 @@ std::shared_ptr<const SolveState> SolverWorker::wait_for(std::uint64_t request,
 void SolverWorker::publish(std::shared_ptr<const SolveState> state) {
   {
     std::lock_guard lock(mutex_);
+    // A finished answer to the newest request makes the worker idle in the same step, so
+    // that whoever sees it also sees busy() false.
+    if (state->finished && version_ == seen_ && state->request == target_.request) idle_ = true;
     latest_ = std::move(state);
   }
   published_.notify_all();
   if (wake_) wake_();
+}
+
+void SolverWorker::publish_cancelled_survey(const SolverTarget& target) {
+  auto state = std::make_shared<SolveState>();
+  state->model = target.model;
+  state->model_generation = target.model_generation;
+  state->request = target.request;
+  state->load_factor = target.load_factor;
+  state->method = target.method;
+  state->preconditioner = target.options.preconditioner;
+  state->finished = true;
+  state->cancelled = true;
+  state->message = "cancelled while solving at the top of the slider for the picture's scales";
+  publish(state);
+  std::lock_guard lock(mutex_);
+  if (version_ == seen_) idle_ = true;
 }
 
 void SolverWorker::run() {
@@ -133,7 +202,7 @@ void SolverWorker::run() {
         newer.reset();
         // Small models solve fastest on one thread: an OpenMP team's start-up and spinning
         // cost more than the work and take the cores the window renders on (llvmpipe).
-        omp_set_num_threads(target.model->dof_count() < kParallelFrom ? 1 : omp_get_num_procs());
+        use_solver_threads_for_pictures(*target.model);
         try {
           made_model = target.model;
           method = solver::make_method(target.method, *made_model, target.options);
@@ -148,11 +217,23 @@ void SolverWorker::run() {
       made_max_load = target.max_load;
       slider_max = target.max_load > 0.0 ? target.max_load : 2.0;
       auto survey = std::make_shared<render::RunExtent>();
+      const auto keep_surveying = [&] {
+        WorkerProgress progress;
+        progress.surveying = true;
+        progress.iteration = method->iteration();
+        if (!method->history().empty()) {
+          progress.residual = method->history().back().residual;
+          progress.active_set = method->history().back().active_set;
+        }
+        set_progress(progress);
+        return !superseded() && !cancel_requested();
+      };
       if (method && target.max_load <= 0.0) {
         method->start(1.0);
-        solver::run_to_end(*method, [&] { return !superseded(); });
-        if (superseded()) {
+        solver::run_to_end(*method, keep_surveying);
+        if (!keep_surveying()) {
           made_max_load = -1.0;
+          if (cancel_requested()) publish_cancelled_survey(target);
           continue;
         }
         slider_max = automatic_max_load(*target.model, method->snapshot());
@@ -160,9 +241,10 @@ void SolverWorker::run() {
       if (method) {
         render::FramePlan plan;
         plan.load_factors = {slider_max};
-        *survey = render::survey(*target.model, *method, plan, [&] { return !superseded(); });
-        if (superseded()) {
-          made_max_load = -1.0;  // survey again with the newer request
+        *survey = render::survey(*target.model, *method, plan, keep_surveying);
+        if (!keep_surveying()) {
+          made_max_load = -1.0;  // survey again with the next request
+          if (cancel_requested()) publish_cancelled_survey(target);
           continue;
         }
       }
@@ -205,12 +287,19 @@ void SolverWorker::run() {
       state->status = method->status();
       state->message = method->message();
       state->solve_seconds = std::chrono::duration<double>(Clock::now() - begin).count();
+      WorkerProgress progress;
+      progress.iteration = method->iteration();
+      if (!state->history.empty()) {
+        progress.residual = state->history.back().residual;
+        progress.active_set = state->history.back().active_set;
+      }
+      set_progress(progress);
     };
     take();
     publish(std::make_shared<const SolveState>(*state));
     bool abandoned = false;
     while (method->status() == solver::Status::Running) {
-      if (superseded()) {
+      if (!wait_for_allowance(method->iteration()) || superseded()) {
         abandoned = true;
         break;
       }
@@ -218,6 +307,17 @@ void SolverWorker::run() {
       take();
       state->finished = method->status() != solver::Status::Running;
       publish(std::make_shared<const SolveState>(*state));
+    }
+    if (abandoned && cancel_requested() && !superseded()) {
+      state->finished = true;
+      state->cancelled = true;
+      state->message = "cancelled at iteration " + std::to_string(method->iteration());
+      publish(std::make_shared<const SolveState>(*state));
+      newer = std::make_unique<solver::Snapshot>(*state->iterates.back());
+      older.reset();
+      std::lock_guard lock(mutex_);
+      if (version_ == seen_) idle_ = true;
+      continue;
     }
     if (abandoned) {
       // The next solve starts from where this one got to (no secant: not a solution).

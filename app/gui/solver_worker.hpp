@@ -3,6 +3,8 @@
 // (model, method, load factor) and the worker re-solves, warm-started, publishing an
 // immutable SolveState after every iteration. A newer request abandons the current solve
 // between two iterations, so dragging the load slider never waits for a solve to finish.
+// A solve can be cancelled, and in live stepping the worker performs only as many
+// iterations as the UI allows (Step and Play advance the solver itself).
 
 #include <chrono>
 #include <condition_variable>
@@ -30,7 +32,8 @@ struct SolveState {
   solver::Preconditioner preconditioner = solver::Preconditioner::Dirichlet;
   std::vector<std::shared_ptr<const solver::Snapshot>> iterates;  // iteration 0 .. now
   std::vector<solver::HistoryEntry> history;
-  bool finished = false;  // converged or failed
+  bool finished = false;   // converged, failed or cancelled
+  bool cancelled = false;  // stopped by cancel() before it converged
   solver::Status status = solver::Status::Running;
   std::string message;
   double solve_seconds = 0.0;
@@ -48,6 +51,18 @@ struct SolverTarget {
   double max_load = 0.0;  // top of the load slider; 0: automatic_max_load()
   double load_factor = 1.0;
   std::uint64_t request = 0;
+  // Live stepping: the solve starts at iteration 0 and advances only as far as
+  // SolverWorker::allow() lets it.
+  bool live = false;
+};
+
+// What the worker is doing right now, for a progress display.
+struct WorkerProgress {
+  bool surveying = false;  // solving at the slider's top for the fixed scales
+  bool paused = false;     // live stepping: waiting for allow()
+  int iteration = 0;
+  double residual = 0.0;
+  int active_set = 0;
 };
 
 // The top of the load slider when none is given: twice the scene's loads; when nothing
@@ -74,11 +89,26 @@ class SolverWorker {
   // returns it, or the newest state when the time is up.
   std::shared_ptr<const SolveState> wait_for(std::uint64_t request,
                                              std::chrono::microseconds budget) const;
+  // Stops the current solve (or survey) between two iterations; it is published finished
+  // and cancelled. The next request solves again, warm from where it stopped.
+  void cancel();
+  // Live stepping: the current solve may go up to iteration `iterations` (-1: to the end).
+  // A request with `live` set starts at 0; one without, at -1.
+  void allow(int iterations);
+  // True while a live solve waits for allow().
+  bool paused() const;
+  WorkerProgress progress() const;
 
  private:
   void run();
   bool superseded() const;
   void publish(std::shared_ptr<const SolveState> state);
+  bool cancel_requested() const;
+  // Live stepping: waits until `iteration` is below the allowance; false when the solve
+  // is superseded or cancelled meanwhile.
+  bool wait_for_allowance(int iteration);
+  void set_progress(const WorkerProgress& progress);
+  void publish_cancelled_survey(const SolverTarget& target);
 
   std::function<void()> wake_;
   mutable std::mutex mutex_;
@@ -89,6 +119,10 @@ class SolverWorker {
   std::uint64_t seen_ = 0;     // version the worker works on
   bool idle_ = true;
   bool stop_ = false;
+  bool cancel_ = false;  // cancel() since the last request
+  int allowed_ = -1;     // live stepping: last iteration allowed; -1: all
+  bool paused_ = false;
+  WorkerProgress progress_;
   std::shared_ptr<const SolveState> latest_;
   std::thread thread_;
 };

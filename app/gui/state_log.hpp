@@ -1,45 +1,33 @@
 #pragma once
 // What `fetic gui` reports about itself (--state-file FILE, "-" for stdout): one JSON
-// object a line, flushed at once, for tests and scripts: "ready" (window and slider
+// object a line, written at once, for tests and scripts: "ready" (window and slider
 // geometry), "solved" (a solve that finished and is on screen: load factor, iterations,
-// active contacts), "screenshot", "recorded", "reloaded", "error", "quit".
+// active contacts), "screenshot", "recorded", "reloaded", "error", "quit". Written through
+// app::OutputStream: every line is checked, and a lost one makes the run end with status 5.
 
-#include <fstream>
-#include <iostream>
-#include <mutex>
 #include <string>
 
 #include <nlohmann/json.hpp>
+
+#include "app/output_file.hpp"
 
 namespace fetic::app::gui {
 
 class StateLog {
  public:
-  // Empty path: reports nothing. Returns false when the file cannot be opened.
-  bool open(const std::string& path) {
-    if (path.empty()) return true;
-    if (path == "-") {
-      stdout_ = true;
-      return true;
-    }
-    file_.open(path, std::ios::out | std::ios::trunc);
-    return static_cast<bool>(file_);
+  // Empty path: reports nothing. Throws OutputError when the target cannot be opened.
+  void open(const std::string& path) {
+    if (!path.empty()) out_.open(path);
   }
   // Thread-safe (screenshots are written from encoder threads).
   void write(const nlohmann::json& event) {
-    std::lock_guard lock(mutex_);
-    const std::string line = event.dump();
-    if (stdout_) {
-      std::cout << line << std::endl;
-    } else if (file_.is_open()) {
-      file_ << line << std::endl;
-    }
+    if (out_.is_open()) out_.write(event.dump() + "\n");
   }
+  // Closes the file; returns what was lost ("" when every line arrived).
+  std::string close() { return out_.close(); }
 
  private:
-  std::mutex mutex_;
-  std::ofstream file_;
-  bool stdout_ = false;
+  OutputStream out_;
 };
 
 }  // namespace fetic::app::gui

@@ -44,10 +44,34 @@ void App::send_to_worker() {
   worker_.request(target_);
 }
 
+int App::last_index() const {
+  return shown_ ? std::max(0, static_cast<int>(shown_->iterates.size()) - 1) : 0;
+}
+
 int App::shown_index() const {
   if (!shown_ || shown_->iterates.empty()) return 0;
-  const int last = static_cast<int>(shown_->iterates.size()) - 1;
+  const int last = last_index();
   return follow_ ? last : std::clamp(cursor_, 0, last);
+}
+
+bool App::advance_live() {
+  if (!live_ || !shown_ || shown_->finished || shown_->request != requests_sent_ ||
+      shown_index() < last_index())
+    return false;
+  worker_.allow(last_index() + 1);
+  follow_ = true;
+  return true;
+}
+
+std::string App::shown_status() const {
+  if (!shown_) return {};
+  const int index = shown_index(), last = last_index();
+  std::string status = shown_->cancelled   ? "cancelled"
+                       : !shown_->finished ? (live_ && worker_.paused() ? "paused" : "running")
+                                           : solver::to_string(shown_->status);
+  if (shown_->finished || index < last) status += " at iteration " + std::to_string(last);
+  if (index < last) status += "; showing " + std::to_string(index);
+  return status;
 }
 
 void App::apply(const Request& r) {
@@ -69,7 +93,7 @@ void App::apply(const Request& r) {
         follow_ = true;
         send_to_worker();
       } else {
-        status_line_ = "unknown method " + r.text;
+        say("unknown method " + r.text, true);
       }
       break;
     case RequestKind::SetPreconditioner:
@@ -78,7 +102,7 @@ void App::apply(const Request& r) {
         follow_ = true;
         send_to_worker();
       } else {
-        status_line_ = "unknown preconditioner " + r.text;
+        say("unknown preconditioner " + r.text, true);
       }
       break;
     case RequestKind::SetMagnification:
@@ -89,7 +113,7 @@ void App::apply(const Request& r) {
       apply(Request{playing_ ? RequestKind::Pause : RequestKind::Play, 0.0, {}});
       break;
     case RequestKind::Play:
-      if (shown_index() >= last)
+      if (shown_index() >= last && (finished || !live_))
         cursor_ = 0;  // like a video player: from the start again
       else
         cursor_ = shown_index();
@@ -104,8 +128,9 @@ void App::apply(const Request& r) {
       follow_ = false;
       break;
     case RequestKind::Step:
-      cursor_ = std::min(shown_index() + 1, last);
       playing_ = false;
+      if (advance_live()) break;  // the solver makes the next iteration
+      cursor_ = std::min(shown_index() + 1, last);
       follow_ = cursor_ == last && finished;
       redraw_ = true;
       break;
@@ -120,6 +145,17 @@ void App::apply(const Request& r) {
       playing_ = false;
       follow_ = false;
       redraw_ = true;
+      break;
+    case RequestKind::SetLive:
+      live_ = r.value != 0.0;
+      target_.live = live_;
+      // On: the running solve stops after the iteration it is in; off: it runs to the end.
+      worker_.allow(live_ ? 0 : -1);
+      redraw_ = true;
+      break;
+    case RequestKind::Cancel:
+      worker_.cancel();
+      playing_ = false;
       break;
     case RequestKind::Scrub:
       cursor_ = std::clamp(static_cast<int>(r.value), 0, last);
@@ -173,7 +209,8 @@ void App::sync() {
   else
     latest = worker_.latest();
   if (latest && latest->iterates.empty() && latest->finished) {
-    // The method cannot solve this scene: say so, keep the last picture.
+    // The method cannot solve this scene (or its survey was cancelled): say so, keep the
+    // last picture.
     error_ = std::move(latest);
   } else if (latest != shown_) {
     shown_ = std::move(latest);
@@ -194,7 +231,10 @@ void App::sync() {
         playing_ = false;
         follow_ = true;
       } else {
-        break;  // wait for the solver
+        // Wait for the solver; stepping live, let it make the next iteration.
+        if (live_ && shown_->request == requests_sent_) worker_.allow(last + 1);
+        next_tick_ = now + 1.0 / play_rate_;
+        break;
       }
     }
   }

@@ -111,6 +111,14 @@ TEST_CASE("fetic solve rejects bad command lines with status 1") {
   CHECK(run("solve " + scene("two_bars.toml") + " --method newton").status == 1);
   CHECK(run("solve " + scene("two_bars.toml") + " --load-factor nan").status == 1);
   CHECK(run("frobnicate").status == 1);
+  // A preconditioner for a method that has none is refused, not silently ignored.
+  const Run preconditioned =
+      run("solve " + scene("two_bars.toml") + " --method active-set --preconditioner lumped");
+  CHECK(preconditioned.status == 1);
+  CHECK(preconditioned.output.find("only feti, feti-c and mprgp have a preconditioner") !=
+        std::string::npos);
+  CHECK(run("solve " + scene("two_bars.toml") + " --method feti-c --preconditioner lumped --quiet")
+            .status == 0);
 }
 
 TEST_CASE("fetic solve --method feti-c --reference records the error of every iteration") {

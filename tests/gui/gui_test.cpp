@@ -327,6 +327,45 @@ TEST_CASE("a script drives the same requests: load, wait, step, screenshot, quit
   require_golden("gui_script_thesis_stress", dir / "stress.png");
 }
 
+TEST_CASE(
+    "stepping live advances the solver itself; a bare screenshot name goes to the "
+    "screenshot directory",
+    "[script]") {
+  REQUIRE(have_display());
+  const fs::path dir = fresh_directory("fetic_gui_live");
+  const fs::path state = dir / "state.jsonl";
+  const fs::path script = dir / "script.txt";
+  std::ofstream(script) << "wait\nlive on\nload 1.5\nwait\nscreenshot live0.png\nstep\nwait\n"
+                           "step\nwait\nscreenshot live2.png\nlive off\nwait\nquit\n";
+  App app({scene("thesis.toml"), "--load", "0", "--state-file", state.string(), "--script",
+           script.string(), "--screenshot-dir", dir.string()});
+  const auto status = app.wait(90.0);
+  INFO("reported state:\n" << read_text(state));
+  REQUIRE(status);
+  CHECK(*status == 0);
+  std::vector<json> solved, shots;
+  for (const json& e : events(state)) {
+    if (is(e, "solved")) solved.push_back(e);
+    if (is(e, "screenshot")) shots.push_back(e);
+  }
+  REQUIRE(shots.size() == 2);
+  // The solver stood still at iteration 0, then made exactly two iterations.
+  CHECK(shots[0]["iteration"].get<int>() == 0);
+  CHECK(shots[0]["newest_iteration"].get<int>() == 0);
+  CHECK(shots[1]["iteration"].get<int>() == 2);
+  CHECK(shots[1]["newest_iteration"].get<int>() == 2);
+  CHECK(shots[1]["path"].get<std::string>() == (dir / "live2.png").string());
+  CHECK(fs::exists(dir / "live0.png"));
+  CHECK(fs::exists(dir / "live2.png"));
+  // Live off: the solve ran to the end, with `fetic solve`'s working set.
+  REQUIRE(!solved.empty());
+  CHECK(solved.back()["load_factor"].get<double>() == 1.5);
+  CHECK(solved.back()["converged"].get<bool>());
+  CHECK(solved.back()["iterations"].get<int>() > 2);
+  CHECK(solved.back()["active_contacts"].get<std::vector<int>>() ==
+        solve_active(scene("thesis.toml"), 1.5));
+}
+
 TEST_CASE("a load sweep is recorded as frames; a method that cannot solve is reported",
           "[script]") {
   REQUIRE(have_display());

@@ -59,3 +59,26 @@ TEST_CASE("script errors name the line and the problem", "[script]") {
   CHECK(errors[5].message == "a time without an action");
   CHECK(errors[6].message == "'step' takes no argument");
 }
+
+TEST_CASE("method and preconditioner names are checked; live stepping and cancel", "[script]") {
+  std::vector<ScriptError> errors;
+  const auto actions = parse_script(
+      "method fetic\nmethod active-set\npreconditioner diriclet\npreconditioner lumped\n"
+      "live on\nlive off\nlive maybe\ncancel\ncancel now\n",
+      errors);
+  REQUIRE(errors.size() == 4);
+  CHECK(errors[0].line == 1);
+  CHECK(errors[0].message == "unknown method 'fetic' (feti-c, mprgp, active-set, feti, cg or sd)");
+  CHECK(errors[1].line == 3);
+  CHECK(errors[1].message == "unknown preconditioner 'diriclet' (dirichlet, lumped or none)");
+  CHECK(errors[2].message == "'live' needs on or off");
+  CHECK(errors[3].message == "'cancel' takes no argument");
+  REQUIRE(actions.size() == 5);
+  CHECK(actions[0].request.kind == RequestKind::SetMethod);
+  CHECK(actions[0].request.text == "active-set");
+  CHECK(actions[1].request.kind == RequestKind::SetPreconditioner);
+  CHECK(actions[2].request.kind == RequestKind::SetLive);
+  CHECK(actions[2].request.value == 1.0);
+  CHECK(actions[3].request.value == 0.0);
+  CHECK(actions[4].request.kind == RequestKind::Cancel);
+}

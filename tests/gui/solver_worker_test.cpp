@@ -9,6 +9,7 @@
 #include <fstream>
 #include <memory>
 #include <string>
+#include <thread>
 
 #include "app/gui/solver_worker.hpp"
 #include "scenes/load_scene.hpp"
@@ -138,4 +139,96 @@ b = "right.from"
   CHECK(automatic_max_load(*wide, open->snapshot()) == 10.0);
   CHECK(working_set_at(*wide, 10.0) == std::vector<char>{1});
   CHECK(working_set_at(*wide, 3.0) == std::vector<char>{0});
+}
+
+namespace {
+
+// Polls the worker's newest state until `done` holds for it (at most `seconds`).
+template <class Predicate>
+std::shared_ptr<const fetic::app::gui::SolveState> poll(const SolverWorker& worker, Predicate done,
+                                                        double seconds = 60.0) {
+  const auto deadline =
+      std::chrono::steady_clock::now() + std::chrono::milliseconds(static_cast<int>(seconds * 1e3));
+  while (std::chrono::steady_clock::now() < deadline) {
+    const auto state = worker.latest();
+    if (state && done(*state)) return state;
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  }
+  return worker.latest();
+}
+
+}  // namespace
+
+TEST_CASE("stepping live, the solver makes only the iterations it is allowed", "[worker]") {
+  const auto model = model_of(std::string(FETIC_BUNDLED_SCENES_DIR) + "/thesis.toml");
+  SolverWorker worker({});
+  SolverTarget target;
+  target.model = model;
+  target.model_generation = 1;
+  target.max_load = 2.0;
+  target.load_factor = 1.0;
+  target.request = 1;
+  target.live = true;
+  worker.request(target);
+  // It stops at iteration 0 and stays there.
+  auto state = poll(worker, [](const auto& s) { return s.request == 1; });
+  REQUIRE(state->request == 1);
+  for (int i = 0; i < 100 && !worker.paused(); ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  CHECK(worker.paused());
+  std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  state = worker.latest();
+  CHECK(state->iterates.size() == 1);
+  CHECK(!state->finished);
+  // Two steps: iterations 1 and 2, the same as an uninterrupted cold solve's.
+  worker.allow(2);
+  state = poll(worker, [](const auto& s) { return s.iterates.size() == 3; });
+  REQUIRE(state->iterates.size() == 3);
+  std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  CHECK(worker.latest()->iterates.size() == 3);
+  auto cold = solver::make_method(solver::MethodKind::FetiC, *model, {});
+  cold->start(1.0);
+  cold->step();
+  cold->step();
+  CHECK(state->history.back().residual == Approx(cold->history().back().residual).epsilon(1e-9));
+  // Off: to the end, converged with `fetic solve`'s working set.
+  worker.allow(-1);
+  state = worker.wait_for(1, std::chrono::seconds(60));
+  REQUIRE(state->finished);
+  CHECK(state->status == solver::Status::Converged);
+  CHECK(!state->cancelled);
+  CHECK(state->iterates.back()->in_working_set == working_set_at(*model, 1.0));
+}
+
+TEST_CASE("a cancelled solve stops, is published cancelled, and the next one goes on", "[worker]") {
+  const auto model = model_of(std::string(FETIC_BUNDLED_SCENES_DIR) + "/thesis.toml");
+  SolverWorker worker({});
+  SolverTarget target;
+  target.model = model;
+  target.model_generation = 1;
+  target.max_load = 2.0;
+  target.load_factor = 1.0;
+  target.request = 1;
+  target.live = true;  // held at iteration 1, so that the cancel surely comes mid-solve
+  worker.request(target);
+  worker.allow(1);
+  auto state = poll(worker, [](const auto& s) { return s.iterates.size() == 2; });
+  REQUIRE(state->iterates.size() == 2);
+  worker.cancel();
+  state = worker.wait_for(1, std::chrono::seconds(30));
+  REQUIRE(state->finished);
+  CHECK(state->cancelled);
+  CHECK(state->status == solver::Status::Running);
+  CHECK(state->iterates.size() == 2);
+  CHECK(state->message == "cancelled at iteration 1");
+  CHECK(!worker.busy());
+  // A new request solves to the end again.
+  target.live = false;
+  target.request = 2;
+  target.load_factor = 1.2;
+  worker.request(target);
+  state = worker.wait_for(2, std::chrono::seconds(60));
+  REQUIRE(state->request == 2);
+  CHECK(state->status == solver::Status::Converged);
+  CHECK(state->iterates.back()->in_working_set == working_set_at(*model, 1.2));
 }

@@ -43,7 +43,7 @@ Image render_final(const Shot& shot) {
   plan.every_iteration = false;
   const RunExtent extent = survey(model, *method, plan);
   const FrameComposer composer(model, shot.view, extent,
-                               {model.title, solver::to_string(shot.method), ""});
+                               {model.title, solver::to_string(shot.method), "", ""});
   Image image;
   run_frames(*method, plan, [&](const Frame& frame) {
     const ComposedFrame composed = composer.compose(frame);
@@ -139,4 +139,9 @@ TEST_CASE("rendering is deterministic: the same state gives the same PNG bytes")
   const Image second = render_final(thesis_shot(1.0));
   CHECK(first.rgba == second.rgba);
   CHECK(encode_png(first) == encode_png(second));
+  // Read back opaque (alpha is kept at 1 by the blend, not patched afterwards).
+  bool opaque = true;
+  for (std::size_t i = 3; i < first.rgba.size(); i += 4)
+    opaque = opaque && first.rgba[i] == 255;
+  CHECK(opaque);
 }

@@ -23,19 +23,23 @@ struct Run {
   std::string output;
 };
 
-Run run(const std::string& arguments, const std::string& environment = "") {
+// Runs a shell command line, returns its status and output.
+Run run_program(const std::string& command_line) {
   // One log per process: the test cases run in parallel.
   const std::string log =
       (fs::temp_directory_path() / ("fetic_render_test_" + std::to_string(::getpid()) + ".txt"))
           .string();
-  const std::string command =
-      environment + " " + std::string(FETIC_EXECUTABLE) + " " + arguments + " > " + log + " 2>&1";
+  const std::string command = command_line + " > " + log + " 2>&1";
   const int raw = std::system(command.c_str());
   Run result;
   result.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
   std::ifstream in(log);
   result.output.assign(std::istreambuf_iterator<char>(in), {});
   return result;
+}
+
+Run run(const std::string& arguments, const std::string& environment = "") {
+  return run_program(environment + " " + std::string(FETIC_EXECUTABLE) + " " + arguments);
 }
 
 std::string scene(const std::string& name) {
@@ -177,6 +181,32 @@ TEST_CASE("fetic render --movie: an mp4 with ffmpeg, a clear message without it"
   CHECK(with.status == 0);
   REQUIRE(fs::exists(movie));
   CHECK(fs::file_size(movie) > 1000);
+
+  // --movie alone: the frames stream into ffmpeg, no PNG is written; ffprobe counts the
+  // movie's frames (one per iteration, as many as the PNG run wrote) and its size.
+  const fs::path alone = fresh_directory("fetic_render_movie_alone");
+  fs::create_directories(alone);
+  const std::string streamed = (alone / "streamed.mp4").string();
+  const Run only = run("render " + scene("two_bars.toml") +
+                       " --method active-set --size 96x64 --samples 1 --movie " + streamed);
+  INFO(only.output);
+  CHECK(only.status == 0);
+  REQUIRE(fs::exists(streamed));
+  CHECK(files(alone) == std::vector<std::string>{"streamed.mp4"});
+  const Run probe = run_program(
+      "ffprobe -v error -count_frames -select_streams v:0 -show_entries "
+      "stream=nb_read_frames,width,height -of csv=p=0 " +
+      streamed);
+  INFO(probe.output);
+  CHECK(probe.status == 0);
+  const auto pngs = files(out);
+  const std::size_t png_frames =
+      std::count_if(pngs.begin(), pngs.end(),
+                    [](const std::string& name) { return name.rfind("frame_", 0) == 0; });
+  CHECK(probe.output == "96,64," + std::to_string(png_frames) + "\n");
+
+  // Neither --out nor --movie: nothing to write is a usage error.
+  CHECK(run("render " + scene("two_bars.toml")).status == 1);
 }
 
 TEST_CASE("fetic figures: figures by id, and the thesis scene named when it is missing") {

@@ -183,7 +183,7 @@ TEST_CASE("frames: the initial state and one per iteration; load steps one per s
 TEST_CASE("the overlay names method, iteration, residual and active set") {
   const auto solved = solve("thesis.toml", solver::MethodKind::ActiveSet);
   const View view = small_view();
-  const DrawList overlay = draw_overlay({"Thesis", "active-set", ""}, solved->model, solved->final,
+  const DrawList overlay = draw_overlay({"Thesis", "active-set", "", ""}, solved->model, solved->final,
                                         solved->method->history(), solved->extent, view);
   std::string all;
   for (const TextItem& text : overlay.texts())

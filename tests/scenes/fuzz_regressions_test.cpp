@@ -1,8 +1,9 @@
 // Inputs that once crashed fuzz/fuzz_scene (scripts/fuzz.sh), kept as regression tests:
 // each must load as a valid scene (which loads again after scene_to_toml()) or be refused
 // with a SceneError whose every line names the file, the same invariants as the fuzz
-// target. NAME.expect, when present, holds text
-// the message must contain.
+// target. NAME.expect, when present, holds text the message must contain. Inputs that
+// start with "#!repeat N" are expanded first, as the fuzz target does
+// (fuzz/expand_repeats.hpp).
 
 #include <catch2/catch.hpp>
 
@@ -11,6 +12,7 @@
 #include <iterator>
 #include <string>
 
+#include "fuzz/expand_repeats.hpp"
 #include "scenes/load_scene.hpp"
 #include "scenes/write_scene.hpp"
 
@@ -35,7 +37,8 @@ TEST_CASE("inputs that crashed the fuzzer are refused cleanly, naming the file")
     const std::string expected =
         std::filesystem::exists(expect_file) ? read_bytes(expect_file) : std::string();
     try {
-      const fetic::scenes::Scene scene = fetic::scenes::load_scene_file(path);
+      const fetic::scenes::Scene scene =
+          fetic::scenes::parse_scene(fetic::fuzz::expand_repeats(read_bytes(path)), path);
       CHECK(expected.empty());  // an expected message means the input must be refused
       CHECK(scene.path == path);
       // and, as in the fuzz target, it survives a round trip through scene_to_toml()

@@ -69,7 +69,8 @@ TEST_CASE("a missing scene file is reported with its path") {
     fetic::scenes::load_scene_file("no/such/scene.toml");
     FAIL("accepted");
   } catch (const fetic::scenes::SceneError& error) {
-    CHECK(std::string(error.what()) == "no/such/scene.toml: cannot open the scene file");
+    CHECK(std::string(error.what()) ==
+          "no/such/scene.toml: cannot open the scene file (No such file or directory)");
   }
 }
 

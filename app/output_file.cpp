@@ -1,0 +1,401 @@
+#include "app/output_file.hpp"
+
+#include <fcntl.h>
+#include <poll.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <array>
+#include <atomic>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <iostream>
+#include <mutex>
+#include <set>
+
+#include "app/exit_codes.hpp"
+#include "app/interrupt.hpp"
+#include "scenes/scene_error.hpp"
+
+namespace fetic::app {
+namespace {
+
+std::string shown(const std::string& path) {
+  return scenes::printable(path);
+}
+
+std::string reason(int error) {
+  return std::strerror(error);
+}
+
+// ---- temporary files this process is writing, for clean-up on fatal paths ----
+
+std::mutex temporaries_mutex;
+std::set<std::string>& temporaries() {
+  static std::set<std::string> names;
+  return names;
+}
+
+void forget_temporary(const std::string& name) {
+  std::lock_guard lock(temporaries_mutex);
+  temporaries().erase(name);
+}
+
+// ---- what is at the path ----
+
+enum class Kind { Stdout, Replace, Stream };
+
+struct Target {
+  Kind kind = Kind::Replace;
+  std::string path;     // after following symbolic links
+  bool exists = false;  // Replace: a regular file is there
+  mode_t mode = 0;      // its permission bits
+};
+
+std::string parent_of(const std::string& path) {
+  const size_t slash = path.rfind('/');
+  if (slash == std::string::npos) return "";
+  return path.substr(0, slash + 1);  // keeps the slash ("/" for the root)
+}
+
+// Follows symbolic links to the path they finally name (a dangling link names a file
+// that does not exist yet: the output creates it).
+std::string follow_links(const std::string& given) {
+  std::string path = given;
+  for (int hops = 0; hops < 40; ++hops) {
+    struct stat info {};
+    if (::lstat(path.c_str(), &info) != 0 || !S_ISLNK(info.st_mode)) return path;
+    std::array<char, 4096> buffer{};
+    const ssize_t length = ::readlink(path.c_str(), buffer.data(), buffer.size());
+    if (length < 0 || static_cast<size_t>(length) >= buffer.size())
+      throw OutputError(shown(given) + ": cannot follow the symbolic link (" +
+                        reason(length < 0 ? errno : ENAMETOOLONG) + ")");
+    const std::string target(buffer.data(), static_cast<size_t>(length));
+    path = target.starts_with('/') ? target : parent_of(path) + target;
+  }
+  throw OutputError(shown(given) + ": cannot write: " + reason(ELOOP));
+}
+
+Target classify(const std::string& given) {
+  if (given.empty()) throw OutputError("an output path is empty");
+  if (is_stdout(given)) return {Kind::Stdout, given};
+  Target target;
+  target.path = follow_links(given);
+  const std::string label =
+      shown(given) + (target.path == given ? "" : " (-> " + shown(target.path) + ")");
+  struct stat info {};
+  if (::stat(target.path.c_str(), &info) != 0) {
+    if (errno == ENOENT) return target;  // absent: created through a temporary file
+    throw OutputError(label + ": cannot write (" + reason(errno) + ")");
+  }
+  if (S_ISREG(info.st_mode)) {
+    target.exists = true;
+    target.mode = info.st_mode & 07777;
+    return target;
+  }
+  if (S_ISCHR(info.st_mode) || S_ISFIFO(info.st_mode)) {
+    target.kind = Kind::Stream;
+    return target;
+  }
+  if (S_ISDIR(info.st_mode))
+    throw OutputError(label + ": is a directory; give the name of a file to write");
+  if (S_ISBLK(info.st_mode))
+    throw OutputError(label + ": is a block device; fetic writes no output onto a disk device");
+  if (S_ISSOCK(info.st_mode)) throw OutputError(label + ": is a socket; fetic cannot write to it");
+  throw OutputError(label + ": is not a file fetic can write");
+}
+
+// ---- writing ----
+
+// Writes every byte or says why not ("" when all arrived). A signal that ends the run
+// stops the waiting (EINTR; the handlers have no SA_RESTART).
+std::string write_all(int fd, const char* data, size_t size, bool& interrupted_out) {
+  while (size > 0) {
+    const ssize_t n = ::write(fd, data, size);
+    if (n > 0) {
+      data += n;
+      size -= static_cast<size_t>(n);
+      continue;
+    }
+    if (n < 0 && errno == EINTR) {
+      if (interrupted()) {
+        interrupted_out = true;
+        return std::string("interrupted by ") + interrupt_name();
+      }
+      continue;
+    }
+    if (n < 0 && (errno == EAGAIN || errno == EWOULDBLOCK)) {  // a non-blocking stdout
+      pollfd wait{fd, POLLOUT, 0};
+      ::poll(&wait, 1, 1000);
+      continue;
+    }
+    return n == 0 ? "the device accepted no more bytes" : reason(errno);
+  }
+  return "";
+}
+
+// An std::streambuf over a file descriptor that keeps the first failure.
+class FdBuffer : public std::streambuf {
+ public:
+  explicit FdBuffer(int fd) : fd_(fd) { setp(buffer_.data(), buffer_.data() + buffer_.size()); }
+  const std::string& error() const { return error_; }
+  bool interrupted() const { return interrupted_; }
+
+ protected:
+  int_type overflow(int_type c) override {
+    if (!drain()) return traits_type::eof();
+    if (!traits_type::eq_int_type(c, traits_type::eof())) {
+      *pptr() = traits_type::to_char_type(c);
+      pbump(1);
+    }
+    return traits_type::not_eof(c);
+  }
+  int sync() override { return drain() ? 0 : -1; }
+
+ private:
+  bool drain() {
+    const size_t pending = static_cast<size_t>(pptr() - pbase());
+    setp(buffer_.data(), buffer_.data() + buffer_.size());
+    if (!error_.empty()) return false;
+    error_ = write_all(fd_, buffer_.data(), pending, interrupted_);
+    return error_.empty();
+  }
+
+  int fd_;
+  std::array<char, 1 << 16> buffer_{};
+  std::string error_;
+  bool interrupted_ = false;
+};
+
+// Opens a device or FIFO for writing; waits for a FIFO's reader unless a signal ends it.
+int open_stream(const Target& target, const std::string& given) {
+  while (true) {
+    const int fd = ::open(target.path.c_str(), O_WRONLY | O_NOCTTY | O_CLOEXEC);
+    if (fd >= 0) return fd;
+    if (errno == EINTR && interrupted())
+      throw OutputError(shown(given) + ": interrupted by " + interrupt_name() +
+                            " while waiting to open it (a FIFO without a reader?)",
+                        true);
+    if (errno != EINTR) throw OutputError(shown(given) + ": cannot open (" + reason(errno) + ")");
+  }
+}
+
+// Creates the temporary file beside `path`: NAME.tmpPID, or a shorter name when that
+// one is too long for the directory.
+int create_temporary(const std::string& path, mode_t mode, std::string& name) {
+  const std::string pid = std::to_string(::getpid());
+  static std::atomic<int> counter{0};
+  std::string candidate = path + ".tmp" + pid;
+  for (int attempt = 0; attempt < 100; ++attempt) {
+    const int fd = ::open(candidate.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+    if (fd >= 0) {
+      if (mode != 0) (void)::fchmod(fd, mode);
+      name = candidate;
+      std::lock_guard lock(temporaries_mutex);
+      temporaries().insert(name);
+      return fd;
+    }
+    if (errno == EEXIST) {
+      bool ours = false;
+      {
+        std::lock_guard lock(temporaries_mutex);
+        ours = temporaries().count(candidate) > 0;
+      }
+      if (!ours && attempt == 0) {
+        ::unlink(candidate.c_str());  // left by an earlier process that had our PID
+        continue;
+      }
+      candidate = path + ".tmp" + pid + "." + std::to_string(++counter);
+      continue;
+    }
+    if (errno == ENAMETOOLONG) {
+      candidate = parent_of(path) + ".fetic.tmp" + pid + "." + std::to_string(++counter);
+      continue;
+    }
+    if (errno == EINTR) continue;
+    throw OutputError(shown(path) + ": cannot create the temporary file " + shown(candidate) +
+                      " beside it (" + reason(errno) + ")");
+  }
+  throw OutputError(shown(path) + ": cannot create a temporary file beside it");
+}
+
+void discard_temporary(const std::string& name) {
+  ::unlink(name.c_str());
+  forget_temporary(name);
+}
+
+void rename_into_place(const std::string& temporary, const Target& target,
+                       const std::string& given) {
+  if (std::rename(temporary.c_str(), target.path.c_str()) != 0) {
+    const int error = errno;
+    discard_temporary(temporary);
+    throw OutputError(shown(given) + ": cannot put the file in place (" + reason(error) + ")");
+  }
+  forget_temporary(temporary);
+}
+
+// Runs `write` on a descriptor: a temporary file renamed into place, the stream, or stdout.
+void write_through(const std::string& given,
+                   const std::function<std::pair<std::string, bool>(int fd)>& write) {
+  const Target target = classify(given);
+  std::string temporary;
+  int fd = 1;
+  if (target.kind == Kind::Stdout) {
+    std::cout.flush();  // the report printed before stays before the output
+    std::fflush(stdout);
+  } else if (target.kind == Kind::Stream) {
+    fd = open_stream(target, given);
+  } else {
+    fd = create_temporary(target.path, target.exists ? target.mode : 0, temporary);
+  }
+  std::pair<std::string, bool> result;
+  try {
+    result = write(fd);
+  } catch (...) {
+    if (fd != 1) ::close(fd);
+    if (!temporary.empty()) discard_temporary(temporary);
+    throw;
+  }
+  auto [error, stopped] = result;
+  if (fd != 1 && ::close(fd) != 0 && error.empty()) error = reason(errno);
+  if (!error.empty()) {
+    if (!temporary.empty()) discard_temporary(temporary);
+    const std::string where = target.kind == Kind::Stdout ? "standard output" : shown(given);
+    throw OutputError(where + ": cannot write (" + error + "); the output is lost or incomplete",
+                      stopped);
+  }
+  if (!temporary.empty()) rename_into_place(temporary, target, given);
+}
+
+}  // namespace
+
+void write_output(const std::string& path, std::string_view bytes) {
+  write_through(path, [&](int fd) {
+    bool stopped = false;
+    std::string error = write_all(fd, bytes.data(), bytes.size(), stopped);
+    return std::make_pair(error, stopped);
+  });
+}
+
+void write_output(const std::string& path, const std::function<void(std::ostream&)>& write) {
+  write_through(path, [&](int fd) {
+    FdBuffer buffer(fd);
+    std::ostream out(&buffer);
+    write(out);
+    out.flush();
+    std::string error = buffer.error();
+    if (error.empty() && !out) error = "the writer failed";
+    return std::make_pair(error, buffer.interrupted());
+  });
+}
+
+void write_output_by(const std::string& path,
+                     const std::function<bool(const ExternalTarget&)>& write) {
+  const Target target = classify(path);
+  if (target.kind != Kind::Replace) {
+    if (target.kind == Kind::Stdout) {
+      std::cout.flush();
+      std::fflush(stdout);
+    }
+    const ExternalTarget external{target.kind == Kind::Stdout ? "" : target.path, true};
+    if (!write(external)) {
+      const bool stopped = interrupted();
+      throw OutputError((target.kind == Kind::Stdout ? "standard output" : shown(path)) +
+                            (stopped ? std::string(": interrupted by ") + interrupt_name()
+                                     : std::string(": writing failed")) +
+                            "; the output is lost or incomplete",
+                        stopped);
+    }
+    return;
+  }
+  std::string temporary;
+  const int fd = create_temporary(target.path, target.exists ? target.mode : 0, temporary);
+  ::close(fd);  // the program opens it by name
+  bool ok = false;
+  try {
+    ok = write({temporary, false});
+  } catch (...) {
+    discard_temporary(temporary);
+    throw;
+  }
+  if (!ok) {
+    discard_temporary(temporary);
+    const bool stopped = interrupted();
+    throw OutputError(shown(path) +
+                          (stopped ? std::string(": interrupted by ") + interrupt_name()
+                                   : std::string(": writing failed")) +
+                          "; nothing was written",
+                      stopped);
+  }
+  rename_into_place(temporary, target, path);
+}
+
+struct OutputStream::State {
+  std::mutex mutex;
+  int fd = -1;
+  std::string name;
+  std::string error;
+};
+
+OutputStream::OutputStream() : state_(std::make_unique<State>()) {}
+OutputStream::~OutputStream() {
+  close();
+}
+
+void OutputStream::open(const std::string& path) {
+  close();
+  const Target target = classify(path);
+  int fd = 1;
+  if (target.kind == Kind::Stream) {
+    fd = open_stream(target, path);
+  } else if (target.kind == Kind::Replace) {
+    fd = ::open(target.path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
+    if (fd < 0) throw OutputError(shown(path) + ": cannot open (" + reason(errno) + ")");
+  }
+  std::lock_guard lock(state_->mutex);
+  state_->fd = fd;
+  state_->name = target.kind == Kind::Stdout ? "standard output" : shown(path);
+  state_->error.clear();
+}
+
+bool OutputStream::is_open() const {
+  return state_->fd >= 0;
+}
+
+void OutputStream::write(std::string_view bytes) {
+  std::lock_guard lock(state_->mutex);
+  if (state_->fd < 0 || !state_->error.empty()) return;
+  bool stopped = false;
+  const std::string error = write_all(state_->fd, bytes.data(), bytes.size(), stopped);
+  if (!error.empty()) state_->error = state_->name + ": cannot write (" + error + ")";
+}
+
+std::string OutputStream::close() {
+  std::lock_guard lock(state_->mutex);
+  if (state_->fd > 1 && ::close(state_->fd) != 0 && state_->error.empty())
+    state_->error = state_->name + ": cannot write (" + reason(errno) + ")";
+  state_->fd = -1;
+  return state_->error;
+}
+
+std::string OutputStream::error() const {
+  std::lock_guard lock(state_->mutex);
+  return state_->error;
+}
+
+int report_output_error(const OutputError& error) {
+  std::cerr << error.what() << '\n';
+  return error.interrupted() ? kExitInterrupted : kExitOutput;
+}
+
+void remove_temporary_outputs() noexcept {
+  // try_lock: this may run while another thread holds the lock (it then stays).
+  if (!temporaries_mutex.try_lock()) return;
+  for (const std::string& name : temporaries())
+    ::unlink(name.c_str());
+  temporaries().clear();
+  temporaries_mutex.unlock();
+}
+
+}  // namespace fetic::app

@@ -1,0 +1,37 @@
+#pragma once
+// The scene file as text, with the limits that protect everything after it: its size,
+// checked before reading, and the nesting of its TOML, checked before toml++ sees it
+// (toml++ 3.3 recurses once per level of dotted keys and table headers, without a cap:
+// 40,000 levels overflow the stack).
+
+#include <cstddef>
+#include <functional>
+#include <string>
+#include <string_view>
+
+#include "scenes/scene_error.hpp"
+
+namespace fetic::scenes {
+
+// Largest scene file read, in bytes. Parsing takes about 30 times the file's size in
+// memory (toml++'s tree; docs/RELIABILITY.md), and a scene of the size limit in unknowns
+// fits in far less text.
+inline constexpr std::size_t kMaxSceneFileBytes = std::size_t{64} << 20;
+
+// Deepest nesting accepted: tables (headers and dotted keys), arrays and inline tables
+// together. A scene needs 4 ([[strut]] in the root, a table, an array such as `from`).
+inline constexpr int kMaxNesting = 32;
+
+// Reads the file: a regular file's size is checked first, any other stream (a FIFO,
+// /dev/stdin, a device) is read up to the limit. Refuses a directory. Throws SceneError
+// naming the path. `stop` is asked whenever a signal interrupts a wait (opening a FIFO
+// without a writer, reading from it); when it returns true the reading ends with a
+// SceneError saying so.
+std::string read_scene_text(const std::string& path, const std::function<bool()>& stop = {});
+
+// The first place where the text nests deeper than kMaxNesting, or {0, ""}. It reads TOML
+// just far enough to count: strings and comments are skipped, every key segment, table
+// header segment, array of tables, array and inline table opens a level.
+Problem nesting_problem(std::string_view text);
+
+}  // namespace fetic::scenes
