@@ -1,16 +1,15 @@
-// MPRGP against the independent QP solver, the active-set method and FETI-C: random bar
-// and plane scenes, the bundled scenes, floating struts held only by contacts,
-// unboundedness, warm starts; and what the preconditioners and the count of F
-// applications report.
+// MPRGP against the active-set method and FETI-C on the bundled scenes, floating struts
+// held only by contacts, unboundedness, warm starts; and what the preconditioners and the
+// count of F applications report. The random scenes against CGAL's exact QP solver are
+// FETI-C's: feti_c_test.cpp (250 bar scenes) and plane_test.cpp (100 plane pairs) check
+// MPRGP beside FETI-C.
 
 #include <catch2/catch.hpp>
 
 #include <array>
 #include <filesystem>
-#include <random>
 
 #include "solver/mprgp.hpp"
-#include "tests/support/random_scenes.hpp"
 #include "tests/support/solve_helpers.hpp"
 
 using namespace fetic;
@@ -28,50 +27,7 @@ solver::SolveOptions with(Preconditioner preconditioner) {
 constexpr std::array kPreconditioners{Preconditioner::Dirichlet, Preconditioner::Lumped,
                                       Preconditioner::None};
 
-// MPRGP's solution against CGAL's and the active-set method's; returns its active pairs.
-int check_against_references(const scenes::Scene& scene, double load_factor,
-                             Preconditioner preconditioner) {
-  const auto mprgp = testing::solve(scene, MethodKind::Mprgp, load_factor, with(preconditioner));
-  INFO("message: " << mprgp->state.message);
-  REQUIRE(mprgp->state.status == solver::Status::Converged);
-  const auto reference = testing::solve_reference_qp(scene, load_factor);
-  REQUIRE(reference.optimal);
-  CHECK(testing::displacement_error(*mprgp, reference) <= 1e-8);
-  CHECK(testing::force_error(*mprgp, reference, 1e-12 * testing::load_scale(mprgp->model)) <= 1e-8);
-  const auto active_set = testing::solve(scene, MethodKind::ActiveSet, load_factor);
-  REQUIRE(active_set->state.status == solver::Status::Converged);
-  CHECK(solver::relative_error(solver::strut_displacements(mprgp->model, mprgp->state),
-                               solver::strut_displacements(active_set->model, active_set->state)) <=
-        1e-8);
-  return mprgp->state.active_set_size();
-}
-
 }  // namespace
-
-// The same 250 scenes, load factors and preconditioners as FETI-C's test (feti_c_test.cpp);
-// the plane scenes are plane_test.cpp's, where MPRGP is checked beside FETI-C.
-TEST_CASE(
-    "MPRGP agrees with CGAL's exact QP solver and the active-set method on FETI-C's 250 "
-    "random bar scenes") {
-  std::mt19937 rng(97);
-  int checked = 0, active = 0, floating = 0;
-  for (int trial = 0; trial < 250; ++trial) {
-    const std::string text = testing::random_bar_scene(rng);
-    const double load_factor = std::uniform_real_distribution<double>(0.2, 1.5)(rng);
-    const Preconditioner preconditioner = kPreconditioners[trial % 3];
-    const scenes::Scene scene = scenes::parse_scene(text, "random.toml");
-    INFO(text);
-    INFO("load factor " << load_factor << ", preconditioner " << solver::to_string(preconditioner));
-    active += check_against_references(scene, load_factor, preconditioner);
-    const auto model = solver::build_model(scene);
-    for (size_t s = 0; s < model.struts.size(); ++s)
-      floating += model.floating(s);
-    ++checked;
-  }
-  CHECK(checked == 250);
-  CHECK(active > 150);
-  CHECK(floating > 100);  // struts held only by contacts
-}
 
 TEST_CASE("MPRGP agrees with FETI-C and the active-set method on every bundled scene") {
   int scenes_with_contacts = 0;
