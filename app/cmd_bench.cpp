@@ -16,8 +16,10 @@
 #include "app/commands.hpp"
 #include "app/exit_codes.hpp"
 #include "app/interrupt.hpp"
+#include "app/out_of_memory.hpp"
 #include "app/output_file.hpp"
 #include "app/scene_input.hpp"
+#include "scenes/scene_error.hpp"
 #include "solver/method.hpp"
 
 namespace fetic::app {
@@ -163,6 +165,15 @@ int run_bench(const BenchArgs& args) {
     int status = kExitOk;
     const auto scene = load_scene_or_report(path, status);
     if (!scene) return status;
+    if (!memory_suffices(
+            *scene, path,
+            {{solver::MethodKind::ActiveSet, solver::MethodKind::FetiC, solver::MethodKind::Feti,
+              solver::MethodKind::ConjugateGradient, solver::MethodKind::SteepestDescent},
+             false,
+             0},
+            status))
+      return status;
+    Activity measuring("measuring the methods");
     const solver::Model model = solver::build_model(*scene);
     if (!warmed_up) {
       // The first parallel region starts OpenMP's threads: keep that out of the table.
@@ -171,14 +182,15 @@ int run_bench(const BenchArgs& args) {
     }
     for (const Variant& variant : variants_for(model)) {
       if (interrupted()) {
-        std::cerr << path << ": fetic bench interrupted by " << interrupt_name() << " after "
-                  << rows.size() << " measurement(s); no table or CSV written\n";
+        std::cerr << scenes::printable(path) << ": fetic bench interrupted by " << interrupt_name()
+                  << " after " << rows.size() << " measurement(s); no table or CSV written\n";
         return kExitInterrupted;
       }
       try {
         rows.push_back(measure(model, path, variant, std::max(1, args.repeat)));
       } catch (const solver::SolverError& error) {
-        std::cerr << path << ": " << variant.label() << ": " << error.what() << '\n';
+        std::cerr << scenes::printable(path) << ": " << variant.label() << ": " << error.what()
+                  << '\n';
       }
     }
   }

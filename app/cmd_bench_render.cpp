@@ -20,12 +20,14 @@
 #include "app/interrupt.hpp"
 #include "app/method_options.hpp"
 #include "app/movie_stream.hpp"
+#include "app/out_of_memory.hpp"
 #include "app/output_file.hpp"
 #include "app/render_output.hpp"
 #include "app/scene_input.hpp"
 #include "render/colormap.hpp"
 #include "render/frame_composer.hpp"
 #include "render/frame_sequence.hpp"
+#include "scenes/scene_error.hpp"
 
 namespace fetic::app {
 namespace {
@@ -65,6 +67,10 @@ int run_bench(const BenchArgs& args) {
   int status = kExitOk;
   const auto scene = load_scene_or_report(args.scene, status);
   if (!scene) return status;
+  if (!memory_suffices(*scene, args.scene, {{*solver::parse_method(args.method)}, false, 0},
+                       status))
+    return status;
+  Activity rendering("rendering");
   const solver::Model model = solver::build_model(*scene);
   use_solver_threads_for_pictures(model);
   const ImageSize size = *parse_image_size(args.size);
@@ -72,7 +78,7 @@ int run_bench(const BenchArgs& args) {
   try {
     method = solver::make_method(*solver::parse_method(args.method), model, solver::SolveOptions{});
   } catch (const solver::SolverError& error) {
-    std::cerr << args.scene << ": " << error.what() << '\n';
+    std::cerr << scenes::printable(args.scene) << ": " << error.what() << '\n';
     return kExitSolverSetup;
   }
   std::string directory = args.out;
@@ -175,8 +181,8 @@ int run_bench(const BenchArgs& args) {
       streamed.total = seconds(start);
     }
     if (interrupted()) {
-      std::cerr << directory << ": fetic bench-render interrupted by " << interrupt_name()
-                << "; the frames written are complete\n";
+      std::cerr << scenes::printable(directory) << ": fetic bench-render interrupted by "
+                << interrupt_name() << "; the frames written are complete\n";
       if (temporary) std::filesystem::remove_all(directory);
       return kExitInterrupted;
     }
@@ -215,7 +221,7 @@ int run_bench(const BenchArgs& args) {
   } catch (const OutputError& error) {
     return report_output_error(error);
   } catch (const render::RenderError& error) {
-    std::cerr << directory << ": rendering failed: " << error.what() << '\n';
+    std::cerr << scenes::printable(directory) << ": rendering failed: " << error.what() << '\n';
     return kExitOutput;
   }
   if (temporary) std::filesystem::remove_all(directory);

@@ -12,10 +12,12 @@
 #include "app/commands.hpp"
 #include "app/exit_codes.hpp"
 #include "app/interrupt.hpp"
+#include "app/out_of_memory.hpp"
 #include "app/output_file.hpp"
 #include "app/render_output.hpp"
 #include "app/scene_input.hpp"
 #include "render/figures.hpp"
+#include "scenes/scene_error.hpp"
 
 namespace fetic::app {
 namespace {
@@ -47,6 +49,14 @@ int run_figures(const FiguresArgs& args) {
   if (needs_thesis) {
     scene = load_scene_or_report(args.scene, scene_status);
     if (scene_status == kExitInterrupted) return scene_status;
+    if (scene && !memory_suffices(*scene, args.scene,
+                                  {{solver::MethodKind::ActiveSet, solver::MethodKind::FetiC,
+                                    solver::MethodKind::Feti, solver::MethodKind::ConjugateGradient,
+                                    solver::MethodKind::SteepestDescent},
+                                   false,
+                                   0},
+                                  scene_status))
+      return scene_status;
     if (scene) {
       thesis = solver::build_model(*scene);
     } else {
@@ -59,8 +69,8 @@ int run_figures(const FiguresArgs& args) {
   int written = 0, skipped = 0;
   for (const std::string& id : ids) {
     if (interrupted()) {
-      std::cerr << args.out << ": interrupted by " << interrupt_name() << " after " << written
-                << " complete figure(s)\n";
+      std::cerr << scenes::printable(args.out) << ": interrupted by " << interrupt_name()
+                << " after " << written << " complete figure(s)\n";
       return kExitInterrupted;
     }
     const render::Figure figure = maker.make(id, size.width, size.height);
@@ -79,7 +89,7 @@ int run_figures(const FiguresArgs& args) {
     } catch (const OutputError& error) {
       return report_output_error(error);
     } catch (const render::RenderError& error) {
-      std::cerr << path << ": rendering failed: " << error.what() << '\n';
+      std::cerr << scenes::printable(path) << ": rendering failed: " << error.what() << '\n';
       return kExitOutput;
     }
     std::cout << "figure " << id << "   " << path << "  " << figure.info.what

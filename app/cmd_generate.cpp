@@ -1,6 +1,9 @@
 // fetic generate: writes a generated scene of any size (TOML) to stdout or a file, e.g.
 //   fetic generate --pairs 25 --elements 200,48 --subdomains 10,2 > big.toml
 
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
 #include <iostream>
 #include <memory>
 #include <sstream>
@@ -8,9 +11,13 @@
 
 #include "app/commands.hpp"
 #include "app/exit_codes.hpp"
+#include "app/interrupt.hpp"
+#include "app/memory_estimate.hpp"
+#include "app/out_of_memory.hpp"
 #include "app/output_file.hpp"
 #include "scenes/generate_scene.hpp"
 #include "scenes/load_scene.hpp"
+#include "scenes/scene_text.hpp"
 #include "scenes/write_scene.hpp"
 
 namespace fetic::app {
@@ -37,11 +44,57 @@ bool parse_pair(const std::string& text, int& first, int& second) {
   return in.eof();
 }
 
+// The header line that says how the scene was made.
+std::string header(const GenerateArgs& args, long long unknowns) {
+  return "# " + std::to_string(unknowns) + " unknowns. fetic generate --model " + args.model +
+         " --pairs " + std::to_string(args.pairs) + " --elements " + args.elements +
+         " --subdomains " + args.subdomains + " --seed " + std::to_string(args.seed) + "\n";
+}
+
+int interrupted_status() {
+  std::cerr << "fetic generate: interrupted by " << interrupt_name() << "; no scene written\n";
+  return kExitInterrupted;
+}
+
+// The limits a scene file must keep, checked before anything is made: the unknowns from
+// the options, the size of the text from a few pairs made for it.
+std::string limit_problem(const GenerateArgs& args, const scenes::GenerateOptions& options) {
+  const long long unknowns = scenes::generated_unknowns(options);
+  if (unknowns > scenes::kMaxUnknowns)
+    return "the scene would have " + std::to_string(unknowns) +
+           " unknowns, more than the limit of " + std::to_string(scenes::kMaxUnknowns) +
+           " a scene may have; use fewer pairs or elements";
+  scenes::GenerateOptions sample = options;
+  sample.pairs = std::min(options.pairs, 16);
+  const double per_pair =
+      static_cast<double>(scenes::scene_to_toml(scenes::generate_scene(sample)).size()) /
+      sample.pairs;
+  // Names and numbers grow by a few digits over the pairs: 10% on top.
+  const double bytes = 1.1 * per_pair * options.pairs + static_cast<double>(header(args, 0).size());
+  if (const auto available = available_memory();
+      available && memory_check_enabled() &&
+      estimate_parse_memory(bytes) + bytes > available->bytes)
+    return "not enough memory: making and checking a scene of about " + memory_text(bytes) +
+           " needs about " + memory_text(estimate_parse_memory(bytes) + bytes) + ", and " +
+           memory_text(available->bytes) + " is available (" + available->limited_by + ")";
+  if (bytes > static_cast<double>(scenes::kMaxSceneFileBytes)) {
+    char text[160];
+    std::snprintf(text, sizeof text,
+                  "the scene would have about %.0f MiB of TOML, more than the %.0f MiB a scene "
+                  "file may have (about %.0f pairs of this kind fit)",
+                  bytes / (1 << 20), static_cast<double>(scenes::kMaxSceneFileBytes) / (1 << 20),
+                  std::floor(static_cast<double>(scenes::kMaxSceneFileBytes) / (1.1 * per_pair)));
+    return text;
+  }
+  return "";
+}
+
 int run_generate(const GenerateArgs& args) {
   scenes::GenerateOptions options;
   options.model = args.model == "bar" ? scenes::ModelKind::Bar : scenes::ModelKind::Plane;
   options.pairs = args.pairs;
   options.seed = args.seed;
+  options.stop = [] { return interrupted(); };
   if (!parse_pair(args.elements, options.elements, options.elements_across) ||
       !parse_pair(args.subdomains, options.subdomains, options.subdomains_across)) {
     std::cerr << "fetic generate: --elements and --subdomains take N or N,M\n";
@@ -49,13 +102,17 @@ int run_generate(const GenerateArgs& args) {
   }
   std::string text;
   try {
+    Activity generating("generating the scene");
+    if (const std::string problem = limit_problem(args, options); !problem.empty()) {
+      std::cerr << "fetic generate: " << problem << '\n';
+      return problem.starts_with("not enough memory") ? kExitOutOfMemory : kExitUsage;
+    }
     const scenes::Scene scene = scenes::generate_scene(options);
-    const long long unknowns = scenes::unknowns(scene);
-    text = "# " + std::to_string(unknowns) + " unknowns. fetic generate --model " + args.model +
-           " --pairs " + std::to_string(args.pairs) + " --elements " + args.elements +
-           " --subdomains " + args.subdomains + " --seed " + std::to_string(args.seed) + "\n" +
-           scenes::scene_to_toml(scene);
+    if (interrupted()) return interrupted_status();
+    text = header(args, scenes::unknowns(scene)) + scenes::scene_to_toml(scene);
+    if (interrupted()) return interrupted_status();
     scenes::parse_scene(text, args.out.empty() ? "<generated>" : args.out);  // stays valid
+    if (interrupted()) return interrupted_status();
   } catch (const std::invalid_argument& error) {
     std::cerr << "fetic generate: " << error.what() << '\n';
     return kExitUsage;

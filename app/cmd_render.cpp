@@ -12,14 +12,17 @@
 #include "app/commands.hpp"
 #include "app/exit_codes.hpp"
 #include "app/interrupt.hpp"
+#include "app/load_factor_check.hpp"
 #include "app/method_options.hpp"
 #include "app/movie_stream.hpp"
+#include "app/out_of_memory.hpp"
 #include "app/output_file.hpp"
 #include "app/render_output.hpp"
 #include "app/scene_input.hpp"
 #include "render/colormap.hpp"
 #include "render/frame_composer.hpp"
 #include "render/frame_sequence.hpp"
+#include "scenes/scene_error.hpp"
 #include "solver/method.hpp"
 
 namespace fetic::app {
@@ -46,6 +49,15 @@ int run_render(const RenderArgs& args) {
   int status = kExitOk;
   const auto scene = load_scene_or_report(args.scene, status);
   if (!scene) return status;
+  if (const std::string problem =
+          load_factor_problem(*scene, args.method.load_factors(),
+                              args.method.load_steps.empty() ? "--load-factor" : "--load-steps");
+      !problem.empty()) {
+    std::cerr << scenes::printable(args.scene) << ": " << problem << '\n';
+    return kExitUsage;
+  }
+  if (!memory_suffices(*scene, args.scene, {{args.method.kind()}, false, 0}, status)) return status;
+  Activity rendering("rendering");
   const solver::Model model = solver::build_model(*scene);
   use_solver_threads_for_pictures(model);
   const ImageSize size = *parse_image_size(args.size);
@@ -62,7 +74,7 @@ int run_render(const RenderArgs& args) {
   try {
     method = solver::make_method(kind, model, args.method.options());
   } catch (const solver::SolverError& error) {
-    std::cerr << args.scene << ": " << error.what() << '\n';
+    std::cerr << scenes::printable(args.scene) << ": " << error.what() << '\n';
     return kExitSolverSetup;
   }
   // Before the (possibly long) survey: the output directory and a display must exist.
@@ -79,13 +91,15 @@ int run_render(const RenderArgs& args) {
   const render::RunExtent extent =
       render::survey(model, *method, plan, [] { return !interrupted(); });
   if (interrupted()) {
-    std::cerr << args.scene << ": interrupted by " << interrupt_name() << " before any frame\n";
+    std::cerr << scenes::printable(args.scene) << ": interrupted by " << interrupt_name()
+              << " before any frame\n";
     return kExitInterrupted;
   }
   if (extent.frame_count > args.max_frames) {
-    std::cerr << args.scene << ": " << extent.frame_count << " frames (" << method_name << " takes "
-              << extent.largest_iteration << " iterations) is more than --max-frames "
-              << args.max_frames << "; raise it, or render --final or fewer --load-steps\n";
+    std::cerr << scenes::printable(args.scene) << ": " << extent.frame_count << " frames ("
+              << method_name << " takes " << extent.largest_iteration
+              << " iterations) is more than --max-frames " << args.max_frames
+              << "; raise it, or render --final or fewer --load-steps\n";
     return kExitUsage;
   }
   render::View view;
@@ -108,7 +122,8 @@ int run_render(const RenderArgs& args) {
   bool movie_wanted = !args.movie.empty();
   status = kExitOk;
   if (movie_wanted && !program_on_path("ffmpeg")) {
-    std::cerr << args.movie << ": ffmpeg is not installed, so no movie can be made"
+    std::cerr << scenes::printable(args.movie)
+              << ": ffmpeg is not installed, so no movie can be made"
               << (frames_wanted ? "; writing the PNG frames only" : "")
               << " (apt-get install ffmpeg)\n";
     if (!frames_wanted) return kExitOutput;
@@ -156,7 +171,8 @@ int run_render(const RenderArgs& args) {
     }
   } catch (const OutputError& error) {
     if (interrupted()) {
-      std::cerr << (movie_wanted ? args.movie : args.out) << ": interrupted by " << interrupt_name()
+      std::cerr << scenes::printable(movie_wanted ? args.movie : args.out) << ": interrupted by "
+                << interrupt_name()
                 << (movie_wanted ? " while streaming frames to ffmpeg; no movie written" : "")
                 << (frames_wanted
                         ? ", " + std::to_string(written) + " complete frames in " + args.out
@@ -166,13 +182,13 @@ int run_render(const RenderArgs& args) {
     }
     return report_output_error(error);
   } catch (const render::RenderError& error) {
-    std::cerr << (frames_wanted ? args.out : args.movie) << ": rendering failed: " << error.what()
-              << '\n';
+    std::cerr << scenes::printable(frames_wanted ? args.out : args.movie)
+              << ": rendering failed: " << error.what() << '\n';
     return kExitOutput;
   }
   if (interrupted()) {
-    std::cerr << args.out << ": interrupted by " << interrupt_name() << " after " << written
-              << " complete frames\n";
+    std::cerr << scenes::printable(args.out) << ": interrupted by " << interrupt_name() << " after "
+              << written << " complete frames\n";
     return kExitInterrupted;
   }
 
@@ -197,8 +213,8 @@ int run_render(const RenderArgs& args) {
          << (args.samples == 1 ? " sample" : " samples") << " per pixel\n";
 
   if (extent.final_status != solver::Status::Converged) {
-    std::cerr << args.scene << ": " << method_name << " did not converge: " << extent.final_message
-              << " (the frames show it)\n";
+    std::cerr << scenes::printable(args.scene) << ": " << method_name
+              << " did not converge: " << extent.final_message << " (the frames show it)\n";
     if (status == kExitOk) status = kExitNotConverged;
   }
   return status;
@@ -234,15 +250,14 @@ void register_render(CLI::App& app, int& exit_code) {
   command
       ->add_option("--magnification", args->magnification,
                    "Displacement (and gap) magnification; 0 chooses one from the largest")
-      ->check(CLI::NonNegativeNumber)
-      ->check(finite_number())
+      ->check(number_in(0.0, 0.0, Bound::Closed, Bound::None))
       ->capture_default_str();
   command->add_option("--color", args->color, "Colour struts by subdomain or by axial stress")
       ->check(CLI::IsMember({"subdomain", "stress"}))
       ->capture_default_str();
   command->add_flag("--no-overlay", args->no_overlay, "No information panel");
   command->add_option("--max-frames", args->max_frames, "Refuse runs with more frames")
-      ->check(CLI::PositiveNumber)
+      ->check(integer_in(1, 1'000'000))
       ->capture_default_str();
   command->add_option("--threads", args->threads, "PNG encoding threads (0: one per core)")
       ->check(CLI::Range(0, 64));

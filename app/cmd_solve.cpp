@@ -12,10 +12,13 @@
 #include "app/commands.hpp"
 #include "app/exit_codes.hpp"
 #include "app/interrupt.hpp"
+#include "app/load_factor_check.hpp"
 #include "app/method_options.hpp"
+#include "app/out_of_memory.hpp"
 #include "app/output_file.hpp"
 #include "app/result_json.hpp"
 #include "app/scene_input.hpp"
+#include "scenes/scene_error.hpp"
 #include "solver/load_sweep.hpp"
 #include "solver/method.hpp"
 
@@ -73,8 +76,10 @@ void print_summary(std::ostream& out, const solver::Model& model, const solver::
 }
 
 // Displacements of a direct (active-set) solve at every load factor, for error histories.
+// A load factor the reference cannot solve (an unbounded scene) gets no error history; the
+// solve itself then reports the problem with its own status.
 std::map<double, std::vector<std::vector<solver::Vec2>>> reference_solutions(
-    const solver::Model& model, const MethodArgs& args) {
+    const solver::Model& model, const MethodArgs& args, const std::string& scene) {
   solver::SolveOptions options = args.options();
   options.max_iterations = 0;
   auto reference = solver::make_method(solver::MethodKind::ActiveSet, model, options);
@@ -82,9 +87,12 @@ std::map<double, std::vector<std::vector<solver::Vec2>>> reference_solutions(
   for (double t : args.load_factors()) {
     reference->start(t);
     solver::run_to_end(*reference);
-    if (reference->status() != solver::Status::Converged)
-      throw solver::SolverError("the reference solve (active set) failed at load factor " +
-                                std::to_string(t) + ": " + reference->message());
+    if (reference->status() != solver::Status::Converged) {
+      std::cerr << scenes::printable(scene) << ": note: no error history at load factor " << t
+                << ": the reference solve (active set) did not converge: " << reference->message()
+                << '\n';
+      continue;
+    }
     result[t] = solver::strut_displacements(model, reference->snapshot());
   }
   return result;
@@ -94,7 +102,19 @@ int run_solve(const SolveArgs& args) {
   int status = kExitOk;
   const auto scene = load_scene_or_report(args.scene, status);
   if (!scene) return status;
+  if (const std::string problem =
+          load_factor_problem(*scene, args.method.load_factors(),
+                              args.method.load_steps.empty() ? "--load-factor" : "--load-steps");
+      !problem.empty()) {
+    std::cerr << scenes::printable(args.scene) << ": " << problem << '\n';
+    return kExitUsage;
+  }
+  MemoryUse use{{args.method.kind()}, !args.json.empty(), 0};
+  if (args.reference) use.methods.push_back(solver::MethodKind::ActiveSet);
+  if (!memory_suffices(*scene, args.scene, use, status)) return status;
+  Activity assembling("assembling the model");
   const solver::Model model = solver::build_model(*scene);
+  Activity setting_up("setting up the method (factorizing the subdomains)");
 
   RunInfo info;
   info.scene_path = args.scene;
@@ -108,9 +128,9 @@ int run_solve(const SolveArgs& args) {
   try {
     method = solver::make_method(info.method, model, args.method.options());
     info.setup_seconds = seconds_since(setup_start);
-    if (args.reference) references = reference_solutions(model, args.method);
+    if (args.reference) references = reference_solutions(model, args.method, args.scene);
   } catch (const solver::SolverError& error) {
-    std::cerr << args.scene << ": " << error.what() << '\n';
+    std::cerr << scenes::printable(args.scene) << ": " << error.what() << '\n';
     return kExitSolverSetup;
   }
 
@@ -121,10 +141,14 @@ int run_solve(const SolveArgs& args) {
   if (sweeping && !args.quiet)
     report << "load steps   " << load_factors.size() << " from " << load_factors.front() << " to "
            << load_factors.back() << ", each warm-started\n";
+  Activity solving("solving");
   const auto solve_start = std::chrono::steady_clock::now();
   solver::SweepHooks hooks;
   hooks.before_start = [&](double t) {
-    if (args.reference) method->set_reference(references.at(t));
+    if (!args.reference) return;
+    const auto it = references.find(t);
+    method->set_reference(it != references.end() ? it->second
+                                                 : std::vector<std::vector<solver::Vec2>>{});
   };
   hooks.on_step = [&](const solver::SweepStep& step) {
     if (!sweeping || args.quiet) return;
@@ -138,8 +162,8 @@ int run_solve(const SolveArgs& args) {
   hooks.keep_going = [] { return !interrupted(); };
   const std::vector<solver::SweepStep> steps = solver::sweep(*method, load_factors, hooks);
   if (interrupted()) {
-    std::cerr << args.scene << ": interrupted by " << interrupt_name() << " at iteration "
-              << method->iteration() << "; no result file written\n";
+    std::cerr << scenes::printable(args.scene) << ": interrupted by " << interrupt_name()
+              << " at iteration " << method->iteration() << "; no result file written\n";
     return kExitInterrupted;
   }
   info.solve_seconds = seconds_since(solve_start);
@@ -148,6 +172,7 @@ int run_solve(const SolveArgs& args) {
   if (!args.quiet) print_summary(report, model, last.state, info);
   if (!args.json.empty()) {
     try {
+      Activity writing("writing the result file");
       nlohmann::json result = result_json(model, last.state, last.history, info);
       if (sweeping) {
         nlohmann::json list = nlohmann::json::array();
@@ -166,7 +191,7 @@ int run_solve(const SolveArgs& args) {
   }
   for (const solver::SweepStep& step : steps)
     if (step.state.status != solver::Status::Converged) {
-      std::cerr << args.scene << ": " << solver::to_string(info.method)
+      std::cerr << scenes::printable(args.scene) << ": " << solver::to_string(info.method)
                 << " did not converge at load factor " << step.load_factor << ": "
                 << step.state.message << '\n';
       return kExitNotConverged;

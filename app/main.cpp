@@ -2,6 +2,7 @@
 // The command line only wires the layers together; each command lives in its own file.
 
 #include <iostream>
+#include <new>
 #include <string>
 
 #include <CLI/CLI.hpp>
@@ -9,6 +10,7 @@
 #include "app/commands.hpp"
 #include "app/exit_codes.hpp"
 #include "app/interrupt.hpp"
+#include "app/out_of_memory.hpp"
 #include "app/standard_streams.hpp"
 #include "scenes/scene_error.hpp"
 
@@ -25,6 +27,7 @@ bool known_command(const CLI::App& app, const std::string& word) {
 
 int main(int argc, char** argv) {
   fetic::app::guard_standard_streams();
+  fetic::app::install_out_of_memory_handler();
   CLI::App app{"fetic - frictionless contact of elastic struts by FETI and FETI-C"};
   app.require_subcommand(1);
   app.set_version_flag("--version", "fetic 0.1.0");
@@ -51,6 +54,8 @@ int main(int argc, char** argv) {
     const int code = app.exit(error);
     return fetic::app::finish_standard_output(code == 0 ? fetic::app::kExitOk
                                                         : fetic::app::kExitUsage);
+  } catch (const std::bad_alloc&) {
+    return fetic::app::finish_standard_output(fetic::app::report_out_of_memory());
   }
   return fetic::app::finish_standard_output(exit_code);
 }

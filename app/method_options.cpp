@@ -1,6 +1,9 @@
 #include "app/method_options.hpp"
 
+#include <cerrno>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <sstream>
 
 #include "solver/load_sweep.hpp"
@@ -23,31 +26,88 @@ std::vector<double> MethodArgs::load_factors() const {
 }
 
 std::optional<LoadSteps> parse_load_steps(const std::string& text) {
-  std::istringstream in(text);
-  LoadSteps steps;
-  char colon1 = 0, colon2 = 0;
-  if (!(in >> steps.first >> colon1 >> steps.last >> colon2 >> steps.count) || colon1 != ':' ||
-      colon2 != ':')
+  const size_t colon1 = text.find(':');
+  const size_t colon2 = colon1 == std::string::npos ? colon1 : text.find(':', colon1 + 1);
+  if (colon2 == std::string::npos) return std::nullopt;
+  const auto first = parse_number(text.substr(0, colon1));
+  const auto last = parse_number(text.substr(colon1 + 1, colon2 - colon1 - 1));
+  const std::string count = text.substr(colon2 + 1);
+  char* end = nullptr;
+  errno = 0;
+  const long n = std::strtol(count.c_str(), &end, 10);
+  if (!first || !last || count.empty() || end != count.c_str() + count.size() || errno != 0 ||
+      n < 1 || n > 100000)
     return std::nullopt;
-  in >> std::ws;
-  if (!in.eof() || !std::isfinite(steps.first) || !std::isfinite(steps.last) || steps.count < 1 ||
-      steps.count > 100000)
-    return std::nullopt;
-  return steps;
+  return LoadSteps{*first, *last, static_cast<int>(n)};
 }
+
+std::optional<double> parse_number(const std::string& text) {
+  if (text.empty() || std::isspace(static_cast<unsigned char>(text[0]))) return std::nullopt;
+  char* end = nullptr;
+  errno = 0;
+  const double value = std::strtod(text.c_str(), &end);
+  // strtod flags a subnormal result (1e-320) with ERANGE too: that one is a number.
+  if (end != text.c_str() + text.size() || !std::isfinite(value)) return std::nullopt;
+  return value;
+}
+
+namespace {
+
+std::string short_number(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", value);
+  return text;
+}
+
+// Values are quoted back shortened: an option's message stays one readable line.
+std::string shown_value(const std::string& text) {
+  return text.size() > 40 ? text.substr(0, 40) + "..." : text;
+}
+
+}  // namespace
 
 CLI::Validator finite_number() {
   return CLI::Validator(
       [](std::string& text) -> std::string {
-        try {
-          size_t used = 0;
-          const double value = std::stod(text, &used);
-          if (used == text.size() && std::isfinite(value)) return {};
-        } catch (const std::exception&) {
-        }
-        return "must be a finite number, got " + text;
+        return parse_number(text) ? "" : "must be a finite number, got " + shown_value(text);
       },
       "FINITE");
+}
+
+CLI::Validator number_in(double low, double high, Bound low_bound, Bound high_bound) {
+  std::string range;
+  if (low_bound != Bound::None)
+    range += (low_bound == Bound::Open ? " greater than " : " of at least ") + short_number(low);
+  if (high_bound != Bound::None)
+    range += std::string(range.empty() ? "" : " and") +
+             (high_bound == Bound::Open ? " less than " : " of at most ") + short_number(high);
+  const std::string description = "must be a finite number" + range;
+  return CLI::Validator(
+      [=](std::string& text) -> std::string {
+        const auto value = parse_number(text);
+        const bool fits = value &&
+                          (low_bound == Bound::None ||
+                           (low_bound == Bound::Open ? *value > low : *value >= low)) &&
+                          (high_bound == Bound::None ||
+                           (high_bound == Bound::Open ? *value < high : *value <= high));
+        return fits ? "" : description + ", got " + shown_value(text);
+      },
+      "NUMBER");
+}
+
+CLI::Validator integer_in(long long low, long long high) {
+  return CLI::Validator(
+      [=](std::string& text) -> std::string {
+        char* end = nullptr;
+        errno = 0;
+        const long long value = std::strtoll(text.c_str(), &end, 10);
+        if (!text.empty() && end == text.c_str() + text.size() && errno == 0 && value >= low &&
+            value <= high)
+          return "";
+        return "must be a whole number from " + std::to_string(low) + " to " +
+               std::to_string(high) + ", got " + shown_value(text);
+      },
+      "INT");
 }
 
 CLI::Validator method_name() {
@@ -78,14 +138,14 @@ void add_method_options(CLI::App* command, MethodArgs& args) {
   });
   command->add_flag("--no-scaling", args.no_scaling,
                     "FETI preconditioners without stiffness scaling");
-  command->add_option("--tol", args.tolerance, "Relative tolerance")
-      ->check(CLI::PositiveNumber)
-      ->check(finite_number())
+  // A relative tolerance of 1 or more lets the first iterate pass as converged.
+  command->add_option("--tol", args.tolerance, "Relative tolerance, 0 < T < 1")
+      ->check(number_in(0.0, 1.0, Bound::Open, Bound::Open))
       ->capture_default_str();
   command
       ->add_option("--max-iterations", args.max_iterations,
                    "Iteration cap (0: the method's default)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(integer_in(0, 1'000'000'000));
   auto* factor = command->add_option("--load-factor", args.load_factor, "Global load factor t")
                      ->check(finite_number())
                      ->capture_default_str();

@@ -36,8 +36,18 @@ struct LoadSteps {
 };
 std::optional<LoadSteps> parse_load_steps(const std::string& text);
 
-// A CLI11 check that a value is a finite number.
+// A finite number: the whole text, as strtod reads it (subnormal values such as 1e-320
+// included), or nullopt.
+std::optional<double> parse_number(const std::string& text);
+
+// CLI11 checks with short messages that name the range (CLI11's own print the bounds of
+// an unbounded range with all 309 digits of the largest double).
 CLI::Validator finite_number();
+enum class Bound { None, Open, Closed };
+// A finite number within the bounds: number_in(0, 1, Bound::Open, Bound::Open) is 0 < x < 1.
+CLI::Validator number_in(double low, double high, Bound low_bound, Bound high_bound);
+// A whole number low..high.
+CLI::Validator integer_in(long long low, long long high);
 
 // CLI11 checks that a value names a method / a FETI preconditioner, for every command that
 // lets the user choose one.

@@ -18,6 +18,7 @@
 #include "app/exit_codes.hpp"
 #include "app/interrupt.hpp"
 #include "app/output_file.hpp"
+#include "scenes/scene_error.hpp"
 
 extern char** environ;
 
@@ -73,7 +74,7 @@ std::optional<Headless> open_headless(const std::string& output) {
   try {
     headless.context = render::make_egl_context();
   } catch (const render::NoDisplayError& error) {
-    std::cerr << output << ": cannot render: " << error.what() << '\n';
+    std::cerr << scenes::printable(output) << ": cannot render: " << error.what() << '\n';
     return std::nullopt;
   }
   headless.font = std::make_unique<render::FontAtlas>();
@@ -81,7 +82,7 @@ std::optional<Headless> open_headless(const std::string& output) {
   try {
     headless.renderer = std::make_unique<render::GlRenderer>(*headless.context, *headless.font);
   } catch (const render::RenderError& error) {
-    std::cerr << output << ": cannot render: " << error.what() << '\n';
+    std::cerr << scenes::printable(output) << ": cannot render: " << error.what() << '\n';
     return std::nullopt;
   }
   return headless;
@@ -91,7 +92,7 @@ bool make_output_directory(const std::string& directory) {
   std::error_code error;
   std::filesystem::create_directories(directory, error);
   if (error || !std::filesystem::is_directory(directory)) {
-    std::cerr << directory << ": cannot create the output directory"
+    std::cerr << scenes::printable(directory) << ": cannot create the output directory"
               << (error ? " (" + error.message() + ")" : std::string()) << '\n';
     return false;
   }
@@ -117,8 +118,8 @@ bool program_on_path(const std::string& name) {
 int assemble_movie(const std::string& directory, int count, int fps, const std::string& movie,
                    std::ostream& report) {
   if (!program_on_path("ffmpeg")) {
-    std::cerr << movie << ": ffmpeg is not installed, so no movie was made; the " << count
-              << " frames are in " << directory << " (apt-get install ffmpeg)\n";
+    std::cerr << scenes::printable(movie) << ": ffmpeg is not installed, so no movie was made; the "
+              << count << " frames are in " << directory << " (apt-get install ffmpeg)\n";
     return kExitOutput;
   }
   // frame_0000.png -> frame_%04d.png
@@ -185,7 +186,7 @@ int assemble_movie(const std::string& directory, int count, int fps, const std::
     });
   } catch (const OutputError& error) {
     if (interrupted()) {
-      std::cerr << movie << ": interrupted by " << interrupt_name()
+      std::cerr << scenes::printable(movie) << ": interrupted by " << interrupt_name()
                 << " while ffmpeg was assembling the movie; no movie written, the " << count
                 << " frames are complete\n";
       return kExitInterrupted;

@@ -4,6 +4,7 @@
 #include <optional>
 #include <string>
 
+#include "app/memory_estimate.hpp"
 #include "scenes/scene.hpp"
 
 namespace fetic::app {
@@ -11,6 +12,14 @@ namespace fetic::app {
 // The scene, or nullopt after printing every problem (file:line: message) to stderr, with
 // `status` set: kExitInvalidScene, kExitInterrupted (a signal while waiting on a FIFO) or
 // kExitOutOfMemory. Warnings are printed as file:line: warning: message.
+// A regular file whose parsing would need more memory than is available is refused before
+// it is read (kExitOutOfMemory).
 std::optional<scenes::Scene> load_scene_or_report(const std::string& path, int& status);
+
+// False, after printing the estimate, what is available and what limits it (status
+// kExitOutOfMemory), when `use` of the scene needs more memory than the process may
+// have. Called before the model is built (docs/RELIABILITY.md, "Memory").
+bool memory_suffices(const scenes::Scene& scene, const std::string& path, const MemoryUse& use,
+                     int& status);
 
 }  // namespace fetic::app

@@ -7,6 +7,12 @@
 
 namespace fetic::scenes {
 
+long long generated_unknowns(const GenerateOptions& o) {
+  const bool plane = o.model == ModelKind::Plane;
+  const long long nodes = (o.elements + 1LL) * (plane ? o.elements_across + 1LL : 1LL);
+  return 2LL * o.pairs * nodes * (plane ? 2 : 1);
+}
+
 Scene generate_scene(const GenerateOptions& o) {
   if (o.pairs < 1 || o.elements < 1 || o.subdomains < 1 || o.subdomains > o.elements)
     throw std::invalid_argument("need pairs >= 1 and 1 <= subdomains <= elements");
@@ -28,7 +34,11 @@ Scene generate_scene(const GenerateOptions& o) {
   const double height = plane ? length * o.elements_across / o.elements : 0.0;
   const double spacing = plane ? 2.0 * height : 0.1;
   const double E = 2.1e11, thickness = 0.01, area = 1e-4;
+  scene.struts.reserve(2 * static_cast<size_t>(o.pairs));
+  scene.loads.reserve((plane ? 2 : 1) * static_cast<size_t>(o.pairs));
+  scene.contacts.reserve(static_cast<size_t>(o.pairs));
   for (int p = 0; p < o.pairs; ++p) {
+    if (p % 1024 == 0 && o.stop && o.stop()) break;
     const double y = spacing * p;
     // Gaps from 0.3 to 1.2 per mille of the length; a right strut's push would close
     // 0.5 to 2.5 gaps; stiffness varies by a factor 2 around E.

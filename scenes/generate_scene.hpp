@@ -7,6 +7,7 @@
 // over only part of the height.
 
 #include <cstdint>
+#include <functional>
 
 #include "scenes/scene.hpp"
 
@@ -20,7 +21,13 @@ struct GenerateOptions {
   int subdomains = 4;         // along each strut
   int subdomains_across = 1;  // plane model
   std::uint32_t seed = 1;
+  // Asked every 1024 pairs: when it returns true, the generation stops early and returns
+  // the pairs made so far (the caller, interrupted, discards them).
+  std::function<bool()> stop;
 };
+
+// Unknowns of the scene generate_scene() would make, computed without making it.
+long long generated_unknowns(const GenerateOptions& options);
 
 // Throws std::invalid_argument for options that would give an invalid scene.
 Scene generate_scene(const GenerateOptions& options);

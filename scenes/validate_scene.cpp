@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "scenes/load_scene.hpp"
+#include "scenes/magnitudes.hpp"
 #include "scenes/scene_geometry.hpp"
 
 namespace fetic::scenes {
@@ -34,9 +35,18 @@ void check_strut_geometry(const Scene& scene, std::vector<Problem>& problems) {
     if (!std::isfinite(l)) {
       problems.push_back({strut.line, "strut " + quoted(strut.name) +
                                           ": coordinates too large to compute its length"});
-    } else if (!(l > kRelativeTolerance * size) || l == 0.0) {
+    } else if (l == 0.0) {
       problems.push_back(
           {strut.line, "strut " + quoted(strut.name) + ": 'from' and 'to' coincide (zero length)"});
+    } else if (!(l > kRelativeTolerance * size)) {
+      // Coordinates near 1e17 are only as exact as 16 m: a strut that short there is
+      // rounding, not geometry.
+      problems.push_back(
+          {strut.line, "strut " + quoted(strut.name) + ": its length " + number_text(l) +
+                           " is below the resolution of its coordinates (they reach " +
+                           number_text(size) + "; a length must exceed " +
+                           number_text(kRelativeTolerance) +
+                           " of them); move the scene nearer the origin"});
     }
   }
   const long long total = unknowns(scene);
@@ -46,12 +56,7 @@ void check_strut_geometry(const Scene& scene, std::vector<Problem>& problems) {
                                std::to_string(kMaxUnknowns)});
 }
 
-// Double precision squares and sums these scales during the iterations (energies, norms,
-// lambda' F lambda); keeping each within [1/kMagnitudeLimit, kMagnitudeLimit] keeps every
-// such product far from overflow and underflow. Outside it we refuse rather than return
-// NaN or a silently rounded answer.
-constexpr double kMagnitudeLimit = 1e60;
-
+// kMagnitudeLimit: scenes/magnitudes.hpp.
 bool outside_magnitude_range(double value) {
   const double magnitude = std::abs(value);
   return magnitude > kMagnitudeLimit || magnitude < 1.0 / kMagnitudeLimit;
@@ -174,6 +179,34 @@ void check_contacts(const Scene& scene, std::vector<Problem>& problems,
                                             std::to_string(a.elements_across + 1) + " and " +
                                             std::to_string(b.elements_across + 1) +
                                             "); node-to-node contact pairs them one by one"});
+    else if (scene.model == ModelKind::Plane &&
+             std::abs(a.height - b.height) > kRelativeTolerance * std::max(a.height, b.height))
+      warnings.push_back({contact.line, label + ": the end faces have different heights (" +
+                                            number_text(a.height) + " and " +
+                                            number_text(b.height) +
+                                            "); node-to-node contact pairs their nodes by "
+                                            "order across the face, not by position, so "
+                                            "paired nodes sit up to " +
+                                            number_text(std::abs(a.height - b.height) / 2) +
+                                            " apart across the axis"});
+  }
+}
+
+// Bar model: a strut carries only axial displacement, so only the axial component of a
+// force counts (SCENES.md). A sideways component is dropped: valid, but say so.
+void check_bar_loads(const Scene& scene, std::vector<Problem>& warnings) {
+  for (const Load& load : scene.loads) {
+    const Point t = axis(scene.struts[load.strut]);
+    const double along = load.force[0] * t[0] + load.force[1] * t[1];
+    const double across = load.force[1] * t[0] - load.force[0] * t[1];
+    const double size = std::hypot(load.force[0], load.force[1]);
+    if (!(std::abs(across) > kRelativeTolerance * size)) continue;
+    const std::string unit = load.per_length ? " N/m" : " N";
+    warnings.push_back({load.line, "load on strut " + quoted(scene.struts[load.strut].name) +
+                                       ": the bar model carries only the axial component of a "
+                                       "force; the sideways component " +
+                                       number_text(across) + unit +
+                                       " is dropped (axial: " + number_text(along) + unit + ")"});
   }
 }
 
@@ -223,6 +256,7 @@ std::vector<Problem> validate_scene(Scene& scene) {
   if (!problems.empty()) return problems;
   check_contacts(scene, problems, scene.warnings);
   check_element_shapes(scene, scene.warnings);
+  if (scene.model == ModelKind::Bar) check_bar_loads(scene, scene.warnings);
   if (scene.model == ModelKind::Bar)
     check_bar_struts_held(scene, problems);
   else

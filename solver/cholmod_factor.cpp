@@ -1,6 +1,7 @@
 #include "solver/cholmod_factor.hpp"
 
 #include <cstring>
+#include <new>
 #include <stdexcept>
 
 #include <cholmod.h>
@@ -56,14 +57,16 @@ CholmodFactor::Result CholmodFactor::factorize(const SparseMatrix& A) {
   view.packed = 1;
   cholmod_common& c = impl_->common;
   impl_->factor = cholmod_analyze(&view, &c);
-  if (!impl_->factor)
-    return c.status == CHOLMOD_OUT_OF_MEMORY ? Result::OutOfMemory : Result::Failed;
+  // CHOLMOD running out of memory is std::bad_alloc like any other allocation: the
+  // commands report it as such (status 7), not as a singular or failed factorization.
+  if (!impl_->factor && c.status == CHOLMOD_OUT_OF_MEMORY) throw std::bad_alloc();
+  if (!impl_->factor) return Result::Failed;
   cholmod_factorize(&view, impl_->factor, &c);
   if (c.status == CHOLMOD_NOT_POSDEF || impl_->factor->minor < impl_->factor->n) {
     failed_column_ = static_cast<int>(impl_->factor->minor);
     return Result::NotPositiveDefinite;
   }
-  if (c.status == CHOLMOD_OUT_OF_MEMORY) return Result::OutOfMemory;
+  if (c.status == CHOLMOD_OUT_OF_MEMORY) throw std::bad_alloc();
   if (c.status < CHOLMOD_OK) return Result::Failed;
   return Result::Ok;
 }
@@ -95,8 +98,10 @@ void CholmodFactor::solve(const double* b, double* x, int columns) const {
   rhs.xtype = CHOLMOD_REAL;
   rhs.dtype = CHOLMOD_DOUBLE;
   if (!cholmod_solve2(CHOLMOD_A, impl_->factor, &rhs, nullptr, &impl_->x, nullptr, &impl_->y,
-                      &impl_->e, &impl_->common))
+                      &impl_->e, &impl_->common)) {
+    if (impl_->common.status == CHOLMOD_OUT_OF_MEMORY) throw std::bad_alloc();
     throw std::runtime_error("CHOLMOD solve failed");
+  }
   std::memcpy(x, impl_->x->x, sizeof(double) * rhs.nzmax);
 }
 

@@ -21,7 +21,8 @@ class CholmodFactor {
   CholmodFactor(CholmodFactor&&) noexcept;
   CholmodFactor& operator=(CholmodFactor&&) noexcept;
 
-  // Factorizes the symmetric matrix A (only its lower triangle is read).
+  // Factorizes the symmetric matrix A (only its lower triangle is read). Throws
+  // std::bad_alloc when CHOLMOD runs out of memory (OutOfMemory is never returned).
   Result factorize(const SparseMatrix& A);
   // Column where factorization broke down (valid after NotPositiveDefinite).
   int failed_column() const { return failed_column_; }

@@ -1,12 +1,19 @@
 #include "solver/load_sweep.hpp"
 
+#include <cmath>
+
 namespace fetic::solver {
 
 std::vector<double> load_steps(double first, double last, int count) {
   std::vector<double> values;
   if (count <= 1) return {first};
-  for (int i = 0; i < count; ++i)
-    values.push_back(first + (last - first) * static_cast<double>(i) / (count - 1));
+  // last - first overflows for ends near the largest double (-1e308:1e308): then the
+  // weighted mean, which cannot.
+  const double span = last - first;
+  for (int i = 0; i < count; ++i) {
+    const double s = static_cast<double>(i) / (count - 1);
+    values.push_back(std::isfinite(span) ? first + span * s : first * (1.0 - s) + last * s);
+  }
   values.back() = last;
   return values;
 }

@@ -15,7 +15,9 @@
 #include "app/gui/app.hpp"
 #include "app/gui/options.hpp"
 #include "app/gui/script.hpp"
+#include "app/load_factor_check.hpp"
 #include "app/method_options.hpp"
+#include "app/out_of_memory.hpp"
 #include "app/render_output.hpp"
 #include "app/scene_input.hpp"
 #include "render/glfw_window.hpp"
@@ -35,7 +37,7 @@ int run_gui(const gui::Options& args) {
   if (!args.script.empty()) {
     std::ifstream in(args.script);
     if (!in) {
-      std::cerr << args.script << ": cannot read the script\n";
+      std::cerr << scenes::printable(args.script) << ": cannot read the script\n";
       return kExitUsage;
     }
     std::stringstream text;
@@ -43,12 +45,26 @@ int run_gui(const gui::Options& args) {
     std::vector<gui::ScriptError> errors;
     script = gui::parse_script(text.str(), errors);
     for (const gui::ScriptError& error : errors)
-      std::cerr << args.script << ":" << error.line << ": " << error.message << '\n';
+      std::cerr << scenes::printable(args.script) << ":" << error.line << ": " << error.message
+                << '\n';
     if (!errors.empty()) return kExitUsage;
   }
   int status = kExitOk;
   const auto scene = load_scene_or_report(args.scene, status);
   if (!scene) return status;
+  for (const auto& [option, value] :
+       {std::pair<std::string, double>{"--load", args.load}, {"--max-load", args.max_load}})
+    if (const std::string problem = load_factor_problem(*scene, {value}, option);
+        !problem.empty()) {
+      std::cerr << scenes::printable(args.scene) << ": " << problem << '\n';
+      return kExitUsage;
+    }
+  // The window may switch to any method and keeps the iterates of a solve for scrubbing.
+  if (!memory_suffices(*scene, args.scene,
+                       {{solver::MethodKind::FetiC, solver::MethodKind::ActiveSet}, false, 100},
+                       status))
+    return status;
+  Activity running("running the window");
   auto model = std::make_shared<const solver::Model>(solver::build_model(*scene));
   const std::string title =
       model->title.empty() ? fs::path(args.scene).filename().string() : model->title;
@@ -85,14 +101,14 @@ void register_gui(CLI::App& app, int& exit_code) {
       ->check(preconditioner_name())
       ->capture_default_str();
   command->add_option("--load", args->load, "Load factor to start at")
-      ->check(CLI::NonNegativeNumber)
+      ->check(number_in(0.0, 0.0, Bound::Closed, Bound::None))
       ->capture_default_str();
   command
       ->add_option("--max-load", args->max_load,
                    "Top of the load slider (0: 2, twice the scene's loads)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(number_in(0.0, 0.0, Bound::Closed, Bound::None));
   command->add_option("--magnification", args->magnification, "Lock the magnification (0: auto)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(number_in(0.0, 0.0, Bound::Closed, Bound::None));
   command->add_option("--size", args->size, "Window size in pixels")
       ->check(image_size_check())
       ->capture_default_str();

@@ -11,6 +11,7 @@
 #include <imgui.h>
 
 #include "app/gui/app.hpp"
+#include "scenes/scene_error.hpp"
 
 namespace fetic::app::gui {
 
@@ -98,7 +99,7 @@ void App::run_script(std::vector<ScriptAction>& script, std::size_t& next, doubl
       const bool settled = (solved_on_screen_ && !worker_.busy()) || settled_live;
       if (!settled || recording_ || !queue_.empty()) {
         if (now - wait_started_ > 120.0) {
-          std::cerr << args_.script << ":" << action.line
+          std::cerr << scenes::printable(args_.script) << ":" << action.line
                     << ": wait: the solve did not finish within 120 s\n";
           failed = true;
           quit_ = true;

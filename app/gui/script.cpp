@@ -1,6 +1,7 @@
 #include "app/gui/script.hpp"
 
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <sstream>
 
@@ -15,6 +16,12 @@ std::optional<double> number(const std::string& text) {
   const double value = std::strtod(text.c_str(), &end);
   if (end != text.c_str() + text.size() || !std::isfinite(value)) return std::nullopt;
   return value;
+}
+
+std::string short_number(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", value);
+  return text;
 }
 
 }  // namespace
@@ -57,7 +64,8 @@ std::vector<ScriptAction> parse_script(const std::string& text, std::vector<Scri
     const auto need_number = [&](RequestKind kind, double low, double high) {
       const auto value = number(argument);
       if (!value || *value < low || *value > high) {
-        errors.push_back({line, "'" + verb + "' needs a number" +
+        errors.push_back({line, "'" + verb + "' needs a number from " + short_number(low) + " to " +
+                                    short_number(high) +
                                     (argument.empty() ? "" : ", not '" + argument + "'")});
         return false;
       }

@@ -51,8 +51,8 @@ TEST_CASE("script errors name the line and the problem", "[script]") {
   parse_script("load\nload x\njump 3\ntoggle colours\n-1 quit\n1.0\nstep now\n", errors);
   REQUIRE(errors.size() == 7);
   CHECK(errors[0].line == 1);
-  CHECK(errors[0].message == "'load' needs a number");
-  CHECK(errors[1].message == "'load' needs a number, not 'x'");
+  CHECK(errors[0].message == "'load' needs a number from 0 to 1e+300");
+  CHECK(errors[1].message == "'load' needs a number from 0 to 1e+300, not 'x'");
   CHECK(errors[2].message == "unknown action 'jump'");
   CHECK(errors[3].line == 4);
   CHECK(errors[4].message == "the time must not be negative");
@@ -81,4 +81,12 @@ TEST_CASE("method and preconditioner names are checked; live stepping and cancel
   CHECK(actions[2].request.value == 1.0);
   CHECK(actions[3].request.value == 0.0);
   CHECK(actions[4].request.kind == RequestKind::Cancel);
+}
+
+TEST_CASE("script numbers name their range", "[script]") {
+  std::vector<ScriptError> errors;
+  parse_script("record-sweep 1000000000\nmethod bogus\n", errors);
+  REQUIRE(errors.size() == 2);
+  CHECK(errors[0].message == "'record-sweep' needs a number from 2 to 10000, not '1000000000'");
+  CHECK(errors[1].message == "unknown method 'bogus' (feti-c, active-set, feti, cg or sd)");
 }
