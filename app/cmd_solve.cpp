@@ -67,10 +67,18 @@ void print_summary(std::ostream& out, const solver::Model& model, const solver::
       << "\n";
   if (!state.message.empty()) out << "             " << state.message << "\n";
   out << "contacts     " << state.active_set_size() << " of " << model.pairs.size()
-      << " node pairs active\n";
+      << " node pairs active";
+  double total_force = 0.0;
+  for (double force : state.force)
+    if (std::isfinite(force)) total_force += force;
+  if (!model.pairs.empty())
+    out << ", total contact force " << format("%.6e", total_force) << " " << model.units.force;
+  out << "\n";
+  out << "units        lengths in " << model.units.length << ", forces in " << model.units.force
+      << ", stresses in " << scenes::stress_unit(model.units) << "\n";
   if (largest_strut >= 0)
-    out << "largest displacement " << format("%.6e", largest) << " (strut '"
-        << model.strut_names[largest_strut] << "', node " << largest_node << ")\n";
+    out << "largest displacement " << format("%.6e", largest) << " " << model.units.length
+        << " (strut '" << model.strut_names[largest_strut] << "', node " << largest_node << ")\n";
   out << "time         set-up " << format("%.3f", info.setup_seconds * 1e3) << " ms, solve "
       << format("%.3f", info.solve_seconds * 1e3) << " ms\n";
 }

@@ -12,6 +12,9 @@ nlohmann::json result_json(const solver::Model& model, const solver::Snapshot& f
   result["scene"] = info.scene_path;
   result["title"] = model.title;
   result["model"] = scenes::to_string(model.kind);
+  result["units"] = {{"length", model.units.length},
+                     {"force", model.units.force},
+                     {"stress", scenes::stress_unit(model.units)}};
   result["method"] = solver::to_string(info.method);
   if (solver::is_dual(info.method))
     result["preconditioner"] = solver::to_string(info.preconditioner);

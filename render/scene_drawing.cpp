@@ -6,6 +6,7 @@
 
 #include "render/colormap.hpp"
 #include "render/text_format.hpp"
+#include "scenes/units.hpp"
 
 namespace fetic::render {
 namespace {
@@ -184,7 +185,7 @@ void draw_loads(DrawList& list, const solver::Model& model, const solver::Snapsh
   }
 }
 
-void draw_stress_legend(DrawList& list, const SceneFraming& framing) {
+void draw_stress_legend(DrawList& list, const SceneFraming& framing, const scenes::Units& units) {
   const float text = framing.text_size;
   const Rect& region = framing.region;
   const float width = std::min(13.0f * text, 0.4f * region.width());
@@ -200,9 +201,10 @@ void draw_stress_legend(DrawList& list, const SceneFraming& framing) {
     list.triangle({{xa, y0}, ca}, {{xb, y1}, cb}, {{xa, y1}, ca});
   }
   list.rect_outline({x0, y0, x0 + width, y1}, 1.0f, kOutline);
-  std::string unit;
   const double scale = framing.stress_scale;
-  const double divisor = si_scale(scale, "Pa", unit);
+  const scenes::DisplayUnit display = scenes::display_unit(scenes::Quantity::Stress, units, scale);
+  const std::string& unit = display.name;
+  const double divisor = display.divisor;
   const float label = 0.85f * text;
   const std::vector<std::pair<float, double>> ticks{{0.0f, -scale}, {0.5f, 0.0}, {1.0f, scale}};
   for (const auto& [where, value] : ticks) {
@@ -315,7 +317,7 @@ DrawList draw_scene(const solver::Model& model, const solver::Snapshot& snapshot
       if (mark.active)
         list.ring(mark.center, radius, std::max(1.5f, text / 10.0f), palette::contact);
 
-  if (by_stress) draw_stress_legend(list, framing);
+  if (by_stress) draw_stress_legend(list, framing, model.units);
   const std::string what = framing.gaps_magnified ? "displacements and gaps " : "displacements ";
   list.text(what + times(framing.magnification),
             {framing.region.x1 - text, framing.region.y1 - 0.6f * text}, 0.9f * text,

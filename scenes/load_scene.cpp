@@ -13,6 +13,7 @@
 #include <toml++/toml.h>
 
 #include "scenes/scene_text.hpp"
+#include "scenes/units.hpp"
 #include "scenes/validate_scene.hpp"
 
 namespace fetic::scenes {
@@ -21,8 +22,8 @@ namespace {
 constexpr long long kMaxElements = 10'000'000;
 constexpr long long kMaxSubdomains = 1'000'000;
 
-const std::vector<std::string> kTopKeys = {"title", "model", "defaults",
-                                           "strut", "load",  "contact"};
+const std::vector<std::string> kTopKeys = {"title", "model",   "defaults", "strut",
+                                           "load",  "contact", "units"};
 const std::vector<std::string> kStrutKeys = {"name",
                                              "from",
                                              "to",
@@ -228,6 +229,7 @@ class SceneParser {
   void parse(const toml::table& root) {
     read_.check_keys(root, kTopKeys, "the scene (top level)");
     parse_header(root);
+    parse_units(root);
     const toml::table* defaults = parse_defaults(root);
     parse_struts(root, defaults);
     parse_loads(root);
@@ -253,6 +255,36 @@ class SceneParser {
         read_.error(line_of(*model), "'model' must be \"bar\" or \"plane\", got \"" + *text + "\"");
       }
     }
+  }
+
+  // [units]: length and force, each optional (SI by default); names from scenes/units.hpp.
+  void parse_units(const toml::table& root) {
+    const toml::node* node = root.get("units");
+    if (!node) return;
+    const toml::table* units = node->as_table();
+    if (!units) {
+      read_.error(line_of(*node), "'units' must be a table [units], got " + type_name(*node));
+      return;
+    }
+    read_.check_keys(*units, {"length", "force"}, "[units]");
+    const auto unit = [&](const char* key, const std::vector<std::string>& names,
+                          std::string& out) {
+      const toml::node* value = units->get(key);
+      if (!value) return;
+      const auto text = read_.string(*value, std::string("'units.") + key + "'");
+      if (!text) return;
+      if (std::find(names.begin(), names.end(), *text) == names.end()) {
+        std::string list;
+        for (const std::string& name : names)
+          list += (list.empty() ? "" : ", ") + name;
+        read_.error(line_of(*value), std::string("'units.") + key + "' must be one of " + list +
+                                         ", got \"" + *text + "\"");
+        return;
+      }
+      out = *text;
+    };
+    unit("length", length_unit_names(), scene_.units.length);
+    unit("force", force_unit_names(), scene_.units.force);
   }
 
   const toml::table* parse_defaults(const toml::table& root) {

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 #include "scenes/scene_error.hpp"
+#include "scenes/units.hpp"
 
 namespace fetic::scenes {
 
@@ -63,6 +64,7 @@ struct Scene {
   std::vector<Strut> struts;
   std::vector<Load> loads;
   std::vector<Contact> contacts;
+  Units units;  // [units]: what the numbers are in (default m and N)
   // Things that are valid but worth knowing (e.g. a gap at the resolution of the
   // coordinates); the commands print them as "file:line: warning: ...".
   std::vector<Problem> warnings;

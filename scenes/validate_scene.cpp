@@ -79,14 +79,16 @@ void check_magnitudes(const Scene& scene, std::vector<Problem>& problems) {
     const double l = length(strut);
     if (outside_magnitude_range(l))
       problems.push_back({strut.line, "strut " + quoted(strut.name) + ": length " + number_text(l) +
-                                          " m is " + magnitude_range_text()});
+                                          " " + scene.units.length + " is " +
+                                          magnitude_range_text()});
     const double k = element_stiffness(scene, strut);
     if (outside_magnitude_range(k))
       problems.push_back(
           {strut.line, "strut " + quoted(strut.name) + ": element stiffness " +
                            (scene.model == ModelKind::Bar ? "E * area / element length = "
                                                           : "E * thickness = ") +
-                           number_text(k) + " N/m is " + magnitude_range_text()});
+                           number_text(k) + " " + force_per_length_unit(scene.units) + " is " +
+                           magnitude_range_text()});
   }
   for (const Load& load : scene.loads) {
     const double size = std::hypot(load.force[0], load.force[1]);
@@ -94,8 +96,9 @@ void check_magnitudes(const Scene& scene, std::vector<Problem>& problems) {
     const double total = load.per_length ? size * length(scene.struts[load.strut]) : size;
     if (outside_magnitude_range(total))
       problems.push_back({load.line, "load on strut " + quoted(scene.struts[load.strut].name) +
-                                         ": force " + number_text(total) + " N is " +
-                                         magnitude_range_text() + "; write 0 for no load"});
+                                         ": force " + number_text(total) + " " + scene.units.force +
+                                         " is " + magnitude_range_text() +
+                                         "; write 0 for no load"});
   }
 }
 
@@ -111,8 +114,9 @@ void check_element_shapes(const Scene& scene, std::vector<Problem>& warnings) {
     const double ratio = std::max(along / across, across / along);
     if (ratio > kAspectRatioWarning)
       warnings.push_back({strut.line, "strut " + quoted(strut.name) + ": its elements are " +
-                                          number_text(along) + " by " + number_text(across) +
-                                          " m (aspect ratio " + number_text(ratio) +
+                                          number_text(along) + " by " + number_text(across) + " " +
+                                          scene.units.length + " (aspect ratio " +
+                                          number_text(ratio) +
                                           "); expect an ill-conditioned stiffness and slow or "
                                           "stalled iterations"});
   }
@@ -168,9 +172,10 @@ void check_contacts(const Scene& scene, std::vector<Problem>& problems,
     const double size =
         std::max({std::abs(pa[0]), std::abs(pa[1]), std::abs(pb[0]), std::abs(pb[1]), scale});
     if (g.gap > 0.0 && g.gap < 1e-9 * size)
-      warnings.push_back({contact.line, label + ": the gap " + number_text(g.gap) +
+      warnings.push_back({contact.line, label + ": the gap " + number_text(g.gap) + " " +
+                                            scene.units.length +
                                             " is at the resolution of the coordinates (about " +
-                                            number_text(2.2e-16 * size) +
+                                            number_text(2.2e-16 * size) + " " + scene.units.length +
                                             "); it follows from their last digits"});
     if (scene.model == ModelKind::Plane && a.elements_across != b.elements_across)
       problems.push_back({contact.line, label +
@@ -201,7 +206,8 @@ void check_bar_loads(const Scene& scene, std::vector<Problem>& warnings) {
     const double across = load.force[1] * t[0] - load.force[0] * t[1];
     const double size = std::hypot(load.force[0], load.force[1]);
     if (!(std::abs(across) > kRelativeTolerance * size)) continue;
-    const std::string unit = load.per_length ? " N/m" : " N";
+    const std::string unit =
+        " " + (load.per_length ? force_per_length_unit(scene.units) : scene.units.force);
     warnings.push_back({load.line, "load on strut " + quoted(scene.struts[load.strut].name) +
                                        ": the bar model carries only the axial component of a "
                                        "force; the sideways component " +

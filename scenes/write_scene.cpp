@@ -47,6 +47,9 @@ std::string scene_to_toml(const Scene& scene) {
   std::ostringstream out;
   if (!scene.title.empty()) out << "title = " << quoted(scene.title) << "\n";
   out << "model = \"" << to_string(scene.model) << "\"\n";
+  if (scene.units != Units{})
+    out << "\n[units]\nlength = " << quoted(scene.units.length)
+        << "\nforce = " << quoted(scene.units.force) << "\n";
   const bool plane = scene.model == ModelKind::Plane;
   for (const Strut& s : scene.struts) {
     out << "\n[[strut]]\nname = " << quoted(s.name) << "\nfrom = " << point(s.from)

@@ -70,6 +70,8 @@ Model build_model(const scenes::Scene& scene) {
   model.kind = scene.model;
   model.path = scene.path;
   model.title = scene.title;
+  model.units = scene.units;
+  model.scene_loads = scene.loads;
   const int strut_count = static_cast<int>(scene.struts.size());
   for (int s = 0; s < strut_count; ++s) {
     const scenes::Strut& strut = scene.struts[s];

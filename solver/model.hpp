@@ -27,10 +27,13 @@ struct Model {
   scenes::ModelKind kind = scenes::ModelKind::Bar;
   std::string path;
   std::string title;
+  scenes::Units units;  // what the scene's numbers are in (for legends and reports)
   std::vector<std::string> strut_names;
   std::vector<StrutMesh> struts;
   // Nodal forces per strut at load factor 1, DOF-indexed like the strut (node * dofs + c).
   std::vector<Eigen::VectorXd> loads;
+  // The scene's [[load]]s as written (point or per length), for drawing them as glyphs.
+  std::vector<scenes::Load> scene_loads;
   // Per strut: nodes whose DOFs are all clamped, in increasing order.
   std::vector<std::vector<int>> clamped_nodes;
   std::vector<ContactPair> pairs;

@@ -77,6 +77,26 @@ TEST_CASE("fetic solve writes the result file of the contract") {
   REQUIRE(history.size() == result["iterations"].get<size_t>() + 1);
   CHECK(history[0]["iteration"] == 0);
   CHECK(history.back()["active_set"] == active);
+  CHECK(result["units"]["length"] == "m");
+  CHECK(result["units"]["stress"] == "Pa");
+}
+
+TEST_CASE("a scene in millimetres and newtons is reported in mm, N and MPa") {
+  const std::string json_path = temporary("fetic_press_mm.json");
+  const Run r = run("solve " + scene("press_mm.toml") + " --json " + json_path);
+  INFO(r.output);
+  REQUIRE(r.status == 0);
+  CHECK_THAT(r.output, Catch::Contains("units        lengths in mm, forces in N, stresses in MPa"));
+  CHECK_THAT(r.output, Catch::Contains(" mm (strut '"));
+  std::ifstream in(json_path);
+  const nlohmann::json result = nlohmann::json::parse(in);
+  CHECK(result["units"] == nlohmann::json({{"length", "mm"}, {"force", "N"}, {"stress", "MPa"}}));
+  // The numbers are the scene's own: the middle pair stays open (30 kN over 500 mm of
+  // 100 mm² at 210000 N/mm² moves 0.71 mm, less than its 1 mm gap).
+  const auto& open = result["contacts"][1]["pairs"][0];
+  CHECK(!open["active"].get<bool>());
+  const double tip = result["struts"][3]["displacements"][0][0].get<double>();
+  CHECK(tip == Approx(-30000.0 * 500.0 / (210000.0 * 100.0)).epsilon(1e-6));
 }
 
 TEST_CASE("fetic solve exit statuses: invalid scene 2, unsupported method 3, no convergence 4") {

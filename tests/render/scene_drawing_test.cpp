@@ -9,6 +9,7 @@
 #include "render/overlay.hpp"
 #include "render/scene_drawing.hpp"
 #include "render/scene_framing.hpp"
+#include "render/text_format.hpp"
 #include "scenes/load_scene.hpp"
 #include "solver/method.hpp"
 
@@ -183,8 +184,9 @@ TEST_CASE("frames: the initial state and one per iteration; load steps one per s
 TEST_CASE("the overlay names method, iteration, residual and active set") {
   const auto solved = solve("thesis.toml", solver::MethodKind::ActiveSet);
   const View view = small_view();
-  const DrawList overlay = draw_overlay({"Thesis", "active-set", "", ""}, solved->model, solved->final,
-                                        solved->method->history(), solved->extent, view);
+  const DrawList overlay =
+      draw_overlay({"Thesis", "active-set", "", ""}, solved->model, solved->final,
+                   solved->method->history(), solved->extent, view);
   std::string all;
   for (const TextItem& text : overlay.texts())
     all += text.text + "|";
@@ -197,4 +199,21 @@ TEST_CASE("the overlay names method, iteration, residual and active set") {
   const Rect around{panel.x0 - 1.0f, panel.y0 - 1.0f, panel.x1 + 1.0f, panel.y1 + 1.0f};
   for (const Vertex& v : overlay.vertices())
     CHECK(around.contains(v.position));
+}
+
+TEST_CASE("the stress legend speaks the scene's units: N and mm give MPa") {
+  const auto solved = solve("press_mm.toml", solver::MethodKind::ActiveSet);
+  View view = small_view();
+  view.color_by = ColorBy::Stress;
+  const SceneFraming framing = frame_scene(solved->model, view, solved->extent, scene_region(view));
+  // Stresses of a few hundred N/mm²: the legend's ends are the largest, in MPa as they are.
+  REQUIRE(framing.stress_scale > 100.0);
+  REQUIRE(framing.stress_scale < 1000.0);
+  const DrawList list = draw_scene(solved->model, solved->final, view, framing);
+  std::string all;
+  for (const TextItem& text : list.texts())
+    all += text.text + "|";
+  CHECK_THAT(all, Catch::Contains("[MPa]"));
+  CHECK_THAT(all, Catch::Contains(format("%.3g", framing.stress_scale)));
+  CHECK_THAT(all, !Catch::Contains("[Pa]"));
 }

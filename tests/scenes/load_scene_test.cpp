@@ -170,3 +170,58 @@ fixed = ["from"]
   CHECK(scene.warnings[0].line == 2);
   CHECK_THAT(scene.warnings[0].message, Catch::Contains("aspect ratio 100000"));
 }
+
+TEST_CASE("a scene may declare its units; SI when it does not") {
+  const char* base = R"(
+model = "bar"
+[[strut]]
+name = "A"
+from = [0, 0]
+to = [500, 0]
+E = 210000
+area = 100
+elements = 2
+fixed = ["from"]
+)";
+  const Scene si = parse_scene(base, "si.toml");
+  CHECK(si.units.length == "m");
+  CHECK(si.units.force == "N");
+  const Scene mm =
+      parse_scene(std::string(base) + "[units]\nlength = \"mm\"\nforce = \"kN\"\n", "mm.toml");
+  CHECK(mm.units.length == "mm");
+  CHECK(mm.units.force == "kN");
+  // Only what is given changes.
+  const Scene inches = parse_scene(std::string("units = { length = \"in\" }\n") + base, "in.toml");
+  CHECK(inches.units.length == "in");
+  CHECK(inches.units.force == "N");
+}
+
+TEST_CASE("units: derived names and the prefix a legend uses") {
+  CHECK(stress_unit({"m", "N"}) == "Pa");
+  CHECK(stress_unit({"mm", "N"}) == "MPa");
+  CHECK(stress_unit({"mm", "kN"}) == "GPa");
+  CHECK(stress_unit({"m", "kN"}) == "kPa");
+  CHECK(stress_unit({"cm", "N"}) == "N/cm²");  // 10 kPa has no prefix of its own
+  CHECK(stress_unit({"in", "lbf"}) == "psi");
+  CHECK(stress_unit({"in", "kip"}) == "ksi");
+  CHECK(force_per_length_unit({"mm", "N"}) == "N/mm");
+  // 420 N/mm² is 420 MPa; 420e6 N/m² too; 0.42 kN/mm² is 420 MPa as well.
+  DisplayUnit unit = display_unit(Quantity::Stress, {"mm", "N"}, 420.0);
+  CHECK(unit.name == "MPa");
+  CHECK(420.0 / unit.divisor == Approx(420.0));
+  unit = display_unit(Quantity::Stress, {"m", "N"}, 420e6);
+  CHECK(unit.name == "MPa");
+  CHECK(420e6 / unit.divisor == Approx(420.0));
+  unit = display_unit(Quantity::Stress, {"mm", "kN"}, 0.42);
+  CHECK(unit.name == "MPa");
+  CHECK(0.42 / unit.divisor == Approx(420.0));
+  unit = display_unit(Quantity::Force, {"mm", "N"}, 84000.0);
+  CHECK(unit.name == "kN");
+  CHECK(84000.0 / unit.divisor == Approx(84.0));
+  // Lengths stay in the scene's unit; imperial quantities are not converted.
+  CHECK(display_unit(Quantity::Length, {"mm", "N"}, 0.001).name == "mm");
+  CHECK(display_unit(Quantity::Stress, {"in", "lbf"}, 3000.0).name == "psi");
+  CHECK(display_unit(Quantity::Stress, {"in", "lbf"}, 3000.0).divisor == 1.0);
+  CHECK(metres_per("in") == Approx(0.0254));
+  CHECK(!newtons_per("kgf").has_value());
+}

@@ -15,6 +15,7 @@ namespace {
 void require_same(const Scene& a, const Scene& b) {
   REQUIRE(a.model == b.model);
   CHECK(a.title == b.title);
+  CHECK(a.units == b.units);
   REQUIRE(a.struts.size() == b.struts.size());
   for (size_t i = 0; i < a.struts.size(); ++i) {
     const Strut& x = a.struts[i];
