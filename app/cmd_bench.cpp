@@ -167,8 +167,9 @@ int run_bench(const BenchArgs& args) {
     if (!scene) return status;
     if (!memory_suffices(
             *scene, path,
-            {{solver::MethodKind::ActiveSet, solver::MethodKind::FetiC, solver::MethodKind::Feti,
-              solver::MethodKind::ConjugateGradient, solver::MethodKind::SteepestDescent},
+            {{solver::MethodKind::ActiveSet, solver::MethodKind::FetiC, solver::MethodKind::Mprgp,
+              solver::MethodKind::Feti, solver::MethodKind::ConjugateGradient,
+              solver::MethodKind::SteepestDescent},
              false,
              0},
             status))

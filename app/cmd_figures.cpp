@@ -51,7 +51,8 @@ int run_figures(const FiguresArgs& args) {
     if (scene_status == kExitInterrupted) return scene_status;
     if (scene && !memory_suffices(*scene, args.scene,
                                   {{solver::MethodKind::ActiveSet, solver::MethodKind::FetiC,
-                                    solver::MethodKind::Feti, solver::MethodKind::ConjugateGradient,
+                                    solver::MethodKind::Mprgp, solver::MethodKind::Feti,
+                                    solver::MethodKind::ConjugateGradient,
                                     solver::MethodKind::SteepestDescent},
                                    false,
                                    0},
