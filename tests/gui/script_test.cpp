@@ -88,5 +88,5 @@ TEST_CASE("script numbers name their range", "[script]") {
   parse_script("record-sweep 1000000000\nmethod bogus\n", errors);
   REQUIRE(errors.size() == 2);
   CHECK(errors[0].message == "'record-sweep' needs a number from 2 to 10000, not '1000000000'");
-  CHECK(errors[1].message == "unknown method 'bogus' (feti-c, active-set, feti, cg or sd)");
+  CHECK(errors[1].message == "unknown method 'bogus' (feti-c, mprgp, active-set, feti, cg or sd)");
 }
