@@ -88,7 +88,7 @@ int run_bench(const BenchArgs& args) {
                  ("fetic-bench-render-" + std::to_string(::getpid())))
                     .string();
   if (!make_output_directory(directory)) return kExitOutput;
-  auto headless = open_headless(directory);
+  auto headless = open_headless(directory, render::base_text_size(size.width, size.height));
   if (!headless) return kExitNoDisplay;
 
   const render::FramePlan plan;  // every iteration at load factor 1
@@ -113,8 +113,8 @@ int run_bench(const BenchArgs& args) {
     const render::ComposedFrame composed = composer.compose(frame);
     timing.compose += seconds(start);
     start = Clock::now();
-    render::Image image = headless->renderer->render(
-        size.width, size.height, {&composed.scene, &composed.overlay}, render::palette::background);
+    render::Image image = headless->renderer->render(size.width, size.height, composed.layers(),
+                                                     render::palette::background);
     timing.render += seconds(start);
     return image;
   };

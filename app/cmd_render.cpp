@@ -43,6 +43,7 @@ struct RenderArgs {
   int max_frames = 2000;
   int threads = 0;
   int samples = 4;
+  bool labels = false;
 };
 
 int run_render(const RenderArgs& args) {
@@ -84,7 +85,8 @@ int run_render(const RenderArgs& args) {
     return kExitUsage;
   }
   if (!args.out.empty() && !make_output_directory(args.out)) return kExitOutput;
-  auto headless = open_headless(args.out.empty() ? args.movie : args.out);
+  auto headless = open_headless(args.out.empty() ? args.movie : args.out,
+                                render::base_text_size(size.width, size.height));
   if (!headless) return kExitNoDisplay;
 
   // Survey pass: the same deterministic run, for fixed scales and the frame count.
@@ -108,6 +110,7 @@ int run_render(const RenderArgs& args) {
   view.magnification = args.magnification;
   view.color_by = args.color == "stress" ? render::ColorBy::Stress : render::ColorBy::Subdomain;
   view.show_overlay = !args.no_overlay;
+  view.show_labels = args.labels;
   render::OverlayInfo info;
   info.title =
       model.title.empty() ? std::filesystem::path(args.scene).filename().string() : model.title;
@@ -139,9 +142,8 @@ int run_render(const RenderArgs& args) {
     render::run_frames(*method, plan, [&](const render::Frame& frame) {
       if (interrupted()) return false;
       const render::ComposedFrame composed = composer.compose(frame);
-      render::Image image =
-          headless->renderer->render(size.width, size.height, {&composed.scene, &composed.overlay},
-                                     render::palette::background);
+      render::Image image = headless->renderer->render(size.width, size.height, composed.layers(),
+                                                       render::palette::background);
       if (stream && pool) {
         stream->submit(image);  // a copy: the PNG encoder takes the other
       } else if (stream) {
@@ -256,6 +258,8 @@ void register_render(CLI::App& app, int& exit_code) {
       ->check(CLI::IsMember({"subdomain", "stress"}))
       ->capture_default_str();
   command->add_flag("--no-overlay", args->no_overlay, "No information panel");
+  command->add_flag("--labels", args->labels,
+                    "Strut names beside the struts (where there is room)");
   command->add_option("--max-frames", args->max_frames, "Refuse runs with more frames")
       ->check(integer_in(1, 1'000'000))
       ->capture_default_str();

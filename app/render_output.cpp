@@ -69,7 +69,7 @@ int default_encoder_threads() {
   return cores > 0 ? static_cast<int>(cores) : 2;
 }
 
-std::optional<Headless> open_headless(const std::string& output) {
+std::optional<Headless> open_headless(const std::string& output, float text_size) {
   Headless headless;
   try {
     headless.context = render::make_egl_context();
@@ -77,7 +77,7 @@ std::optional<Headless> open_headless(const std::string& output) {
     std::cerr << scenes::printable(output) << ": cannot render: " << error.what() << '\n';
     return std::nullopt;
   }
-  headless.font = std::make_unique<render::FontAtlas>();
+  headless.font = std::make_unique<render::FontAtlas>(1.3f * text_size);
   if (!headless.font->note().empty()) std::cerr << "note: " << headless.font->note() << '\n';
   try {
     headless.renderer = std::make_unique<render::GlRenderer>(*headless.context, *headless.font);

@@ -49,7 +49,9 @@ struct Headless {
 };
 // The EGL context, fonts and renderer, or nullopt after printing why (the caller exits
 // with kExitNoDisplay). `output` names what was to be rendered, for the message.
-std::optional<Headless> open_headless(const std::string& output);
+// `text_size`: the base text size of the frames (render::base_text_size), so that the
+// font atlas has sizes for it.
+std::optional<Headless> open_headless(const std::string& output, float text_size = 14.0f);
 
 // Creates the directory (and parents); prints the problem and returns false on failure.
 bool make_output_directory(const std::string& directory);

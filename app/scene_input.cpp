@@ -27,18 +27,23 @@ std::string counts(const scenes::Scene& scene) {
 
 }  // namespace
 
+std::string memory_problem(const scenes::Scene& scene, const MemoryUse& use) {
+  if (!memory_check_enabled()) return "";
+  const auto available = available_memory();
+  if (!available) return "";
+  const MemoryEstimate need = estimate_memory(scene, use);
+  if (need.bytes <= available->bytes) return "";
+  return "not enough memory: " + need.largest + " on this scene (" + counts(scene) +
+         ") needs about " + memory_text(need.bytes) + ", and " + memory_text(available->bytes) +
+         " is available (" + available->limited_by + ")";
+}
+
 bool memory_suffices(const scenes::Scene& scene, const std::string& path, const MemoryUse& use,
                      int& status) {
-  if (!memory_check_enabled()) return true;
-  const auto available = available_memory();
-  if (!available) return true;
-  const MemoryEstimate need = estimate_memory(scene, use);
-  if (need.bytes <= available->bytes) return true;
-  std::cerr << scenes::printable(path) << ": not enough memory: " << need.largest
-            << " on this scene (" << counts(scene) << ") needs about " << memory_text(need.bytes)
-            << ", and " << memory_text(available->bytes) << " is available ("
-            << available->limited_by
-            << "); refused before assembly (FETIC_MEMORY_CHECK=off tries anyway)\n";
+  const std::string problem = memory_problem(scene, use);
+  if (problem.empty()) return true;
+  std::cerr << scenes::printable(path) << ": " << problem
+            << "; refused before assembly (FETIC_MEMORY_CHECK=off tries anyway)\n";
   status = kExitOutOfMemory;
   return false;
 }

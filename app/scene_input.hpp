@@ -19,6 +19,9 @@ std::optional<scenes::Scene> load_scene_or_report(const std::string& path, int& 
 // False, after printing the estimate, what is available and what limits it (status
 // kExitOutOfMemory), when `use` of the scene needs more memory than the process may
 // have. Called before the model is built (docs/RELIABILITY.md, "Memory").
+// The refusal's text ("not enough memory: ... needs about ..., and ... is available (...)"),
+// or "" when the scene fits.
+std::string memory_problem(const scenes::Scene& scene, const MemoryUse& use);
 bool memory_suffices(const scenes::Scene& scene, const std::string& path, const MemoryUse& use,
                      int& status);
 

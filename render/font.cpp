@@ -3,7 +3,9 @@
 #include <cfloat>
 #include <cmath>
 #include <cstdio>
+#include <iterator>
 #include <utility>
+#include <vector>
 
 #include <imgui.h>
 #include <imgui_internal.h>
@@ -47,19 +49,27 @@ struct FontAtlas::Impl {
   }
 };
 
-FontAtlas::FontAtlas(const std::string& regular_ttf, const std::string& bold_ttf)
+FontAtlas::FontAtlas(float largest, const std::string& regular_ttf, const std::string& bold_ttf)
     : impl_(std::make_unique<Impl>()) {
+  // Larger sizes for large frames, a fifth apart, only as far as they will be used.
+  std::vector<float> regular_sizes(std::begin(kRegularSizes), std::end(kRegularSizes));
+  std::vector<float> bold_sizes(std::begin(kBoldSizes), std::end(kBoldSizes));
+  for (float size = 26.0f; size <= std::min(largest, 64.0f) * 1.1f;
+       size = std::round(size * 1.25f)) {
+    regular_sizes.push_back(size);
+    bold_sizes.push_back(size);
+  }
   ImFontAtlas& atlas = impl_->atlas;
   atlas.TexDesiredWidth = 2048;
   ImFontConfig config;
   config.OversampleH = 2;
   config.OversampleV = 1;
   if (readable(regular_ttf)) {
-    for (float size : kRegularSizes)
+    for (float size : regular_sizes)
       impl_->regular.emplace_back(
           size, atlas.AddFontFromFileTTF(regular_ttf.c_str(), size, &config, kGlyphRanges));
     if (readable(bold_ttf))
-      for (float size : kBoldSizes)
+      for (float size : bold_sizes)
         impl_->bold.emplace_back(
             size, atlas.AddFontFromFileTTF(bold_ttf.c_str(), size, &config, kGlyphRanges));
     else

@@ -26,8 +26,10 @@ inline constexpr const char* kDejaVuSansBold =
 
 class FontAtlas {
  public:
-  FontAtlas(const std::string& regular_ttf = kDejaVuSans,
-            const std::string& bold_ttf = kDejaVuSansBold);
+  // Sizes up to 22 pixels are always baked; `largest` (the largest text a frame will
+  // use) adds larger ones, up to 64 pixels (beyond, the nearest is scaled).
+  explicit FontAtlas(float largest = 22.0f, const std::string& regular_ttf = kDejaVuSans,
+                     const std::string& bold_ttf = kDejaVuSansBold);
   ~FontAtlas();
   FontAtlas(const FontAtlas&) = delete;
   FontAtlas& operator=(const FontAtlas&) = delete;

@@ -1,8 +1,26 @@
 #include "render/frame_composer.hpp"
 
+#include <algorithm>
+
 #include "render/scene_drawing.hpp"
 
 namespace fetic::render {
+
+std::vector<Layer> ComposedFrame::layers() const {
+  std::vector<Layer> out;
+  if (mesh) out.emplace_back(mesh.get(), &values, uniforms, region);
+  out.emplace_back(&glyphs, region);
+  if (!overlay.empty()) out.emplace_back(&overlay);
+  return out;
+}
+
+DrawList ComposedFrame::flattened() const {
+  DrawList list;
+  if (mesh) expand_mesh(*mesh, values, uniforms, list);
+  list.append(glyphs);
+  list.append(overlay);
+  return list;
+}
 
 FrameComposer::FrameComposer(const solver::Model& model, const View& view, const RunExtent& extent,
                              OverlayInfo info, int load_steps)
@@ -15,13 +33,36 @@ FrameComposer::FrameComposer(const solver::Model& model, const View& view, const
 
 ComposedFrame FrameComposer::compose(const Frame& frame) const {
   ComposedFrame composed;
-  composed.scene = draw_scene(model_, frame.snapshot, view_, framing_);
+  if (!mesh_ || !mesh_->fits(frame.snapshot))
+    mesh_ = std::make_shared<const SceneMesh>(
+        build_scene_mesh(model_, frame.snapshot, framing_, view_.color_by));
+  composed.mesh = mesh_;
+  fill_mesh_values(*mesh_, model_, frame.snapshot, framing_, composed.values);
+  composed.uniforms = mesh_uniforms(*mesh_, framing_);
+  composed.region = framing_.region;
+  SceneCaption caption{info_.method, {}};
+  OverlayInfo info = info_;
+  if (load_steps_ > 1) {
+    info.load_step =
+        "step " + std::to_string(frame.load_step + 1) + " of " + std::to_string(load_steps_);
+    caption.load_step = info.load_step;
+  }
+  composed.glyphs = draw_glyphs(model_, frame.snapshot, view_, framing_, caption);
   if (view_.show_overlay) {
-    OverlayInfo info = info_;
-    if (load_steps_ > 1)
-      info.load_step =
-          "step " + std::to_string(frame.load_step + 1) + " of " + std::to_string(load_steps_);
-    composed.overlay = draw_overlay(info, model_, frame.snapshot, frame.history, extent_, view_);
+    if (load_steps_ > 1) {
+      // Plots against the load factor: the steps done so far, this one as it stands.
+      StepSeries series;
+      series.all = extent_.steps;
+      series.shown.assign(extent_.steps.begin(),
+                          extent_.steps.begin() +
+                              std::min<std::ptrdiff_t>(frame.load_step, static_cast<std::ptrdiff_t>(
+                                                                            extent_.steps.size())));
+      series.shown.push_back(summarize(frame.snapshot));
+      composed.overlay =
+          draw_overlay(info, model_, frame.snapshot, frame.history, extent_, view_, &series);
+    } else {
+      composed.overlay = draw_overlay(info, model_, frame.snapshot, frame.history, extent_, view_);
+    }
   }
   return composed;
 }

@@ -65,10 +65,43 @@ std::vector<std::vector<double>> piece_stresses(const solver::Model& model,
   return stresses;
 }
 
+namespace {
+
+// |u_i - u_j| / |x_i - x_j| over the neighbouring nodes of a piece (along and across).
+double piece_stretch(const solver::StrutMesh& mesh, const solver::Piece& piece) {
+  double largest = 0.0;
+  const solver::NodeBox& box = piece.box;
+  const auto check = [&](int i0, int k0, int i1, int k1) {
+    const solver::Vec2& u0 = piece.displacement[static_cast<std::size_t>(box.local(i0, k0))];
+    const solver::Vec2& u1 = piece.displacement[static_cast<std::size_t>(box.local(i1, k1))];
+    const double apart = (mesh.nodes[static_cast<std::size_t>(mesh.node(i1, k1))] -
+                          mesh.nodes[static_cast<std::size_t>(mesh.node(i0, k0))])
+                             .norm();
+    const double stretch = (u1 - u0).norm() / apart;
+    if (apart > 0.0 && std::isfinite(stretch)) largest = std::max(largest, stretch);
+  };
+  for (int i = box.i0; i <= box.i1; ++i)
+    for (int k = box.k0; k <= box.k1; ++k) {
+      if (i < box.i1) check(i, k, i + 1, k);
+      if (k < box.k1) check(i, k, i, k + 1);
+    }
+  return largest;
+}
+
+}  // namespace
+
 void RunExtent::include(const solver::Model& model, const Frame& frame) {
   frame_count = std::max(frame_count, frame.index + 1);
   largest_displacement =
       std::max(largest_displacement, render::largest_displacement(frame.snapshot));
+  strut_lateral.resize(model.struts.size(), 0.0);
+  for (const solver::Piece& piece : frame.snapshot.pieces) {
+    const solver::StrutMesh& mesh = model.struts[static_cast<std::size_t>(piece.strut)];
+    largest_stretch = std::max(largest_stretch, piece_stretch(mesh, piece));
+    double& lateral = strut_lateral[static_cast<std::size_t>(piece.strut)];
+    for (const solver::Vec2& u : piece.displacement)
+      if (u.allFinite()) lateral = std::max(lateral, std::abs(u.dot(mesh.e2)));
+  }
   for (double f : frame.snapshot.force)
     if (std::isfinite(f)) largest_force = std::max(largest_force, std::abs(f));
   for (const auto& piece : piece_stresses(model, frame.snapshot))
@@ -76,14 +109,34 @@ void RunExtent::include(const solver::Model& model, const Frame& frame) {
       if (std::isfinite(s)) largest_stress = std::max(largest_stress, std::abs(s));
   largest_iteration = std::max(largest_iteration, frame.snapshot.iteration);
   largest_active_set = std::max(largest_active_set, frame.snapshot.active_set_size());
-  for (const solver::HistoryEntry& entry : frame.history)
+  // Every point the plots will show: the whole history up to this frame.
+  for (const solver::HistoryEntry& entry : frame.history) {
+    largest_iteration = std::max(largest_iteration, entry.iteration);
+    largest_active_set = std::max(largest_active_set, entry.active_set);
+    if (entry.residual == 0.0) zero_residual = true;
     if (std::isfinite(entry.residual) && entry.residual > 0.0) {
       smallest_residual =
           smallest_residual > 0.0 ? std::min(smallest_residual, entry.residual) : entry.residual;
       largest_residual = std::max(largest_residual, entry.residual);
     }
+  }
+  if (frame.load_step >= static_cast<int>(steps.size()))
+    steps.resize(static_cast<std::size_t>(frame.load_step) + 1);
+  StepSummary& step = steps[static_cast<std::size_t>(frame.load_step)];
+  step = summarize(frame.snapshot);
   final_status = frame.snapshot.status;
   final_message = frame.snapshot.message;
+}
+
+StepSummary summarize(const solver::Snapshot& snapshot) {
+  StepSummary step;
+  step.load_factor = snapshot.load_factor;
+  step.iterations = snapshot.iteration;
+  step.active_set = snapshot.active_set_size();
+  for (double f : snapshot.force)
+    if (std::isfinite(f)) step.total_force += f;
+  step.largest_displacement = largest_displacement(snapshot);
+  return step;
 }
 
 RunExtent survey(const solver::Model& model, solver::Method& method, const FramePlan& plan,

@@ -32,6 +32,15 @@ struct Frame {
 int run_frames(solver::Method& method, const FramePlan& plan,
                const std::function<bool(const Frame&)>& visit);
 
+// The final state of one load step, for plots against the load factor.
+struct StepSummary {
+  double load_factor = 0.0;
+  int iterations = 0;
+  int active_set = 0;
+  double total_force = 0.0;  // sum of the contact forces
+  double largest_displacement = 0.0;
+};
+
 // Largest values over a run, for fixed scales.
 struct RunExtent {
   int frame_count = 0;
@@ -42,6 +51,12 @@ struct RunExtent {
   int largest_active_set = 0;
   double smallest_residual = 0.0;  // positive residuals only; 0 when there were none
   double largest_residual = 0.0;
+  bool zero_residual = false;  // some iterate's residual was exactly 0
+  // Largest |u_i - u_j| / |x_i - x_j| over neighbouring nodes (an element's stretch), and
+  // per strut its largest displacement across its axis: they bound the magnification.
+  double largest_stretch = 0.0;
+  std::vector<double> strut_lateral;
+  std::vector<StepSummary> steps;  // per load step, its last state
   solver::Status final_status = solver::Status::Running;
   std::string final_message;
 
@@ -52,6 +67,9 @@ struct RunExtent {
 // keep_going (if given) returns false.
 RunExtent survey(const solver::Model& model, solver::Method& method, const FramePlan& plan,
                  const std::function<bool()>& keep_going = {});
+
+// The summary of a solve's state (its load factor, iterations, active set, forces).
+StepSummary summarize(const solver::Snapshot& snapshot);
 
 // Largest |displacement| of a snapshot, and its axial stresses per piece and element.
 double largest_displacement(const solver::Snapshot& snapshot);

@@ -1,6 +1,7 @@
 #include "render/gl_renderer.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <cstring>
 #include <string>
@@ -34,6 +35,58 @@ out vec4 output_color;
 void main() { output_color = fragment_color * texture(atlas, fragment_uv); }
 )";
 
+// Scene meshes (render/scene_mesh.hpp): the same formulas as expand_mesh().
+constexpr const char* kMeshVertexShader = R"(#version 330 core
+layout(location = 0) in ivec2 nodes;
+layout(location = 1) in float t;
+layout(location = 2) in vec4 offset;
+layout(location = 3) in int element;
+layout(location = 4) in vec4 color;
+uniform samplerBuffer reference;       // per node row: x, y, widening x, widening y
+uniform samplerBuffer node_values;     // per node row: ux, uy, rotation, 0
+uniform samplerBuffer element_values;  // per element row: stress / scale
+uniform vec2 viewport;
+uniform float magnification, widening, pixels_per_unit, half_bar_width, rim, line_width;
+uniform vec2 center, pixel_center;
+uniform bool stress;
+out vec4 fragment_color;
+// The diverging map of colormap.cpp: ColorBrewer RdBu reversed, compression blue.
+const vec3 stops[7] = vec3[7](vec3(33, 102, 172), vec3(103, 169, 207), vec3(209, 229, 240),
+                              vec3(236, 236, 236), vec3(253, 219, 199), vec3(239, 138, 98),
+                              vec3(178, 24, 43));
+vec3 diverging(float v) {
+  float x = clamp(0.5 * (v + 1.0), 0.0, 1.0) * 6.0;
+  int i = min(int(x), 5);
+  return mix(stops[i], stops[i + 1], x - float(i)) / 255.0;
+}
+vec2 world(int row) {
+  vec4 r = texelFetch(reference, row);
+  vec4 v = texelFetch(node_values, row);
+  return r.xy + widening * r.zw + magnification * v.xy;
+}
+vec2 screen(vec2 w) { return pixel_center + (w - center) * vec2(pixels_per_unit, -pixels_per_unit); }
+void main() {
+  vec2 a = screen(world(nodes.x)), b = screen(world(nodes.y));
+  vec2 d = b - a;
+  float l = length(d);
+  d = l > 0.0 ? d / l : vec2(1.0, 0.0);
+  vec2 across = vec2(-d.y, d.x);
+  vec2 p = a + t * (b - a) +
+           (offset.x * half_bar_width + offset.y * rim + offset.w * line_width) * across +
+           offset.z * rim * d;
+  fragment_color = element >= 0 && stress
+                       ? vec4(diverging(texelFetch(element_values, element).r), 1.0)
+                       : color;
+  gl_Position = vec4(2.0 * p.x / viewport.x - 1.0, 1.0 - 2.0 * p.y / viewport.y, 0.0, 1.0);
+}
+)";
+
+constexpr const char* kMeshFragmentShader = R"(#version 330 core
+in vec4 fragment_color;
+out vec4 output_color;
+void main() { output_color = fragment_color; }
+)";
+
 GLuint compile(GLenum kind, const char* source) {
   const GLuint shader = glCreateShader(kind);
   glShaderSource(shader, 1, &source, nullptr);
@@ -49,6 +102,47 @@ GLuint compile(GLenum kind, const char* source) {
   return shader;
 }
 
+GLuint link(const char* vertex_source, const char* fragment_source) {
+  const GLuint vertex = compile(GL_VERTEX_SHADER, vertex_source);
+  const GLuint fragment = compile(GL_FRAGMENT_SHADER, fragment_source);
+  const GLuint program = glCreateProgram();
+  glAttachShader(program, vertex);
+  glAttachShader(program, fragment);
+  glLinkProgram(program);
+  glDeleteShader(vertex);
+  glDeleteShader(fragment);
+  GLint linked = 0;
+  glGetProgramiv(program, GL_LINK_STATUS, &linked);
+  if (!linked) {
+    char log[1024] = {};
+    glGetProgramInfoLog(program, sizeof log, nullptr, log);
+    glDeleteProgram(program);
+    throw RenderError(std::string("cannot link the renderer's shader program: ") + log);
+  }
+  return program;
+}
+
+// A texture buffer (samplerBuffer) of `format` over a new buffer object.
+void make_texture_buffer(GLuint& buffer, GLuint& texture, GLenum format) {
+  glGenBuffers(1, &buffer);
+  glBindBuffer(GL_TEXTURE_BUFFER, buffer);
+  glBufferData(GL_TEXTURE_BUFFER, 16, nullptr, GL_STATIC_DRAW);
+  glGenTextures(1, &texture);
+  glBindTexture(GL_TEXTURE_BUFFER, texture);
+  glTexBuffer(GL_TEXTURE_BUFFER, format, buffer);
+}
+
+template <class T>
+void upload(GLuint buffer, const std::vector<T>& data, GLenum usage) {
+  glBindBuffer(GL_TEXTURE_BUFFER, buffer);
+  // At least one texel, so that the texture buffer is never empty.
+  const std::size_t bytes = std::max<std::size_t>(16, data.size() * sizeof(T));
+  glBufferData(GL_TEXTURE_BUFFER, static_cast<GLsizeiptr>(bytes), nullptr, usage);
+  if (!data.empty())
+    glBufferSubData(GL_TEXTURE_BUFFER, 0, static_cast<GLsizeiptr>(data.size() * sizeof(T)),
+                    data.data());
+}
+
 void check(const char* what) {
   const GLenum error = glGetError();
   if (error != GL_NO_ERROR)
@@ -59,17 +153,7 @@ void check(const char* what) {
 
 GlRenderer::GlRenderer(GlContext& context, const FontAtlas& font) : context_(context), font_(font) {
   context_.make_current();
-  const GLuint vertex = compile(GL_VERTEX_SHADER, kVertexShader);
-  const GLuint fragment = compile(GL_FRAGMENT_SHADER, kFragmentShader);
-  program_ = glCreateProgram();
-  glAttachShader(program_, vertex);
-  glAttachShader(program_, fragment);
-  glLinkProgram(program_);
-  glDeleteShader(vertex);
-  glDeleteShader(fragment);
-  GLint linked = 0;
-  glGetProgramiv(program_, GL_LINK_STATUS, &linked);
-  if (!linked) throw RenderError("cannot link the renderer's shader program");
+  program_ = link(kVertexShader, kFragmentShader);
   viewport_location_ = glGetUniformLocation(program_, "viewport");
 
   glGenVertexArrays(1, &vao_);
@@ -96,6 +180,38 @@ GlRenderer::GlRenderer(GlContext& context, const FontAtlas& font) : context_(con
   glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
   glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, font_.texture_width(), font_.texture_height(), 0,
                GL_RGBA, GL_UNSIGNED_BYTE, font_.texture_rgba());
+  // Scene meshes.
+  mesh_program_ = link(kMeshVertexShader, kMeshFragmentShader);
+  glGenVertexArrays(1, &mesh_vao_);
+  glGenBuffers(1, &mesh_vbo_);
+  glBindVertexArray(mesh_vao_);
+  glBindBuffer(GL_ARRAY_BUFFER, mesh_vbo_);
+  const auto mesh_stride = static_cast<GLsizei>(sizeof(MeshVertex));
+  glEnableVertexAttribArray(0);
+  glVertexAttribIPointer(0, 2, GL_INT, mesh_stride,
+                         reinterpret_cast<void*>(offsetof(MeshVertex, node_a)));
+  glEnableVertexAttribArray(1);
+  glVertexAttribPointer(1, 1, GL_FLOAT, GL_FALSE, mesh_stride,
+                        reinterpret_cast<void*>(offsetof(MeshVertex, t)));
+  glEnableVertexAttribArray(2);
+  glVertexAttribPointer(2, 4, GL_FLOAT, GL_FALSE, mesh_stride,
+                        reinterpret_cast<void*>(offsetof(MeshVertex, offset)));
+  glEnableVertexAttribArray(3);
+  glVertexAttribIPointer(3, 1, GL_INT, mesh_stride,
+                         reinterpret_cast<void*>(offsetof(MeshVertex, element)));
+  glEnableVertexAttribArray(4);
+  glVertexAttribPointer(4, 4, GL_UNSIGNED_BYTE, GL_TRUE, mesh_stride,
+                        reinterpret_cast<void*>(offsetof(MeshVertex, color)));
+  make_texture_buffer(reference_buffer_, reference_texture_, GL_RGBA32F);
+  make_texture_buffer(values_buffer_, values_texture_, GL_RGBA32F);
+  make_texture_buffer(elements_buffer_, elements_texture_, GL_R32F);
+  glUseProgram(mesh_program_);
+  glUniform1i(glGetUniformLocation(mesh_program_, "reference"), 1);
+  glUniform1i(glGetUniformLocation(mesh_program_, "node_values"), 2);
+  glUniform1i(glGetUniformLocation(mesh_program_, "element_values"), 3);
+  glUseProgram(0);
+  glBindVertexArray(0);
+
   GLint max_samples = 0;
   glGetIntegerv(GL_MAX_SAMPLES, &max_samples);
   max_samples_ = std::max(1, static_cast<int>(max_samples));
@@ -105,6 +221,12 @@ GlRenderer::GlRenderer(GlContext& context, const FontAtlas& font) : context_(con
 
 GlRenderer::~GlRenderer() {
   release_targets();
+  const GLuint textures[] = {reference_texture_, values_texture_, elements_texture_};
+  const GLuint buffers[] = {reference_buffer_, values_buffer_, elements_buffer_, mesh_vbo_};
+  glDeleteTextures(3, textures);
+  glDeleteBuffers(4, buffers);
+  glDeleteVertexArrays(1, &mesh_vao_);
+  glDeleteProgram(mesh_program_);
   glDeleteTextures(1, &texture_);
   glDeleteBuffers(1, &vbo_);
   glDeleteVertexArrays(1, &vao_);
@@ -167,20 +289,29 @@ void GlRenderer::append(const DrawList& list, std::vector<TexturedVertex>& out) 
   }
 }
 
-Image GlRenderer::render(int width, int height, const std::vector<const DrawList*>& layers,
+Image GlRenderer::render(int width, int height, const std::vector<Layer>& layers,
                          Color background) {
   draw(width, height, layers, background);
   return read_back();
 }
 
-void GlRenderer::draw(int width, int height, const std::vector<const DrawList*>& layers,
+Image GlRenderer::render(int width, int height, const std::vector<const DrawList*>& lists,
+                         Color background) {
+  draw(width, height, lists, background);
+  return read_back();
+}
+
+void GlRenderer::draw(int width, int height, const std::vector<const DrawList*>& lists,
                       Color background) {
+  std::vector<Layer> layers;
+  for (const DrawList* list : lists)
+    if (list) layers.emplace_back(list);
+  draw(width, height, layers, background);
+}
+
+void GlRenderer::draw(int width, int height, const std::vector<Layer>& layers, Color background) {
   context_.make_current();
   resize(width, height);
-  vertices_.clear();
-  for (const DrawList* layer : layers)
-    if (layer) append(*layer, vertices_);
-
   glBindFramebuffer(GL_FRAMEBUFFER, msaa_fbo_);
   glViewport(0, 0, width, height);
   glDisable(GL_DEPTH_TEST);
@@ -191,6 +322,34 @@ void GlRenderer::draw(int width, int height, const std::vector<const DrawList*>&
   glEnable(GL_BLEND);
   glBlendEquation(GL_FUNC_ADD);
   glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+  for (const Layer& layer : layers) {
+    const bool clipped = layer.clip.width() > 0.0f && layer.clip.height() > 0.0f;
+    if (clipped) {
+      // Scissor boxes count from the bottom left.
+      const int x0 = std::clamp(static_cast<int>(std::floor(layer.clip.x0)), 0, width);
+      const int x1 = std::clamp(static_cast<int>(std::ceil(layer.clip.x1)), 0, width);
+      const int y0 = std::clamp(static_cast<int>(std::floor(layer.clip.y0)), 0, height);
+      const int y1 = std::clamp(static_cast<int>(std::ceil(layer.clip.y1)), 0, height);
+      glEnable(GL_SCISSOR_TEST);
+      glScissor(x0, height - y1, x1 - x0, y1 - y0);
+    }
+    if (layer.mesh && layer.values)
+      draw_mesh(*layer.mesh, *layer.values, layer.uniforms, width, height);
+    if (layer.list) draw_list(*layer.list, width, height);
+    if (clipped) glDisable(GL_SCISSOR_TEST);
+  }
+  glBindVertexArray(0);
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, msaa_fbo_);
+  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, resolve_fbo_);
+  glBlitFramebuffer(0, 0, width, height, 0, 0, width, height, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  check("while drawing a frame");
+}
+
+void GlRenderer::draw_list(const DrawList& list, int width, int height) {
+  vertices_.clear();
+  append(list, vertices_);
+  if (vertices_.empty()) return;
   glUseProgram(program_);
   glUniform2f(viewport_location_, static_cast<float>(width), static_cast<float>(height));
   glActiveTexture(GL_TEXTURE0);
@@ -200,12 +359,50 @@ void GlRenderer::draw(int width, int height, const std::vector<const DrawList*>&
   glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(vertices_.size() * sizeof(TexturedVertex)),
                vertices_.data(), GL_STREAM_DRAW);
   glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(vertices_.size()));
+}
 
-  glBindFramebuffer(GL_READ_FRAMEBUFFER, msaa_fbo_);
-  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, resolve_fbo_);
-  glBlitFramebuffer(0, 0, width, height, 0, 0, width, height, GL_COLOR_BUFFER_BIT, GL_NEAREST);
-  glBindFramebuffer(GL_FRAMEBUFFER, 0);
-  check("while drawing a frame");
+void GlRenderer::upload_mesh(const SceneMesh& mesh) {
+  if (mesh.id == uploaded_mesh_) return;
+  glBindBuffer(GL_ARRAY_BUFFER, mesh_vbo_);
+  glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(mesh.vertices.size() * sizeof(MeshVertex)),
+               mesh.vertices.data(), GL_STATIC_DRAW);
+  upload(reference_buffer_, mesh.nodes, GL_STATIC_DRAW);
+  uploaded_mesh_ = mesh.id;
+}
+
+void GlRenderer::draw_mesh(const SceneMesh& mesh, const MeshValues& values, const MeshUniforms& u,
+                           int width, int height) {
+  if (mesh.vertices.empty() || values.nodes.size() < mesh.nodes.size()) return;
+  upload_mesh(mesh);
+  upload(values_buffer_, values.nodes, GL_STREAM_DRAW);
+  upload(elements_buffer_, values.elements, GL_STREAM_DRAW);
+  glUseProgram(mesh_program_);
+  const auto location = [&](const char* name) { return glGetUniformLocation(mesh_program_, name); };
+  glUniform2f(location("viewport"), static_cast<float>(width), static_cast<float>(height));
+  glUniform1f(location("magnification"), u.magnification);
+  glUniform1f(location("widening"), u.widening);
+  glUniform1f(location("pixels_per_unit"), u.pixels_per_unit);
+  glUniform1f(location("half_bar_width"), u.half_bar_width);
+  glUniform1f(location("rim"), u.rim);
+  glUniform1f(location("line_width"), u.line_width);
+  glUniform2f(location("center"), u.center[0], u.center[1]);
+  glUniform2f(location("pixel_center"), u.pixel_center[0], u.pixel_center[1]);
+  glUniform1i(location("stress"), u.stress ? 1 : 0);
+  const GLuint textures[] = {reference_texture_, values_texture_, elements_texture_};
+  for (int i = 0; i < 3; ++i) {
+    glActiveTexture(static_cast<GLenum>(GL_TEXTURE1 + i));
+    glBindTexture(GL_TEXTURE_BUFFER, textures[i]);
+  }
+  glActiveTexture(GL_TEXTURE0);
+  glBindVertexArray(mesh_vao_);
+  const auto range = [](const MeshRange& r) {
+    if (r.count > 0) glDrawArrays(GL_TRIANGLES, r.first, r.count);
+  };
+  if (u.rim > 0.0f) range(mesh.bar_rims);
+  range(mesh.bar_fills);
+  range(mesh.plane_fills);
+  if (u.mesh_lines) range(mesh.plane_lines);
+  range(mesh.plane_outlines);
 }
 
 Image GlRenderer::read_back() {

@@ -1,8 +1,11 @@
 #pragma once
-// Draws draw lists with OpenGL 3.3 core: one vertex buffer, one shader (vertex colour
-// times the font atlas, whose white texel serves solid triangles), into a 4x multisampled
-// frame buffer object that is resolved before it is read back. Works in any current
-// context (EGL headless or a window).
+// Draws with OpenGL 3.3 core into a multisampled frame buffer object (4 samples unless
+// set otherwise) that is resolved before it is read back. Two kinds of layers: draw lists
+// (one streamed vertex buffer, a shader that multiplies the vertex colour by the font
+// atlas, whose white texel serves solid triangles) and scene meshes (SceneMesh): their
+// vertices and reference nodes stay on the GPU from one frame to the next, only the node
+// and element values are uploaded per frame, and the vertex shader applies the
+// magnification, pan and zoom. Works in any current context (EGL headless or a window).
 
 #include <cstdint>
 #include <vector>
@@ -11,6 +14,8 @@
 #include "render/font.hpp"
 #include "render/gl_context.hpp"
 #include "render/image.hpp"
+#include "render/layer.hpp"
+#include "render/scene_mesh.hpp"
 
 namespace fetic::render {
 
@@ -24,10 +29,12 @@ class GlRenderer {
 
   // Draws the layers in order over the background and reads the pixels back (alpha 255):
   // draw() then read_back().
-  Image render(int width, int height, const std::vector<const DrawList*>& layers, Color background);
+  Image render(int width, int height, const std::vector<Layer>& layers, Color background);
+  Image render(int width, int height, const std::vector<const DrawList*>& lists, Color background);
   // Draws the layers into the multisampled buffer and resolves it; the picture stays in
   // the renderer until the next draw (a window re-shows it without drawing again).
-  void draw(int width, int height, const std::vector<const DrawList*>& layers, Color background);
+  void draw(int width, int height, const std::vector<Layer>& layers, Color background);
+  void draw(int width, int height, const std::vector<const DrawList*>& lists, Color background);
   // The last drawn picture, rows top to bottom, alpha 255.
   Image read_back();
   // Copies the last drawn picture into the default frame buffer (a window's back buffer)
@@ -45,6 +52,10 @@ class GlRenderer {
   void resize(int width, int height);
   void release_targets();
   void append(const DrawList& list, std::vector<TexturedVertex>& out) const;
+  void draw_list(const DrawList& list, int width, int height);
+  void draw_mesh(const SceneMesh& mesh, const MeshValues& values, const MeshUniforms& uniforms,
+                 int width, int height);
+  void upload_mesh(const SceneMesh& mesh);
 
   GlContext& context_;
   const FontAtlas& font_;
@@ -53,6 +64,13 @@ class GlRenderer {
   int viewport_location_ = -1;
   int width_ = 0, height_ = 0, samples_ = 0, max_samples_ = 1;
   std::vector<TexturedVertex> vertices_;
+  // Scene meshes: the program, the static vertex buffer and three texture buffers
+  // (reference nodes; per frame node values and element values).
+  unsigned mesh_program_ = 0, mesh_vao_ = 0, mesh_vbo_ = 0;
+  unsigned reference_buffer_ = 0, reference_texture_ = 0;
+  unsigned values_buffer_ = 0, values_texture_ = 0;
+  unsigned elements_buffer_ = 0, elements_texture_ = 0;
+  std::uint64_t uploaded_mesh_ = 0;  // SceneMesh::id on the GPU
 };
 
 }  // namespace fetic::render

@@ -2,16 +2,21 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "render/colormap.hpp"
 #include "render/plot.hpp"
 #include "render/text_format.hpp"
+#include "scenes/units.hpp"
 
 namespace fetic::render {
 
 Rect overlay_panel(const View& view) {
   const auto width = static_cast<float>(view.width), height = static_cast<float>(view.height);
-  const float panel = std::clamp(0.28f * width, 150.0f, 360.0f);
+  // 28% of the width, up to 24 text heights (360 pixels at 1280x720), so that it grows
+  // with the text on large frames.
+  const float text = base_text_size(view.width, view.height);
+  const float panel = std::max(150.0f, std::min(0.28f * width, 24.0f * text));
   const float margin = std::max(4.0f, 0.5f * base_text_size(view.width, view.height));
   return {width - panel - margin, margin, width - margin, height - margin};
 }
@@ -22,10 +27,91 @@ Rect scene_region(const View& view) {
   return {0.0f, 0.0f, overlay_panel(view).x0, height};
 }
 
+namespace {
+
+// A range that holds [fixed_low, fixed_high] and every finite value in `data`.
+std::pair<double, double> holding(double fixed_low, double fixed_high,
+                                  const std::vector<double>& data, bool positive_only) {
+  double low = fixed_low, high = fixed_high;
+  for (double v : data)
+    if (std::isfinite(v) && (!positive_only || v > 0.0)) {
+      low = std::min(low, v);
+      high = std::max(high, v);
+    }
+  return {low, high};
+}
+
+// The residual plot (log scale) of one solve's iterations.
+PlotArea residual_plot(DrawList& list, const Rect& frame, float t, const Axis& x_axis,
+                       const std::vector<double>& iterations, const std::vector<double>& residuals,
+                       const RunExtent& extent) {
+  PlotSpec plot;
+  plot.frame = frame;
+  plot.title = "relative residual";
+  plot.text_size = 0.85f * t;
+  plot.x = x_axis;
+  plot.x.label.clear();
+  plot.y.log = true;
+  const double inf = std::numeric_limits<double>::infinity();
+  const auto [low, high] =
+      holding(extent.smallest_residual > 0.0 ? extent.smallest_residual : inf,
+              extent.largest_residual > 0.0 ? extent.largest_residual : -inf, residuals, true);
+  if (std::isfinite(low) && std::isfinite(high)) {
+    plot.y.min = std::pow(10.0, std::floor(std::log10(low) + 1e-9));
+    plot.y.max = std::pow(10.0, std::ceil(std::log10(high) - 1e-9));
+    if (plot.y.max <= plot.y.min) plot.y.max = 10.0 * plot.y.min;
+  }
+  const float u = std::max(1.0f, plot.text_size / 12.0f);
+  plot.series.push_back({"", iterations, residuals, series_color(0), 1.8f * u, false, false});
+  const PlotArea area = draw_axes(list, plot);
+  draw_series(list, area, plot.series.front());
+  // An exact zero cannot sit on a log axis: at the floor, as a hollow mark labelled 0.
+  bool zero_labelled = false;
+  for (std::size_t i = 0; i < residuals.size(); ++i)
+    if (residuals[i] == 0.0) {
+      const Point p = area.to_pixel(iterations[i], area.y_min());
+      list.ring(p, 3.0f * u, 1.4f * u, series_color(0));
+      if (!zero_labelled) {
+        list.text("0", {p.x + 4.0f * u, p.y - 2.0f * u}, 0.8f * plot.text_size, series_color(0),
+                  HAlign::Left, VAlign::Bottom);
+        zero_labelled = true;
+      }
+    }
+  if (!residuals.empty() && residuals.back() > 0.0) {
+    const Point current = area.to_pixel(iterations.back(), residuals.back());
+    if (area.inner().contains(current)) list.disc(current, 3.0f * u, series_color(0));
+  }
+  return area;
+}
+
+// A count (or amount) against a shared x axis, with the newest point marked.
+PlotArea value_plot(DrawList& list, const Rect& frame, float t, const std::string& title,
+                    const Axis& x_axis, const std::vector<double>& x, const std::vector<double>& y,
+                    double fixed_high, Color color, bool steps, bool integer) {
+  PlotSpec plot;
+  plot.frame = frame;
+  plot.title = title;
+  plot.text_size = 0.85f * t;
+  plot.x = x_axis;
+  const auto [low, high] = holding(0.0, fixed_high, y, false);
+  plot.y = {"", std::min(0.0, low), std::max(integer ? 1.0 : high, high), false, integer};
+  if (!(plot.y.max > plot.y.min)) plot.y.max = plot.y.min + 1.0;
+  const float u = std::max(1.0f, plot.text_size / 12.0f);
+  plot.series.push_back({"", x, y, color, 1.8f * u, !steps, steps});
+  const PlotArea area = draw_axes(list, plot);
+  draw_series(list, area, plot.series.front());
+  if (!x.empty()) list.disc(area.to_pixel(x.back(), y.back()), 3.0f * u, color);
+  return area;
+}
+
+}  // namespace
+
 DrawList draw_overlay(const OverlayInfo& info, const solver::Model& model,
                       const solver::Snapshot& snapshot,
                       const std::vector<solver::HistoryEntry>& history, const RunExtent& extent,
-                      const View& view) {
+                      const View& view, const StepSeries* steps, std::vector<PlotArea>* areas) {
+  std::vector<PlotArea> ignored;
+  std::vector<PlotArea>& plots = areas ? *areas : ignored;
   DrawList list;
   const Rect panel = overlay_panel(view);
   const float t = base_text_size(view.width, view.height);
@@ -77,55 +163,68 @@ DrawList draw_overlay(const OverlayInfo& info, const solver::Model& model,
       palette::ink);
   y += 0.4f * t;
 
-  // Plots: iteration on x, fixed to the whole run so that frames line up.
+  const bool with_contacts = !model.pairs.empty();
+  const float left = x0 - 0.2f * t, bottom = panel.y1 - pad;
+  if (steps && !steps->all.empty()) {
+    // Against the load factor: iterations per step, the active set, the total contact
+    // force - one point per step, fixed to the whole run so that frames line up.
+    std::vector<double> loads, iterations, active, force;
+    for (const StepSummary& step : steps->shown) {
+      loads.push_back(step.load_factor);
+      iterations.push_back(step.iterations);
+      active.push_back(step.active_set);
+      force.push_back(step.total_force);
+    }
+    double first = steps->all.front().load_factor, last = first;
+    int most_iterations = 1, most_active = 1;
+    double most_force = 0.0;
+    for (const StepSummary& step : steps->all) {
+      first = std::min(first, step.load_factor);
+      last = std::max(last, step.load_factor);
+      most_iterations = std::max(most_iterations, step.iterations);
+      most_active = std::max(most_active, step.active_set);
+      most_force = std::max(most_force, step.total_force);
+    }
+    if (!(last > first)) last = first + 1.0;
+    const Axis x_axis{"load factor", first, last, false, false};
+    const int count = with_contacts ? 3 : 1;
+    const float height = (bottom - y) / static_cast<float>(count);
+    plots.push_back(value_plot(list, {left, y, x1, y + height}, t, "iterations per step", x_axis,
+                               loads, iterations, most_iterations, series_color(0), false, true));
+    if (with_contacts) {
+      plots.push_back(value_plot(list, {left, y + height, x1, y + 2 * height}, t,
+                                 "active set (contact pairs)", x_axis, loads, active, most_active,
+                                 palette::contact, false, true));
+      const scenes::DisplayUnit unit =
+          scenes::display_unit(scenes::Quantity::Force, model.units, most_force);
+      std::vector<double> shown_force;
+      for (double f : force)
+        shown_force.push_back(f / unit.divisor);
+      plots.push_back(value_plot(
+          list, {left, y + 2 * height, x1, bottom}, t, "total contact force [" + unit.name + "]",
+          x_axis, loads, shown_force, most_force / unit.divisor, palette::force, false, false));
+    }
+    return list;
+  }
+
+  // Against the iterations of this solve, fixed to the whole run so that frames line up
+  // (and widened where this solve goes beyond it).
   std::vector<double> iterations, residuals, active;
   for (const solver::HistoryEntry& entry : history) {
     iterations.push_back(entry.iteration);
     residuals.push_back(entry.residual);
     active.push_back(entry.active_set);
   }
-  const bool with_active = !model.pairs.empty();
-  const float plot_text = 0.85f * t;
-  const float room = panel.y1 - pad - y;
-  const float plot_height = with_active ? 0.5f * room : room;
-  Axis x_axis{"iteration", 0.0, std::max(1.0, static_cast<double>(extent.largest_iteration)), false,
-              true};
-
-  PlotSpec residual_plot;
-  residual_plot.frame = {x0 - 0.2f * t, y, x1, y + plot_height};
-  residual_plot.title = "relative residual";
-  residual_plot.text_size = plot_text;
-  residual_plot.x = x_axis;
-  residual_plot.x.label.clear();
-  residual_plot.y.log = true;
-  if (extent.smallest_residual > 0.0) {
-    residual_plot.y.min = std::pow(10.0, std::floor(std::log10(extent.smallest_residual)));
-    residual_plot.y.max = std::pow(10.0, std::ceil(std::log10(extent.largest_residual)));
-    if (residual_plot.y.max <= residual_plot.y.min)
-      residual_plot.y.max = 10.0 * residual_plot.y.min;
-  }
-  residual_plot.series.push_back({"", iterations, residuals, series_color(0), 1.8f, false, false});
-  const PlotArea area = draw_axes(list, residual_plot);
-  draw_series(list, area, residual_plot.series.front());
-  if (!history.empty() && residuals.back() > 0.0) {
-    const Point current = area.to_pixel(iterations.back(), residuals.back());
-    if (area.inner().contains(current)) list.disc(current, 3.0f, series_color(0));
-  }
-
-  if (with_active) {
-    PlotSpec active_plot;
-    active_plot.frame = {x0 - 0.2f * t, y + plot_height, x1, panel.y1 - pad};
-    active_plot.title = "active set (contact pairs)";
-    active_plot.text_size = plot_text;
-    active_plot.x = x_axis;
-    active_plot.y = {"", 0.0, std::max(1.0, static_cast<double>(extent.largest_active_set)), false,
-                     true};
-    active_plot.series.push_back({"", iterations, active, palette::contact, 1.8f, false, true});
-    const PlotArea active_area = draw_axes(list, active_plot);
-    draw_series(list, active_area, active_plot.series.front());
-    if (!history.empty())
-      list.disc(active_area.to_pixel(iterations.back(), active.back()), 3.0f, palette::contact);
-  }
+  const double last_iteration = std::max({1.0, static_cast<double>(extent.largest_iteration),
+                                          iterations.empty() ? 0.0 : iterations.back()});
+  const Axis x_axis{"iteration", 0.0, last_iteration, false, true};
+  const float height = with_contacts ? 0.5f * (bottom - y) : bottom - y;
+  plots.push_back(
+      residual_plot(list, {left, y, x1, y + height}, t, x_axis, iterations, residuals, extent));
+  if (with_contacts)
+    plots.push_back(value_plot(list, {left, y + height, x1, bottom}, t,
+                               "active set (contact pairs)", x_axis, iterations, active,
+                               extent.largest_active_set, palette::contact, true, true));
   return list;
 }
 

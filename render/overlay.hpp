@@ -9,6 +9,7 @@
 
 #include "render/draw_list.hpp"
 #include "render/frame_sequence.hpp"
+#include "render/plot.hpp"
 #include "render/view.hpp"
 #include "solver/method.hpp"
 #include "solver/model.hpp"
@@ -28,9 +29,22 @@ struct OverlayInfo {
 Rect overlay_panel(const View& view);
 Rect scene_region(const View& view);
 
+// A run over several load factors (load steps, a sweep): the plots show the final state
+// of each step against the load factor instead of the iterations of one solve.
+struct StepSeries {
+  std::vector<StepSummary> all;    // every step of the run (fixes the axes)
+  std::vector<StepSummary> shown;  // the steps so far, the current one last
+};
+
+// The plots' axes hold every point they show: a fixed range for the run (the extent)
+// widened by the data where it reaches beyond (a window's solve at another load); a
+// residual of exactly 0, which a log axis cannot show, is drawn at the axis' floor with a
+// mark and a "0" label. `areas`, when given, receives the plots' areas (their ranges), top
+// to bottom.
 DrawList draw_overlay(const OverlayInfo& info, const solver::Model& model,
                       const solver::Snapshot& snapshot,
                       const std::vector<solver::HistoryEntry>& history, const RunExtent& extent,
-                      const View& view);
+                      const View& view, const StepSeries* steps = nullptr,
+                      std::vector<PlotArea>* areas = nullptr);
 
 }  // namespace fetic::render

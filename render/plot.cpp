@@ -176,6 +176,8 @@ PlotArea draw_axes(DrawList& list, const PlotSpec& spec) {
   }
   const PlotArea area(inner, x0, x1, y0, y1, spec.x.log, spec.y.log);
 
+  // Lines grow with the text (1 pixel at 12-pixel labels).
+  const float u = std::max(1.0f, t / 12.0f);
   list.rect(inner, {255, 255, 255, 255});
   const int x_target = std::clamp(static_cast<int>(inner.width() / (4.5f * t)), 2, 8);
   const int y_target = std::clamp(static_cast<int>(inner.height() / (2.2f * t)), 2, 8);
@@ -185,8 +187,8 @@ PlotArea draw_axes(DrawList& list, const PlotSpec& spec) {
   for (const Tick& x : x_ticks) {
     const float px = area.to_pixel(x.value, spec.y.log ? y0 : y0).x;
     if (px < inner.x0 - 0.5f || px > inner.x1 + 0.5f) continue;
-    if (spec.grid && x.major) list.line({px, inner.y0}, {px, inner.y1}, 1.0f, palette::grid);
-    list.line({px, inner.y1}, {px, inner.y1 - (x.major ? tick : 0.5f * tick)}, 1.0f, palette::ink);
+    if (spec.grid && x.major) list.line({px, inner.y0}, {px, inner.y1}, u, palette::grid);
+    list.line({px, inner.y1}, {px, inner.y1 - (x.major ? tick : 0.5f * tick)}, u, palette::ink);
     if (!x.label.empty())
       list.text(x.label, {px, inner.y1 + 0.3f * t}, label_size, palette::ink, HAlign::Center,
                 VAlign::Top);
@@ -194,13 +196,13 @@ PlotArea draw_axes(DrawList& list, const PlotSpec& spec) {
   for (const Tick& y : y_ticks) {
     const float py = area.to_pixel(x0, y.value).y;
     if (py < inner.y0 - 0.5f || py > inner.y1 + 0.5f) continue;
-    if (spec.grid && y.major) list.line({inner.x0, py}, {inner.x1, py}, 1.0f, palette::grid);
-    list.line({inner.x0, py}, {inner.x0 + (y.major ? tick : 0.5f * tick), py}, 1.0f, palette::ink);
+    if (spec.grid && y.major) list.line({inner.x0, py}, {inner.x1, py}, u, palette::grid);
+    list.line({inner.x0, py}, {inner.x0 + (y.major ? tick : 0.5f * tick), py}, u, palette::ink);
     if (!y.label.empty())
       list.text(y.label, {inner.x0 - 0.35f * t, py}, label_size, palette::ink, HAlign::Right,
                 VAlign::Middle);
   }
-  list.rect_outline(inner, 1.0f, palette::ink);
+  list.rect_outline(inner, u, palette::ink);
 
   if (!spec.title.empty())
     list.text(spec.title, {0.5f * (inner.x0 + inner.x1), spec.frame.y0 + 0.2f * t}, t, palette::ink,

@@ -1,17 +1,20 @@
 #include "render/scene_framing.hpp"
 
+#include <Eigen/Sparse>
+#include <Eigen/SparseCholesky>
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <queue>
+#include <map>
 
 namespace fetic::render {
 namespace {
 
 using solver::Vec2;
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
 struct Bounds {
-  Vec2 low{std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
+  Vec2 low{kInfinity, kInfinity};
   Vec2 high = -low;
   void include(const Vec2& p) {
     low = low.cwiseMin(p);
@@ -27,24 +30,22 @@ double largest_gap(const solver::Model& model) {
   return largest;
 }
 
-// Smallest distance between the axes of two parallel struts that lie side by side (their
-// extents along the axis overlap): bars must be thinner than that on screen.
-double smallest_side_by_side_distance(const solver::Model& model) {
-  double smallest = std::numeric_limits<double>::infinity();
-  const std::size_t n = std::min<std::size_t>(model.struts.size(), 2000);
-  for (std::size_t a = 0; a < n; ++a)
-    for (std::size_t b = a + 1; b < n; ++b) {
-      const solver::StrutMesh& sa = model.struts[a];
-      const solver::StrutMesh& sb = model.struts[b];
-      if (std::abs(sa.e1.x() * sb.e1.y() - sa.e1.y() * sb.e1.x()) > 1e-6) continue;
-      const Vec2 d = sb.origin - sa.origin;
-      const double across = std::abs(d.dot(sa.e2));
-      if (across <= 1e-12) continue;
-      const double b0 = d.dot(sa.e1), b1 = (sb.origin + sb.length * sb.e1 - sa.origin).dot(sa.e1);
-      if (std::max(b0, b1) < 0.0 || std::min(b0, b1) > sa.length) continue;
-      smallest = std::min(smallest, across - 0.5 * (sa.height + sb.height));
-    }
-  return smallest;
+// Where a node lies along its strut: 0 at 'from', 1 at 'to'.
+double axial_position(const solver::StrutMesh& mesh, int node) {
+  if (!(mesh.length > 0.0)) return 0.0;
+  const double xi =
+      (mesh.nodes[static_cast<std::size_t>(node)] - mesh.origin).dot(mesh.e1) / mesh.length;
+  return std::clamp(xi, 0.0, 1.0);
+}
+
+double median_length(const solver::Model& model) {
+  std::vector<double> lengths;
+  for (const solver::StrutMesh& mesh : model.struts)
+    if (mesh.length > 0.0) lengths.push_back(mesh.length);
+  if (lengths.empty()) return 1.0;
+  std::nth_element(lengths.begin(), lengths.begin() + static_cast<long>(lengths.size() / 2),
+                   lengths.end());
+  return lengths[lengths.size() / 2];
 }
 
 }  // namespace
@@ -58,10 +59,15 @@ Point SceneFraming::direction(const Vec2& world) const {
   return normalized(Point{static_cast<float>(world.x()), static_cast<float>(-world.y())});
 }
 
+Vec2 SceneFraming::drawn(const solver::Model& model, int strut, int node, const Vec2& u) const {
+  const auto s = static_cast<std::size_t>(strut), n = static_cast<std::size_t>(node);
+  Vec2 position = model.struts[s].nodes[n] + magnification * u;
+  if (gaps_magnified && s < widening.size()) position += (magnification - 1.0) * widening[s][n];
+  return position;
+}
+
 Point SceneFraming::node(const solver::Model& model, int strut, int node, const Vec2& u) const {
-  const solver::StrutMesh& mesh = model.struts[static_cast<std::size_t>(strut)];
-  return to_pixel(mesh.nodes[static_cast<std::size_t>(node)] +
-                  strut_offset[static_cast<std::size_t>(strut)] + magnification * u);
+  return to_pixel(drawn(model, strut, node, u));
 }
 
 double round_magnification(double raw) {
@@ -72,16 +78,42 @@ double round_magnification(double raw) {
   return decade;
 }
 
-std::vector<Vec2> gap_offsets(const solver::Model& model, double magnification) {
+std::vector<std::vector<Vec2>> gap_widening(const solver::Model& model) {
   const std::size_t n = model.struts.size();
-  std::vector<Vec2> offset(n, Vec2::Zero());
-  if (magnification == 1.0) return offset;
-  // Contact graph: per strut its contacts (mean gap over the pairs of a contact).
-  struct Edge {
-    int other;
-    Vec2 shift;  // offset[other] - offset[this]
+  std::vector<std::vector<Vec2>> widening(n);
+  for (std::size_t s = 0; s < n; ++s)
+    widening[s].assign(model.struts[s].nodes.size(), Vec2::Zero());
+  if (model.pairs.empty() || n == 0) return widening;
+
+  // Unknowns: the axial shift of each strut's two ends (in units of the median strut
+  // length), 2 s for 'from' and 2 s + 1 for 'to'. Least squares of weighted rows:
+  // supports and contacts (weight kHard) against changes of strut length (weight 1).
+  const double reference = median_length(model);
+  constexpr double kHard = 1e6, kSmall = 1e-8;
+  using Triplet = Eigen::Triplet<double>;
+  std::vector<Triplet> normal;
+  Eigen::VectorXd rhs = Eigen::VectorXd::Zero(static_cast<long>(2 * n));
+  const auto row = [&](const std::vector<std::pair<int, double>>& terms, double value,
+                       double weight) {
+    for (const auto& [i, a] : terms) {
+      rhs[i] += weight * a * value;
+      for (const auto& [j, b] : terms)
+        normal.emplace_back(i, j, weight * a * b);
+    }
   };
-  std::vector<std::vector<Edge>> edges(n);
+  for (std::size_t s = 0; s < n; ++s) {
+    const solver::StrutMesh& mesh = model.struts[s];
+    const int from = static_cast<int>(2 * s), to = from + 1;
+    const double stretch = mesh.length > 0.0 ? reference / mesh.length : 1.0;
+    row({{from, -stretch}, {to, stretch}}, 0.0, 1.0);
+    row({{from, 1.0}}, 0.0, kSmall);
+    row({{to, 1.0}}, 0.0, kSmall);
+    const auto& clamped = model.clamped_nodes[s];
+    for (int node : clamped) {
+      const double xi = axial_position(mesh, node);
+      row({{from, 1.0 - xi}, {to, xi}}, 0.0, kHard);
+    }
+  }
   for (std::size_t c = 0; c + 1 < model.contact_first_pair.size(); ++c) {
     const int first = model.contact_first_pair[c], last = model.contact_first_pair[c + 1];
     if (first >= last) continue;
@@ -90,50 +122,128 @@ std::vector<Vec2> gap_offsets(const solver::Model& model, double magnification) 
       gap += model.pairs[static_cast<std::size_t>(p)].gap;
     gap /= (last - first);
     const solver::ContactPair& pair = model.pairs[static_cast<std::size_t>(first)];
-    const Vec2 shift = (magnification - 1.0) * gap * pair.normal;
-    edges[static_cast<std::size_t>(pair.strut_a)].push_back({pair.strut_b, shift});
-    edges[static_cast<std::size_t>(pair.strut_b)].push_back({pair.strut_a, -shift});
+    const solver::StrutMesh& a = model.struts[static_cast<std::size_t>(pair.strut_a)];
+    const solver::StrutMesh& b = model.struts[static_cast<std::size_t>(pair.strut_b)];
+    const double xa = axial_position(a, pair.node_a), xb = axial_position(b, pair.node_b);
+    const double ca = a.e1.dot(pair.normal), cb = b.e1.dot(pair.normal);
+    row({{2 * pair.strut_a, -(1.0 - xa) * ca},
+         {2 * pair.strut_a + 1, -xa * ca},
+         {2 * pair.strut_b, (1.0 - xb) * cb},
+         {2 * pair.strut_b + 1, xb * cb}},
+        gap / reference, kHard);
   }
-  // Breadth-first from clamped struts first, so that supports of a group stay in place
-  // where they can.
-  std::vector<char> placed(n, 0);
-  std::vector<std::size_t> roots;
-  for (std::size_t s = 0; s < n; ++s)
-    if (!model.floating(static_cast<int>(s))) roots.push_back(s);
-  for (std::size_t s = 0; s < n; ++s)
-    if (model.floating(static_cast<int>(s))) roots.push_back(s);
-  for (std::size_t root : roots) {
-    if (placed[root]) continue;
-    placed[root] = 1;
-    std::queue<std::size_t> queue;
-    queue.push(root);
-    while (!queue.empty()) {
-      const std::size_t s = queue.front();
-      queue.pop();
-      for (const Edge& edge : edges[s]) {
-        const auto other = static_cast<std::size_t>(edge.other);
-        if (placed[other]) continue;
-        placed[other] = 1;
-        offset[other] = offset[s] + edge.shift;
-        queue.push(other);
+  Eigen::SparseMatrix<double> matrix(static_cast<long>(2 * n), static_cast<long>(2 * n));
+  matrix.setFromTriplets(normal.begin(), normal.end());
+  const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(matrix);
+  if (ldlt.info() != Eigen::Success) return widening;
+  const Eigen::VectorXd x = ldlt.solve(rhs);
+  if (!x.allFinite()) return widening;
+  for (std::size_t s = 0; s < n; ++s) {
+    const solver::StrutMesh& mesh = model.struts[s];
+    for (int node = 0; node < mesh.node_count(); ++node) {
+      const double xi = axial_position(mesh, node);
+      widening[s][static_cast<std::size_t>(node)] =
+          reference *
+          ((1.0 - xi) * x[static_cast<long>(2 * s)] + xi * x[static_cast<long>(2 * s + 1)]) *
+          mesh.e1;
+    }
+  }
+  return widening;
+}
+
+std::vector<double> side_clearances(const solver::Model& model) {
+  const std::size_t n = model.struts.size();
+  std::vector<double> clearance(n, kInfinity);
+  // Parallel struts, grouped by direction (an angle in [0, pi), to a micro-radian).
+  std::map<long long, std::vector<std::size_t>> groups;
+  for (std::size_t s = 0; s < n; ++s) {
+    double angle = std::atan2(model.struts[s].e1.y(), model.struts[s].e1.x());
+    if (angle < 0.0) angle += M_PI;
+    if (angle >= M_PI - 5e-7) angle -= M_PI;
+    groups[std::llround(angle * 1e6)].push_back(s);
+  }
+  for (auto& [key, members] : groups) {
+    const solver::StrutMesh& first = model.struts[members.front()];
+    const Vec2 along = first.e1, across = first.e2;
+    const auto lateral = [&](std::size_t s) { return model.struts[s].origin.dot(across); };
+    std::sort(members.begin(), members.end(),
+              [&](std::size_t a, std::size_t b) { return lateral(a) < lateral(b); });
+    const auto extent = [&](std::size_t s) {
+      const solver::StrutMesh& m = model.struts[s];
+      const double a = m.origin.dot(along), b = (m.origin + m.length * m.e1).dot(along);
+      return std::pair{std::min(a, b), std::max(a, b)};
+    };
+    // For each strut, the nearest ones beside it among the next few in lateral order.
+    constexpr std::size_t kLook = 64;
+    for (std::size_t j = 0; j < members.size(); ++j) {
+      const std::size_t sj = members[j];
+      const auto [aj0, aj1] = extent(sj);
+      for (std::size_t k = j + 1; k < members.size() && k <= j + kLook; ++k) {
+        const std::size_t sk = members[k];
+        const double distance = lateral(sk) - lateral(sj);
+        if (distance <= 1e-12) continue;  // end to end on one axis
+        const double free = distance - 0.5 * (model.struts[sj].height + model.struts[sk].height);
+        if (free >= clearance[sj] && free >= clearance[sk]) break;
+        const auto [ak0, ak1] = extent(sk);
+        if (std::min(aj1, ak1) - std::max(aj0, ak0) <= 0.0) continue;  // not beside
+        clearance[sj] = std::min(clearance[sj], free);
+        clearance[sk] = std::min(clearance[sk], free);
       }
     }
   }
-  return offset;
+  return clearance;
 }
 
-double automatic_magnification(const solver::Model& model, const RunExtent& extent,
-                               bool magnify_gaps) {
+MagnificationChoice automatic_magnification(const solver::Model& model, const RunExtent& extent,
+                                            bool magnify_gaps,
+                                            const std::vector<std::vector<Vec2>>& widening,
+                                            const std::vector<double>& clearance) {
   Bounds bounds;
   for (const solver::StrutMesh& mesh : model.struts)
     for (const Vec2& p : mesh.nodes)
       bounds.include(p);
-  if (!bounds.valid()) return 1.0;
+  if (!bounds.valid()) return {};
   const double size = (bounds.high - bounds.low).maxCoeff();
   const double small =
       std::max(extent.largest_displacement, magnify_gaps ? largest_gap(model) : 0.0);
-  if (!(small > 0.0) || !(size > 0.0)) return 1.0;
-  return round_magnification(0.08 * size / small);
+  if (!(small > 0.0) || !(size > 0.0)) return {};
+  MagnificationChoice choice;
+  double raw = 0.08 * size / small;
+  const auto limit = [&](double bound, const char* reason) {
+    if (bound > 0.0 && bound < raw) {
+      raw = bound;
+      choice.limited_by = reason;
+    }
+  };
+  if (magnify_gaps)
+    for (std::size_t s = 0; s < model.struts.size() && s < widening.size(); ++s) {
+      const solver::StrutMesh& mesh = model.struts[s];
+      if (widening[s].empty()) continue;
+      const double change = std::abs((widening[s].back() - widening[s].front()).dot(mesh.e1));
+      if (change > 0.0) limit(1.0 + 0.25 * mesh.length / change, "gaps");
+    }
+  if (extent.largest_stretch > 0.0) limit(0.25 / extent.largest_stretch, "elements");
+  for (std::size_t s = 0; s < extent.strut_lateral.size() && s < clearance.size(); ++s)
+    if (extent.strut_lateral[s] > 0.0 && std::isfinite(clearance[s]) && clearance[s] > 0.0)
+      limit(0.4 * clearance[s] / extent.strut_lateral[s], "crossing");
+  choice.magnification = round_magnification(raw);
+  return choice;
+}
+
+float caption_band(float text_size) {
+  return 1.6f * text_size;
+}
+
+float legend_band(float text_size) {
+  return 4.4f * text_size;
+}
+
+Rect geometry_region(const Rect& scene_region, float text_size) {
+  Rect r = scene_region;
+  r.y0 += caption_band(text_size);
+  r.y1 -= legend_band(text_size);
+  if (r.y1 < r.y0 + 1.0f) r.y1 = r.y0 + 1.0f;
+  return r;
 }
 
 SceneFraming frame_scene(const solver::Model& model, const View& view, const RunExtent& extent,
@@ -141,13 +251,19 @@ SceneFraming frame_scene(const solver::Model& model, const View& view, const Run
   SceneFraming framing;
   framing.region = region;
   framing.text_size = base_text_size(view.width, view.height);
-  framing.magnification = view.magnification > 0.0
-                              ? view.magnification
-                              : automatic_magnification(model, extent, view.magnify_gaps);
+  framing.line_width = std::max(1.0f, framing.text_size / 15.0f);
+  framing.widening = view.magnify_gaps ? gap_widening(model) : std::vector<std::vector<Vec2>>{};
+  framing.clearance = side_clearances(model);
+  if (view.magnification > 0.0) {
+    framing.magnification = view.magnification;
+  } else {
+    const MagnificationChoice choice = automatic_magnification(model, extent, view.magnify_gaps,
+                                                               framing.widening, framing.clearance);
+    framing.magnification = choice.magnification;
+    framing.limited_by = choice.limited_by;
+  }
   framing.gaps_magnified =
       view.magnify_gaps && framing.magnification != 1.0 && !model.pairs.empty();
-  framing.strut_offset = view.magnify_gaps ? gap_offsets(model, framing.magnification)
-                                           : std::vector<Vec2>(model.struts.size(), Vec2::Zero());
   framing.force_scale = extent.largest_force;
   framing.stress_scale = extent.largest_stress;
   for (std::size_t s = 0; s < model.struts.size(); ++s) {
@@ -157,39 +273,59 @@ SceneFraming frame_scene(const solver::Model& model, const View& view, const Run
       framing.load_scale = std::max(framing.load_scale, load.segment(n, dofs).norm());
   }
 
-  // Reference geometry with its shifts, widened by the largest magnified displacement.
+  // The reference geometry (clamped ends do not move), widened by the largest magnified
+  // displacement and gap widening.
   Bounds bounds;
+  double widest = 0.0;
   for (std::size_t s = 0; s < model.struts.size(); ++s) {
-    const solver::StrutMesh& mesh = model.struts[s];
-    for (const Vec2& p : mesh.nodes)
-      bounds.include(p + framing.strut_offset[s]);
+    for (const Vec2& p : model.struts[s].nodes)
+      bounds.include(p);
+    if (framing.gaps_magnified && s < framing.widening.size())
+      for (const Vec2& q : framing.widening[s])
+        widest = std::max(widest, q.norm());
   }
   if (!bounds.valid()) bounds.include(Vec2::Zero());
-  const double reach = framing.magnification * extent.largest_displacement;
+  const double reach = framing.magnification * extent.largest_displacement +
+                       (framing.gaps_magnified ? (framing.magnification - 1.0) * widest : 0.0);
   bounds.low -= Vec2(reach, reach);
   bounds.high += Vec2(reach, reach);
 
-  // Room for supports, load arrows and glyphs around the geometry.
-  const float margin = 2.8f * framing.text_size;
-  const double room_x = std::max(1.0f, region.width() - 2 * margin);
-  const double room_y = std::max(1.0f, region.height() - 2 * margin);
+  // Room for supports, load arrows and glyphs around the geometry, between the caption
+  // and the legends.
+  const Rect fit = geometry_region(region, framing.text_size);
+  const float margin = 2.2f * framing.text_size;
+  const double room_x = std::max(1.0f, fit.width() - 2 * margin);
+  const double room_y = std::max(1.0f, fit.height() - 2 * margin);
   const Vec2 size = bounds.high - bounds.low;
-  double scale = std::numeric_limits<double>::infinity();
+  double scale = kInfinity;
   if (size.x() > 0.0) scale = std::min(scale, room_x / size.x());
   if (size.y() > 0.0) scale = std::min(scale, room_y / size.y());
   if (!std::isfinite(scale)) scale = 1.0;
   framing.pixels_per_unit = scale;
   framing.world_center = 0.5 * (bounds.low + bounds.high);
-  framing.pixel_center = {0.5f * (region.x0 + region.x1), 0.5f * (region.y0 + region.y1)};
+  framing.pixel_center = {0.5f * (fit.x0 + fit.x1), 0.5f * (fit.y0 + fit.y1)};
 
-  const double apart = smallest_side_by_side_distance(model);
+  double apart = kInfinity;  // smallest distance between the axes of struts side by side
+  for (std::size_t s = 0; s < model.struts.size(); ++s)
+    if (std::isfinite(framing.clearance[s]))
+      apart = std::min(apart, framing.clearance[s] + model.struts[s].height);
   if (std::isfinite(apart) && apart > 0.0) framing.lane = static_cast<float>(apart * scale);
-  float width = view.bar_width;
-  if (width <= 0.0f)
-    width = std::min(std::clamp(std::min(region.width(), region.height()) / 100.0f, 3.0f, 9.0f),
-                     std::max(2.0f, 0.5f * framing.lane));
-  framing.bar_width = width;
+  framing.fixed_bar = view.bar_width > 0.0f;
+  framing.widest_bar = std::clamp(std::min(region.width(), region.height()) / 100.0f, 3.0f,
+                                  9.0f * framing.line_width);
+  framing.bar_width = framing.fixed_bar
+                          ? view.bar_width
+                          : std::min(framing.widest_bar, std::max(2.0f, 0.5f * framing.lane));
   return framing;
+}
+
+SceneFraming zoomed(const SceneFraming& framing, float zoom, Point center) {
+  SceneFraming out = framing;
+  out.pixels_per_unit *= zoom;
+  out.pixel_center = center;
+  if (framing.lane < 1e8f) out.lane = framing.lane * zoom;
+  if (!out.fixed_bar) out.bar_width = std::min(out.widest_bar, std::max(2.0f, 0.5f * out.lane));
+  return out;
 }
 
 }  // namespace fetic::render

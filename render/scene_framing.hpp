@@ -1,8 +1,15 @@
 #pragma once
-// Where a scene lands on screen: the magnification (automatic or fixed), the shift of each
-// strut that draws gaps magnified, and the world-to-pixel fit. Fixed for a whole run, so
-// that frames of a movie line up.
+// Where a scene lands on screen: the magnification (automatic or fixed), how gaps are
+// drawn magnified, and the world-to-pixel fit. Fixed for a whole run, so that frames of a
+// movie line up.
+//
+// Drawn position of a node: X + (m - 1) q(X) + m u, with u its displacement and q the gap
+// widening: a field along each strut's axis, zero at clamped ends, that opens every
+// contact's gap from g to m g (and so keeps a closed contact drawn closed). The struts
+// between make room for it by being drawn a little shorter or longer, never their
+// supports: clamped ends stay on their walls.
 
+#include <string>
 #include <vector>
 
 #include "render/draw_list.hpp"
@@ -15,14 +22,21 @@ namespace fetic::render {
 struct SceneFraming {
   double magnification = 1.0;
   bool gaps_magnified = false;
-  std::vector<solver::Vec2> strut_offset;  // world shift of each strut (gaps drawn magnified)
-  Rect region;                             // pixels the scene may use
-  double pixels_per_unit = 1.0;            // world length unit (m) to pixels
+  // Why the automatic magnification is not larger: "" (the 8% rule), or what a larger one
+  // would break ("gaps", "elements", "crossing").
+  std::string limited_by;
+  std::vector<std::vector<solver::Vec2>> widening;  // per strut and node, per unit of m - 1
+  std::vector<double> clearance;  // per strut: free distance to the nearest strut beside it
+  Rect region;                    // pixels the scene may use
+  double pixels_per_unit = 1.0;   // world length unit to pixels
   solver::Vec2 world_center{0, 0};
   Point pixel_center;
   float bar_width = 6.0f;     // pixels
+  float widest_bar = 9.0f;    // bars are at most this wide (from the region), ...
+  bool fixed_bar = false;     // ... or exactly bar_width when the view fixes it
   float lane = 1e9f;          // pixels between the axes of side-by-side parallel struts
   float text_size = 14.0f;    // pixels
+  float line_width = 1.0f;    // pixels of a thin line; grows with the text
   double force_scale = 0.0;   // largest contact force of the run (glyph size 1)
   double stress_scale = 0.0;  // largest |axial stress| of the run (colour map end)
   double load_scale = 0.0;    // largest nodal load at load factor 1 (arrow length 1)
@@ -30,24 +44,49 @@ struct SceneFraming {
   Point to_pixel(const solver::Vec2& world) const;
   // Screen direction of a world direction (y flipped), unit length.
   Point direction(const solver::Vec2& world) const;
-  // Drawn position of a node of a strut displaced by u.
+  // Drawn world position of a node of a strut displaced by u.
+  solver::Vec2 drawn(const solver::Model& model, int strut, int node, const solver::Vec2& u) const;
+  // The same in pixels.
   Point node(const solver::Model& model, int strut, int node, const solver::Vec2& u) const;
 };
 
 // The largest of 1, 2, 5 x 10^k that is at most `raw` (raw > 0).
 double round_magnification(double raw);
 
-// Per strut shifts that widen every contact's gap from g to m g: strut b of a contact
-// moves by (m - 1) g n relative to strut a. Applied along the contact graph from a clamped
-// strut of each connected group; a contact that closes a loop inconsistently keeps the
-// shift found first.
-std::vector<solver::Vec2> gap_offsets(const solver::Model& model, double magnification);
+// The gap widening q per strut node, per unit of m - 1: along each strut's axis, linear
+// from one end to the other; zero at clamped ends; for every contact pair
+// (q_b - q_a) . n = gap. Where the struts of a chain cannot all keep their length, the
+// change of length is spread over them evenly (least squares).
+std::vector<std::vector<solver::Vec2>> gap_widening(const solver::Model& model);
 
-// Magnification that draws the largest displacement or gap of the run as 8% of the
-// scene's larger side, rounded down to 1, 2 or 5 x 10^k.
-double automatic_magnification(const solver::Model& model, const RunExtent& extent,
-                               bool magnify_gaps);
+// Per strut, the free distance (between the faces, heights taken off) to the nearest
+// parallel strut that lies beside it; infinity when there is none.
+std::vector<double> side_clearances(const solver::Model& model);
 
+struct MagnificationChoice {
+  double magnification = 1.0;
+  std::string limited_by;  // see SceneFraming::limited_by
+};
+// The largest displacement or gap of the run drawn as 8% of the scene's larger side,
+// rounded down to 1, 2 or 5 x 10^k - unless that would draw struts crossing each other
+// (lateral displacements beyond 40% of the clearance), elements turned inside out (a
+// quarter of their length), or gaps that eat more than a quarter of a strut's length.
+MagnificationChoice automatic_magnification(const solver::Model& model, const RunExtent& extent,
+                                            bool magnify_gaps,
+                                            const std::vector<std::vector<solver::Vec2>>& widening,
+                                            const std::vector<double>& clearance);
+
+// The top band of a scene region (the caption) and the bottom band (glyph legend, stress
+// colours, length scale): the struts are fitted between them.
+float caption_band(float text_size);
+float legend_band(float text_size);
+Rect geometry_region(const Rect& scene_region, float text_size);
+
+// The framing zoomed by `zoom` about nothing in particular, its centre drawn at `center`
+// (the window's pan and zoom): scale, lane and bar width follow.
+SceneFraming zoomed(const SceneFraming& framing, float zoom, Point center);
+
+// Fits the scene into `region` (between its bands), for the whole run.
 SceneFraming frame_scene(const solver::Model& model, const View& view, const RunExtent& extent,
                          const Rect& region);
 

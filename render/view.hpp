@@ -23,14 +23,19 @@ struct View {
   bool show_contacts = true;  // red circles at active contact pairs
   bool show_forces = true;    // contact force glyphs scaled by lambda
   bool show_overlay = true;   // title, method, iteration, residual, plots
+  bool show_labels = false;   // strut names beside the struts (where there is room)
+  bool show_legend = true;    // what the glyphs mean
+  bool show_scale = true;     // a length scale bar
   float bar_width = 0.0f;     // on-screen width of bars in pixels; 0: from the image size
 };
 
-// Text height in pixels that suits an image of this size.
+// Text height in pixels that suits an image of this size: a 48th of its height (of its
+// width's 16:9 share when it is wider), at least 10. Everything else - lines, glyphs,
+// panels - is sized from it, so a 5000x3000 frame reads like a 1280x720 one.
 inline float base_text_size(int width, int height) {
   const int smaller = width * 9 < height * 16 ? width * 9 / 16 : height;
   const float size = static_cast<float>(smaller) / 48.0f;
-  return size < 10.0f ? 10.0f : (size > 18.0f ? 18.0f : static_cast<float>(static_cast<int>(size)));
+  return size < 10.0f ? 10.0f : static_cast<float>(static_cast<int>(size));
 }
 
 }  // namespace fetic::render

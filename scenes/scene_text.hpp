@@ -29,6 +29,11 @@ inline constexpr int kMaxNesting = 32;
 // SceneError saying so.
 std::string read_scene_text(const std::string& path, const std::function<bool()>& stop = {});
 
+// The same for any text file read whole (`what`, for messages: "scene file", "script"),
+// up to `max_bytes`.
+std::string read_text_file(const std::string& path, std::size_t max_bytes, const std::string& what,
+                           const std::function<bool()>& stop = {});
+
 // The first place where the text nests deeper than kMaxNesting, or {0, ""}. It reads TOML
 // just far enough to count: strings and comments are skipped, every key segment, table
 // header segment, array of tables, array and inline table opens a level.

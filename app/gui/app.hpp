@@ -34,6 +34,8 @@
 #include "render/draw_list.hpp"
 #include "render/frame_sequence.hpp"
 #include "render/png_writer.hpp"
+#include "render/scene_framing.hpp"
+#include "render/scene_mesh.hpp"
 #include "render/view.hpp"
 #include "solver/model.hpp"
 
@@ -138,10 +140,27 @@ class App {
   std::uint64_t first_frame_request_ = 0;  // last request seen in a frame
   bool solved_on_screen_ = false;          // newest request finished and swapped
 
+  // The picture: the framing for the current scene, survey and size (PictureKey), and the
+  // struts' mesh (kept on the GPU by the renderer) with this frame's values.
+  struct PictureKey {  // shared pointers: what they point to cannot be replaced unseen
+    std::shared_ptr<const solver::Model> model;
+    std::shared_ptr<const render::RunExtent> extent;
+    int width = 0, height = 0;
+    double magnification = 0.0;
+    bool overlay = true;
+    bool operator==(const PictureKey&) const = default;
+  };
+  PictureKey framing_key_;
+  render::SceneFraming framing_;
+  std::shared_ptr<const render::SceneMesh> mesh_;
+  std::shared_ptr<const solver::Model> mesh_model_;
+  render::MeshValues mesh_values_;
+
   // View settings.
   double magnification_ = 0.0;  // 0: automatic
   double shown_magnification_ = 0.0;
   bool subdomains_ = true, stress_ = false, forces_ = true, gaps_ = true, show_overlay_ = true;
+  bool labels_ = false;
   bool help_ = false;
   bool dragging_slider_ = false, draft_ = false;
   bool typing_load_ = false;

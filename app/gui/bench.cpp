@@ -58,7 +58,7 @@ void App::bench_step(double /*now*/) {
     if (b.waiting != 0 && !(solved_on_screen_ && !worker_.busy())) return;
     if (b.k >= 30) {
       b.phase = 3;
-      quit_ = true;
+      b.k = 0;
       return;
     }
     const double t = slider_max_ * (0.5 + 0.01 * ((b.k % 2) ? b.k : -b.k));
@@ -66,6 +66,30 @@ void App::bench_step(double /*now*/) {
     b.waiting = requests_sent_ + 1;
     solved_on_screen_ = false;
     ++b.k;
+  } else if (b.phase == 3) {
+    // A load change, then the picture dragged sideways a few pixels a frame (as a mouse
+    // drag pans it) for as long as the solver works on it; five such solves.
+    if (!b.pan_solving) {
+      if (b.pan_solves >= 5) {
+        b.phase = 4;
+        quit_ = true;
+        return;
+      }
+      push({RequestKind::SetLoad, slider_max_ * (b.pan_solves % 2 ? 0.95 : 0.75), {}});
+      solved_on_screen_ = false;
+      b.pan_solving = true;
+      b.pan_start = now;
+      return;
+    }
+    if (worker_.busy() || !solved_on_screen_) {
+      pan_.x += (b.pan_frames / 30) % 2 ? -3.0f : 3.0f;
+      redraw_ = true;
+      ++b.pan_frames;
+    } else {
+      b.pan_seconds += std::chrono::duration<double>(now - b.pan_start).count();
+      b.pan_solving = false;
+      ++b.pan_solves;
+    }
   }
 }
 
@@ -95,6 +119,11 @@ void App::print_bench(const render::GlfwWindow& window) const {
       b.solved_latency_ms.size());
   std::printf("               load change -> first frame at the new load: median %.2f ms\n",
               median(b.first_latency_ms));
+  std::printf(
+      "panning        during %d solves (%.2f s): %.1f frames/s, %.1f pictures/s (%d frames, %d "
+      "pictures)\n",
+      b.pan_solves, b.pan_seconds, b.pan_seconds > 0 ? b.pan_frames / b.pan_seconds : 0.0,
+      b.pan_seconds > 0 ? b.pan_pictures / b.pan_seconds : 0.0, b.pan_frames, b.pan_pictures);
   std::printf("solve          median %.2f ms, median %.0f iterations (warm-started FETI-C)\n",
               median(b.solve_ms),
               median(std::vector<double>(b.iterations.begin(), b.iterations.end())));

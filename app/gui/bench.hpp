@@ -10,7 +10,8 @@
 namespace fetic::app::gui {
 
 struct BenchMeasurement {
-  int phase = -1;  // -1 first solve, 0 drag, 1 settle, 2 isolated changes, 3 done
+  // -1 first solve, 0 drag, 1 settle, 2 isolated changes, 3 panning during solves, 4 done
+  int phase = -1;
   int k = 0;
   std::vector<double> frame_ms, draw_ms, lists_ms, swap_ms;  // during the drag
   std::vector<double> solved_latency_ms, first_latency_ms, solve_ms;
@@ -20,6 +21,11 @@ struct BenchMeasurement {
   double drag_seconds = 0.0;
   int drag_frames = 0;
   std::uint64_t waiting = 0;
+  // Panning while the solver works: frames and pictures drawn during the solves.
+  bool pan_solving = false;
+  int pan_solves = 0, pan_frames = 0, pan_pictures = 0;
+  double pan_seconds = 0.0;
+  std::chrono::steady_clock::time_point pan_start{};
 };
 
 }  // namespace fetic::app::gui

@@ -15,6 +15,7 @@
 #include "app/gui/app.hpp"
 #include "app/gui/options.hpp"
 #include "app/gui/script.hpp"
+#include "app/interrupt.hpp"
 #include "app/load_factor_check.hpp"
 #include "app/method_options.hpp"
 #include "app/out_of_memory.hpp"
@@ -22,6 +23,7 @@
 #include "app/scene_input.hpp"
 #include "render/glfw_window.hpp"
 #include "scenes/load_scene.hpp"
+#include "scenes/scene_text.hpp"
 
 namespace fetic::app {
 namespace {
@@ -35,15 +37,16 @@ int run_gui(const gui::Options& args) {
   }
   std::vector<gui::ScriptAction> script;
   if (!args.script.empty()) {
-    std::ifstream in(args.script);
-    if (!in) {
-      std::cerr << scenes::printable(args.script) << ": cannot read the script\n";
-      return kExitUsage;
+    std::string text;
+    try {  // bounded like a scene file: a script of /dev/zero ends at the limit
+      text = scenes::read_text_file(args.script, std::size_t{1} << 20, "script",
+                                    [] { return interrupted(); });
+    } catch (const scenes::SceneError& error) {
+      std::cerr << error.what() << '\n';
+      return interrupted() ? kExitInterrupted : kExitUsage;
     }
-    std::stringstream text;
-    text << in.rdbuf();
     std::vector<gui::ScriptError> errors;
-    script = gui::parse_script(text.str(), errors);
+    script = gui::parse_script(text, errors);
     for (const gui::ScriptError& error : errors)
       std::cerr << scenes::printable(args.script) << ":" << error.line << ": " << error.message
                 << '\n';

@@ -125,6 +125,7 @@ int App::run(render::GlfwWindow& window, std::vector<ScriptAction> script) {
             std::chrono::duration<double, std::milli>(Clock::now() - draw_start).count());
       }
       redraw_ = false;
+      if (args_.bench > 0 && bench_.phase == 3 && bench_.pan_solving) ++bench_.pan_pictures;
     }
     if (screenshot_requested_) {
       screenshot(pending_screenshot_);

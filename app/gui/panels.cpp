@@ -138,6 +138,8 @@ void App::display_toggles() {
   ImGui::SameLine();
   value = show_overlay_;
   if (ImGui::Checkbox("info", &value)) push({RequestKind::Toggle, 0.0, "overlay"});
+  value = labels_;
+  if (ImGui::Checkbox("strut labels", &value)) push({RequestKind::Toggle, 0.0, "labels"});
 }
 
 // Screenshots, reload and recordings.

@@ -12,6 +12,7 @@
 #include "render/overlay.hpp"
 #include "render/scene_drawing.hpp"
 #include "render/scene_framing.hpp"
+#include "render/scene_mesh.hpp"
 #include "solver/method.hpp"
 
 namespace fetic::app::gui {
@@ -26,6 +27,7 @@ render::View App::view(int width, int height) const {
   v.show_forces = forces_;
   v.show_gaps = gaps_;
   v.show_overlay = show_overlay_;
+  v.show_labels = labels_;
   return v;
 }
 
@@ -59,33 +61,58 @@ void App::draw_picture(int width, int height) {
       shown_->history.begin() +
           std::min<std::ptrdiff_t>(index + 1, static_cast<std::ptrdiff_t>(shown_->history.size())));
   const render::View v = view(width, height);
-  render::SceneFraming framing =
-      render::frame_scene(*shown_->model, v, *shown_->extent, render::scene_region(v));
-  base_center_ = framing.pixel_center;
-  framing.pixels_per_unit *= zoom_;
-  framing.pixel_center = {base_center_.x + pan_.x, base_center_.y + pan_.y};
+  // The framing (magnification, fit, gap widening) is fixed for a scene, a survey and a
+  // view size: computed again only when one of them changes, not for every picture.
+  const PictureKey key{shown_->model, shown_->extent, width, height, magnification_, show_overlay_};
+  if (!(key == framing_key_)) {
+    framing_ = render::frame_scene(*shown_->model, v, *shown_->extent, render::scene_region(v));
+    framing_key_ = key;
+  }
+  base_center_ = framing_.pixel_center;
+  const render::SceneFraming framing =
+      render::zoomed(framing_, zoom_, {base_center_.x + pan_.x, base_center_.y + pan_.y});
   shown_magnification_ = framing.magnification;
-  const render::DrawList scene = render::draw_scene(*shown_->model, snapshot, v, framing);
+  // The struts: a mesh on the GPU, built when the scene, its pieces or the colouring change.
+  if (!mesh_ || mesh_model_ != shown_->model || mesh_->color_by != v.color_by ||
+      !mesh_->fits(snapshot)) {
+    mesh_ = std::make_shared<const render::SceneMesh>(
+        render::build_scene_mesh(*shown_->model, snapshot, framing_, v.color_by));
+    mesh_model_ = shown_->model;
+  }
+  render::fill_mesh_values(*mesh_, *shown_->model, snapshot, framing, mesh_values_);
+  render::OverlayInfo info;
+  info.title = title_;
+  info.method = solver::to_string(shown_->method);
+  if (solver::is_dual(shown_->method))
+    info.method += std::string(" (") + solver::to_string(shown_->preconditioner) + ")";
+  info.status = shown_status();
+  const render::DrawList glyphs =
+      render::draw_glyphs(*shown_->model, snapshot, v, framing, {info.method, {}});
   render::DrawList overlay;
   if (v.show_overlay) {
-    render::OverlayInfo info;
-    info.title = title_;
-    info.method = solver::to_string(shown_->method);
-    if (solver::is_dual(shown_->method))
-      info.method += std::string(" (") + solver::to_string(shown_->preconditioner) + ")";
-    info.status = shown_status();
-    overlay = render::draw_overlay(info, *shown_->model, snapshot, history, plot_extent(), v);
+    if (recording_ && recording_->sweep && !recording_->steps.empty()) {
+      // A load sweep being recorded: plots against the load factor.
+      render::StepSeries series;
+      series.all = recording_->steps;
+      series.shown = recording_->steps;
+      series.all.resize(recording_->loads.size());
+      for (std::size_t i = 0; i < recording_->loads.size(); ++i)
+        series.all[i].load_factor = recording_->loads[i];
+      overlay =
+          render::draw_overlay(info, *shown_->model, snapshot, history, plot_extent(), v, &series);
+    } else {
+      overlay = render::draw_overlay(info, *shown_->model, snapshot, history, plot_extent(), v);
+    }
   }
   if (args_.bench > 0 && bench_.phase == 0)
     bench_.lists_ms.push_back(
         std::chrono::duration<double, std::milli>(Clock::now() - lists_start).count());
-  // Panned or zoomed, the scene may reach under the information panel: mask it there.
-  render::DrawList mask;
-  if (v.show_overlay)
-    mask.rect(
-        {render::scene_region(v).x1, 0.0f, static_cast<float>(width), static_cast<float>(height)},
-        render::palette::background);
-  renderer_->draw(width, height, {&scene, &mask, &overlay}, render::palette::background);
+  const render::Rect region = render::scene_region(v);
+  renderer_->draw(
+      width, height,
+      {render::Layer(mesh_.get(), &mesh_values_, render::mesh_uniforms(*mesh_, framing), region),
+       render::Layer(&glyphs, region), render::Layer(&overlay)},
+      render::palette::background);
 }
 
 }  // namespace fetic::app::gui

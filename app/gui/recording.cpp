@@ -119,6 +119,7 @@ void App::step_recording() {
     }
     if (!shown_ || shown_->request < rec.awaiting || !shown_->finished) return;
     follow_ = true;
+    if (!shown_->iterates.empty()) rec.steps.push_back(render::summarize(*shown_->iterates.back()));
     draw_picture(view_width_, view_height_);
     rec.pool->submit(renderer_->read_back(), [path = frame_path()](render::PngBytes png) {
       write_png_atomically(path, png);

@@ -22,7 +22,7 @@ enum class RequestKind {
   SetLive,           // value: 1 = Step and Play advance the solver itself, 0 = solve at once
   Cancel,            // stop the running solve (it stays on screen, marked cancelled)
   Scrub,             // value: iteration to show
-  Toggle,            // text: subdomains | forces | gaps | stress | overlay | help
+  Toggle,            // text: subdomains | forces | gaps | stress | overlay | labels | help
   Screenshot,        // text: file (empty: next name in the screenshot directory)
   RecordIterations,  // every iteration of the current solve as frames
   RecordSweep,       // value: steps; a load sweep 0 .. maximum as frames

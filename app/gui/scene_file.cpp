@@ -4,9 +4,11 @@
 #include <exception>
 #include <filesystem>
 #include <memory>
+#include <new>
 #include <string>
 
 #include "app/gui/app.hpp"
+#include "app/scene_input.hpp"
 #include "scenes/load_scene.hpp"
 
 namespace fetic::app::gui {
@@ -16,6 +18,14 @@ namespace fs = std::filesystem;
 void App::reload() {
   try {
     scenes::Scene scene = scenes::load_scene_file(args_.scene);
+    // As at the start (cmd_gui.cpp): a scene grown beyond the memory is refused.
+    if (const std::string problem = memory_problem(
+            scene, {{solver::MethodKind::FetiC, solver::MethodKind::ActiveSet}, false, 100});
+        !problem.empty()) {
+      say("reload failed: " + problem, true);
+      log_.write({{"event", "error"}, {"message", status_line_}});
+      return;
+    }
     auto model = std::make_shared<const solver::Model>(solver::build_model(scene));
     target_.model = std::move(model);
     ++target_.model_generation;
@@ -23,6 +33,9 @@ void App::reload() {
     send_to_worker();
     say("reloaded " + args_.scene);
     log_.write({{"event", "reloaded"}, {"scene", args_.scene}});
+  } catch (const std::bad_alloc&) {
+    say("reload failed: out of memory while reading the scene or assembling its model", true);
+    log_.write({{"event", "error"}, {"message", status_line_}});
   } catch (const std::exception& error) {
     say(std::string("reload failed: ") + error.what(), true);
     log_.write({{"event", "error"}, {"message", status_line_}});

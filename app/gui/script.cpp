@@ -127,10 +127,11 @@ std::vector<ScriptAction> parse_script(const std::string& text, std::vector<Scri
       ok = need_number(RequestKind::Scrub, 0.0, 1e9);
     } else if (verb == "toggle") {
       ok = argument == "subdomains" || argument == "forces" || argument == "gaps" ||
-           argument == "stress" || argument == "overlay" || argument == "help";
+           argument == "stress" || argument == "overlay" || argument == "labels" ||
+           argument == "help";
       if (!ok)
         errors.push_back(
-            {line, "'toggle' needs subdomains, forces, gaps, stress, overlay or help"});
+            {line, "'toggle' needs subdomains, forces, gaps, stress, overlay, labels or help"});
       r.kind = RequestKind::Toggle;
       r.text = argument;
     } else if (verb == "screenshot") {

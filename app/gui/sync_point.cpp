@@ -169,6 +169,7 @@ void App::apply(const Request& r) {
       if (r.text == "gaps") gaps_ = !gaps_;
       if (r.text == "stress") stress_ = !stress_;
       if (r.text == "overlay") show_overlay_ = !show_overlay_;
+      if (r.text == "labels") labels_ = !labels_;
       if (r.text == "help") help_ = !help_;
       redraw_ = true;
       break;

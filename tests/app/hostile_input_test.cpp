@@ -97,7 +97,7 @@ TEST_CASE("SIGTERM while waiting to open a scene FIFO: status 130", "[hostile]")
   const std::string fifo = dir / "scene.toml";
   REQUIRE(::mkfifo(fifo.c_str(), 0600) == 0);
   Process process({"solve", fifo});
-  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  REQUIRE(process.wait_for_fifo_open());
   process.signal(SIGTERM);
   const Result r = process.wait(std::chrono::seconds(20));
   CHECK(r.status == 130);
@@ -155,7 +155,8 @@ TEST_CASE("generate refuses scenes beyond the limits at once, and stops on SIGIN
   const std::string out = dir / "big.toml";
   Process process({"generate", "--pairs", "130000", "--model", "bar", "--elements", "1",
                    "--subdomains", "1", "-o", out});
-  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  REQUIRE(process.wait_for_signal_handlers());
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));  // generating by now
   process.signal(SIGINT);
   const Result r = process.wait(std::chrono::seconds(60));
   CHECK(r.status == 130);

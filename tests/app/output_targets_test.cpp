@@ -158,7 +158,7 @@ TEST_CASE("SIGTERM while waiting for a FIFO's reader: status 130, the FIFO stays
   const std::string fifo = dir / "fifo";
   make_fifo(fifo);
   Process process({"solve", kScene, "--json", fifo});
-  std::this_thread::sleep_for(std::chrono::milliseconds(700));  // solved, blocked in open()
+  REQUIRE(process.wait_for_fifo_open());  // solved, blocked opening the FIFO
   process.signal(SIGTERM);
   const Result r = process.wait(std::chrono::seconds(20));
   CHECK(r.status == 130);

@@ -247,7 +247,7 @@ TEST_CASE("dragging the load slider with the mouse re-solves and redraws", "[e2e
   // The two pictures differ by far more than the golden tolerance.
   const auto a = fetic::testing::read_png((*shot0)["path"].get<std::string>());
   const auto b = fetic::testing::read_png((*shot1)["path"].get<std::string>());
-  CHECK(fetic::testing::compare(b, a).fraction > 0.01);
+  CHECK(fetic::testing::compare(b, a).fraction > 0.005);
 
   // Keys: R back to iteration 0, Right twice, S: the screenshot is of iteration 2; Left
   // once: iteration 1.

@@ -37,7 +37,7 @@ TextItem item(const std::string& text, HAlign h, VAlign v, bool vertical = false
 }  // namespace
 
 TEST_CASE("a missing TTF falls back to ImGui's built-in font and says which file") {
-  const FontAtlas font("/nonexistent/DejaVuSans.ttf", "/nonexistent/DejaVuSans-Bold.ttf");
+  const FontAtlas font(22.0f, "/nonexistent/DejaVuSans.ttf", "/nonexistent/DejaVuSans-Bold.ttf");
   CHECK_THAT(font.note(), Catch::Contains("/nonexistent/DejaVuSans.ttf"));
   CHECK_THAT(font.note(), Catch::Contains("built-in"));
   std::vector<TexturedVertex> glyphs;

@@ -11,6 +11,7 @@
 #include "render/figures.hpp"
 #include "render/frame_composer.hpp"
 #include "render/png_writer.hpp"
+#include "scenes/generate_scene.hpp"
 #include "scenes/load_scene.hpp"
 #include "tests/render/golden.hpp"
 
@@ -34,6 +35,28 @@ View view_of(int width, int height) {
   return view;
 }
 
+// The final state of the solve, as `fetic render --final` draws it, at each of `views`.
+std::vector<Image> render_final(const scenes::Scene& scene, solver::MethodKind kind,
+                                const std::vector<View>& views) {
+  const solver::Model model = solver::build_model(scene);
+  const auto method = solver::make_method(kind, model, {});
+  FramePlan plan;
+  plan.every_iteration = false;
+  const RunExtent extent = survey(model, *method, plan);
+  std::vector<Image> images;
+  run_frames(*method, plan, [&](const Frame& frame) {
+    for (const View& view : views) {
+      const FrameComposer composer(model, view, extent,
+                                   {model.title, solver::to_string(kind), "", ""});
+      const ComposedFrame composed = composer.compose(frame);
+      images.push_back(fetic::testing::test_renderer().render(
+          view.width, view.height, composed.layers(), palette::background));
+    }
+    return true;
+  });
+  return images;
+}
+
 // The final state of the solve, as `fetic render --final` draws it.
 Image render_final(const Shot& shot) {
   const solver::Model model = solver::build_model(scenes::load_scene_file(shot.scene));
@@ -48,8 +71,7 @@ Image render_final(const Shot& shot) {
   run_frames(*method, plan, [&](const Frame& frame) {
     const ComposedFrame composed = composer.compose(frame);
     image = fetic::testing::test_renderer().render(shot.view.width, shot.view.height,
-                                                   {&composed.scene, &composed.overlay},
-                                                   palette::background);
+                                                   composed.layers(), palette::background);
     return true;
   });
   return image;
@@ -97,6 +119,55 @@ TEST_CASE("golden: plane model, deformed meshes in contact") {
             solver::MethodKind::ActiveSet, 1.0, view_of(400, 300)};
   shot.view.color_by = ColorBy::Stress;
   const std::string problem = check_golden("plane_contact_400x300", render_final(shot));
+  INFO(problem);
+  CHECK(problem.empty());
+}
+
+TEST_CASE("golden: dense scenes stay readable, at two frame sizes") {
+  // 2,000 pairs of bars (20,000 unknowns): a column of struts a fraction of a pixel apart;
+  // glyphs too dense to draw are left out and counted, the stress colours show.
+  scenes::GenerateOptions bars;
+  bars.model = scenes::ModelKind::Bar;
+  bars.pairs = 2000;
+  bars.elements = 4;
+  bars.subdomains = 2;
+  View small = view_of(640, 360), large = view_of(1280, 720);
+  small.color_by = large.color_by = ColorBy::Stress;
+  auto images =
+      render_final(scenes::generate_scene(bars), solver::MethodKind::FetiC, {small, large});
+  REQUIRE(images.size() == 2);
+  std::string problem = check_golden("dense_bars_640x360", images[0]);
+  INFO(problem);
+  CHECK(problem.empty());
+  problem = check_golden("dense_bars_1280x720", images[1]);
+  INFO(problem);
+  CHECK(problem.empty());
+
+  // A plane scene of 101,000 unknowns (10 pairs of 100x24-element struts, bent and pushed
+  // together): one row of load arrows per strut side, contact faces marked along the face.
+  scenes::GenerateOptions plane;
+  plane.model = scenes::ModelKind::Plane;
+  plane.pairs = 10;
+  plane.elements = 100;
+  plane.elements_across = 24;
+  plane.subdomains = 5;
+  images = render_final(scenes::generate_scene(plane), solver::MethodKind::FetiC, {small, large});
+  REQUIRE(images.size() == 2);
+  problem = check_golden("plane_100k_640x360", images[0]);
+  INFO(problem);
+  CHECK(problem.empty());
+  problem = check_golden("plane_100k_1280x720", images[1]);
+  INFO(problem);
+  CHECK(problem.empty());
+}
+
+TEST_CASE("golden: a scene in mm and N, stresses in MPa") {
+  View view = view_of(640, 360);
+  view.color_by = ColorBy::Stress;
+  view.show_labels = true;
+  const auto images = render_final(scenes::load_scene_file(bundled("press_mm.toml")),
+                                   solver::MethodKind::ActiveSet, {view});
+  const std::string problem = check_golden("press_mm_640x360", images.at(0));
   INFO(problem);
   CHECK(problem.empty());
 }

@@ -7,6 +7,7 @@
 #include <signal.h>
 #include <spawn.h>
 #include <sys/stat.h>
+#include <sys/syscall.h>
 #include <sys/sysmacros.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -146,6 +147,43 @@ class Process {
   Process& operator=(const Process&) = delete;
 
   void signal(int number) const { ::kill(pid_, number); }
+
+  // Waits (up to 60 s) until the program has installed its SIGINT/SIGTERM handlers, so
+  // that a signal is its to handle and does not kill it during start-up.
+  bool wait_for_signal_handlers() const {
+    return wait_until([&] {
+      std::ifstream in("/proc/" + std::to_string(pid_) + "/status");
+      for (std::string line; std::getline(in, line);)
+        if (line.rfind("SigCgt:", 0) == 0) {
+          const unsigned long long caught = std::stoull(line.substr(7), nullptr, 16);
+          return (caught >> (SIGINT - 1) & 1) && (caught >> (SIGTERM - 1) & 1);
+        }
+      return false;
+    });
+  }
+
+  // Waits (up to 60 s) until the program blocks opening a FIFO that has no other end:
+  // the kernel's wait channel says so (wait_for_partner); where it is hidden, the open
+  // system call seen in three polls 50 ms apart, once the signal handlers are in place.
+  bool wait_for_fifo_open() const {
+    if (!wait_for_signal_handlers()) return false;
+    int seen = 0;
+    return wait_until([&] {
+      std::ifstream wchan("/proc/" + std::to_string(pid_) + "/wchan");
+      std::string where;
+      wchan >> where;
+      if (where == "wait_for_partner") return true;
+      if (where != "0" && !where.empty()) {
+        seen = 0;
+        return false;
+      }
+      std::ifstream syscall("/proc/" + std::to_string(pid_) + "/syscall");
+      long current = -1;
+      seen = (syscall >> current) && current == SYS_openat ? seen + 1 : 0;
+      std::this_thread::sleep_for(std::chrono::milliseconds(40));
+      return seen >= 3;
+    });
+  }
   std::string stderr_so_far() const { return read_text(err_); }
 
   // Waits up to `timeout` (then kills it and fails the result: status -1, signal 9).
@@ -170,6 +208,16 @@ class Process {
   }
 
  private:
+  template <class Condition>
+  static bool wait_until(Condition condition) {
+    const auto end = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+    while (std::chrono::steady_clock::now() < end) {
+      if (condition()) return true;
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    return false;
+  }
+
   TempDir dir_;
   std::string out_, err_;
   pid_t pid_ = -1;

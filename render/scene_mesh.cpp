@@ -1,0 +1,256 @@
+#include "render/scene_mesh.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <limits>
+#include <numeric>
+#include <tuple>
+
+#include "render/colormap.hpp"
+#include "render/frame_sequence.hpp"
+
+namespace fetic::render {
+namespace {
+
+using solver::Vec2;
+
+constexpr Color kOutline{55, 55, 62, 255};
+constexpr Color kMeshLine{55, 55, 62, 110};
+
+// Position of each piece among the pieces of its strut, ordered along the strut.
+std::vector<int> piece_ranks(const solver::Snapshot& snapshot) {
+  std::vector<int> order(snapshot.pieces.size());
+  std::iota(order.begin(), order.end(), 0);
+  const auto key = [&](int p) {
+    const solver::Piece& piece = snapshot.pieces[static_cast<std::size_t>(p)];
+    return std::make_tuple(piece.strut, piece.box.i0, piece.box.k0);
+  };
+  std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return key(a) < key(b); });
+  std::vector<int> rank(snapshot.pieces.size(), 0);
+  for (std::size_t j = 1; j < order.size(); ++j) {
+    const int previous = order[j - 1], current = order[j];
+    rank[static_cast<std::size_t>(current)] =
+        snapshot.pieces[static_cast<std::size_t>(previous)].strut ==
+                snapshot.pieces[static_cast<std::size_t>(current)].strut
+            ? rank[static_cast<std::size_t>(previous)] + 1
+            : 0;
+  }
+  return rank;
+}
+
+bool same_box(const solver::NodeBox& a, const solver::NodeBox& b) {
+  return a.i0 == b.i0 && a.i1 == b.i1 && a.k0 == b.k0 && a.k1 == b.k1;
+}
+
+// Appends the six vertices of a quad from corner vertices a b c d (in order around it).
+void quad(std::vector<MeshVertex>& out, const MeshVertex& a, const MeshVertex& b,
+          const MeshVertex& c, const MeshVertex& d) {
+  out.insert(out.end(), {a, b, c, a, c, d});
+}
+
+// A band along the segment from node row a to node row b: `half` across (x: half bar
+// widths, y: rim units, w: line widths), `inset_start` / `inset_end` along (rim units).
+void band(std::vector<MeshVertex>& out, int a, int b, std::array<float, 3> half, float inset_start,
+          float inset_end, int element, Color color) {
+  const auto vertex = [&](float t, float side, float along) {
+    MeshVertex v;
+    v.node_a = a;
+    v.node_b = b;
+    v.t = t;
+    v.offset = {side * half[0], side * half[1], along, side * half[2]};
+    v.element = element;
+    v.color = color;
+    return v;
+  };
+  quad(out, vertex(0, 1, inset_start), vertex(1, 1, -inset_end), vertex(1, -1, -inset_end),
+       vertex(0, -1, inset_start));
+}
+
+MeshVertex at_node(int row, int element, Color color) {
+  MeshVertex v;
+  v.node_a = v.node_b = row;
+  v.element = element;
+  v.color = color;
+  return v;
+}
+
+std::atomic<std::uint64_t> next_id{1};
+
+}  // namespace
+
+bool SceneMesh::fits(const solver::Snapshot& snapshot) const {
+  if (snapshot.pieces.size() != layout.size()) return false;
+  for (std::size_t p = 0; p < layout.size(); ++p)
+    if (snapshot.pieces[p].strut != layout[p].first ||
+        !same_box(snapshot.pieces[p].box, layout[p].second))
+      return false;
+  return true;
+}
+
+SceneMesh build_scene_mesh(const solver::Model& model, const solver::Snapshot& snapshot,
+                           const SceneFraming& framing, ColorBy color_by) {
+  SceneMesh mesh;
+  mesh.id = next_id++;
+  mesh.color_by = color_by;
+  // Origin: the middle of the reference geometry.
+  Vec2 low = Vec2::Constant(std::numeric_limits<double>::infinity()), high = -low;
+  for (const solver::StrutMesh& strut : model.struts)
+    for (const Vec2& p : strut.nodes) {
+      low = low.cwiseMin(p);
+      high = high.cwiseMax(p);
+    }
+  if (low.allFinite() && high.allFinite()) mesh.origin = 0.5 * (low + high);
+  mesh.smallest_element = std::numeric_limits<double>::infinity();
+
+  const auto ranks = piece_ranks(snapshot);
+  std::vector<MeshVertex> rims, bar_fills, plane_fills, plane_lines, outlines;
+  for (std::size_t p = 0; p < snapshot.pieces.size(); ++p) {
+    const solver::Piece& piece = snapshot.pieces[p];
+    const auto s = static_cast<std::size_t>(piece.strut);
+    const solver::StrutMesh& strut = model.struts[s];
+    const solver::NodeBox& box = piece.box;
+    mesh.layout.emplace_back(piece.strut, box);
+    const int first = static_cast<int>(mesh.nodes.size());
+    mesh.first_node.push_back(first);
+    mesh.first_element.push_back(mesh.element_count);
+    for (int i = box.i0; i <= box.i1; ++i)
+      for (int k = box.k0; k <= box.k1; ++k) {
+        const auto node = static_cast<std::size_t>(strut.node(i, k));
+        const Vec2 x = strut.nodes[node] - mesh.origin;
+        const Vec2 q = framing.widening.empty() ? Vec2::Zero() : framing.widening[s][node];
+        mesh.nodes.push_back({static_cast<float>(x.x()), static_cast<float>(x.y()),
+                              static_cast<float>(q.x()), static_cast<float>(q.y())});
+      }
+    const auto row = [&](int i, int k) { return first + box.local(i, k); };
+    const Color fill = subdomain_color(piece.strut, color_by == ColorBy::Strut ? 0 : ranks[p]);
+    if (strut.dofs_per_node == 1) {
+      const int elements = box.i1 - box.i0;
+      if (elements <= 0) continue;
+      band(rims, row(box.i0, 0), row(box.i1, 0), {1, 0, 0}, 0, 0, -1, kOutline);
+      for (int e = 0; e < elements; ++e)
+        band(bar_fills, row(box.i0 + e, 0), row(box.i0 + e + 1, 0), {1, -1, 0},
+             e == 0 ? 1.0f : 0.0f, e + 1 == elements ? 1.0f : 0.0f, mesh.element_count + e, fill);
+      mesh.element_count += elements;
+      continue;
+    }
+    mesh.smallest_element =
+        std::min({mesh.smallest_element, strut.length / strut.nx,
+                  strut.ny > 0 ? strut.height / strut.ny : strut.length / strut.nx});
+    int element = mesh.element_count;
+    for (int i = box.i0; i < box.i1; ++i)
+      for (int k = box.k0; k < box.k1; ++k, ++element)
+        quad(plane_fills, at_node(row(i, k), element, fill), at_node(row(i + 1, k), element, fill),
+             at_node(row(i + 1, k + 1), element, fill), at_node(row(i, k + 1), element, fill));
+    mesh.element_count = element;
+    // Lines across (fixed i) and along (fixed k); the box's outer ones outline the piece.
+    for (int i = box.i0; i <= box.i1; ++i)
+      for (int k = box.k0; k < box.k1; ++k) {
+        const bool rim = i == box.i0 || i == box.i1;
+        band(rim ? outlines : plane_lines, row(i, k), row(i, k + 1), {0, 0, rim ? 0.8f : 0.5f}, 0,
+             0, -1, rim ? kOutline : kMeshLine);
+      }
+    for (int k = box.k0; k <= box.k1; ++k)
+      for (int i = box.i0; i < box.i1; ++i) {
+        const bool rim = k == box.k0 || k == box.k1;
+        band(rim ? outlines : plane_lines, row(i, k), row(i + 1, k), {0, 0, rim ? 0.8f : 0.5f}, 0,
+             0, -1, rim ? kOutline : kMeshLine);
+      }
+  }
+  if (!std::isfinite(mesh.smallest_element)) mesh.smallest_element = 0.0;
+  const auto append = [&](std::vector<MeshVertex>& part, MeshRange& range) {
+    range.first = static_cast<std::int32_t>(mesh.vertices.size());
+    range.count = static_cast<std::int32_t>(part.size());
+    mesh.vertices.insert(mesh.vertices.end(), part.begin(), part.end());
+    part.clear();
+    part.shrink_to_fit();
+  };
+  append(rims, mesh.bar_rims);
+  append(bar_fills, mesh.bar_fills);
+  append(plane_fills, mesh.plane_fills);
+  append(plane_lines, mesh.plane_lines);
+  append(outlines, mesh.plane_outlines);
+  return mesh;
+}
+
+void fill_mesh_values(const SceneMesh& mesh, const solver::Model& model,
+                      const solver::Snapshot& snapshot, const SceneFraming& framing,
+                      MeshValues& values) {
+  values.nodes.resize(mesh.nodes.size());
+  for (std::size_t p = 0; p < snapshot.pieces.size() && p < mesh.first_node.size(); ++p) {
+    const solver::Piece& piece = snapshot.pieces[p];
+    auto* out = values.nodes.data() + mesh.first_node[p];
+    for (std::size_t l = 0; l < piece.displacement.size(); ++l) {
+      const Vec2& u = piece.displacement[l];
+      out[l] = u.allFinite() ? std::array<float, 4>{static_cast<float>(u.x()),
+                                                    static_cast<float>(u.y()), 0.0f, 0.0f}
+                             : std::array<float, 4>{0, 0, 0, 0};
+    }
+  }
+  values.elements.assign(static_cast<std::size_t>(mesh.element_count), 0.0f);
+  if (mesh.color_by != ColorBy::Stress || !(framing.stress_scale > 0.0)) return;
+  const auto stresses = piece_stresses(model, snapshot);
+  for (std::size_t p = 0; p < stresses.size() && p < mesh.first_element.size(); ++p)
+    for (std::size_t e = 0; e < stresses[p].size(); ++e) {
+      const double v = stresses[p][e] / framing.stress_scale;
+      values.elements[static_cast<std::size_t>(mesh.first_element[p]) + e] =
+          std::isfinite(v) ? static_cast<float>(v) : 0.0f;
+    }
+}
+
+MeshUniforms mesh_uniforms(const SceneMesh& mesh, const SceneFraming& framing) {
+  MeshUniforms u;
+  u.magnification = static_cast<float>(framing.magnification);
+  u.widening = framing.gaps_magnified ? static_cast<float>(framing.magnification - 1.0) : 0.0f;
+  const Vec2 center = framing.world_center - mesh.origin;
+  u.center = {static_cast<float>(center.x()), static_cast<float>(center.y())};
+  u.pixel_center = {framing.pixel_center.x, framing.pixel_center.y};
+  u.pixels_per_unit = static_cast<float>(framing.pixels_per_unit);
+  u.half_bar_width = 0.5f * framing.bar_width;
+  u.rim = framing.bar_width >= 4.0f ? 1.0f : 0.0f;
+  u.line_width = framing.line_width;
+  u.stress = mesh.color_by == ColorBy::Stress;
+  // Mesh lines only where elements are large enough on screen not to fill with them.
+  u.mesh_lines = mesh.smallest_element * framing.pixels_per_unit >= 6.0;
+  return u;
+}
+
+void expand_mesh(const SceneMesh& mesh, const MeshValues& values, const MeshUniforms& u,
+                 DrawList& out) {
+  const auto world = [&](int row) {
+    const auto& r = mesh.nodes[static_cast<std::size_t>(row)];
+    const auto& v = values.nodes[static_cast<std::size_t>(row)];
+    return std::array<float, 2>{r[0] + u.widening * r[2] + u.magnification * v[0],
+                                r[1] + u.widening * r[3] + u.magnification * v[1]};
+  };
+  const auto screen = [&](const std::array<float, 2>& w) {
+    return Point{u.pixel_center[0] + (w[0] - u.center[0]) * u.pixels_per_unit,
+                 u.pixel_center[1] - (w[1] - u.center[1]) * u.pixels_per_unit};
+  };
+  const auto place = [&](const MeshVertex& v) {
+    const Point a = screen(world(v.node_a)), b = screen(world(v.node_b));
+    Point d = normalized(b - a);
+    if (d == Point{}) d = {1.0f, 0.0f};
+    const Point n = perpendicular(d);
+    const float across =
+        v.offset[0] * u.half_bar_width + v.offset[1] * u.rim + v.offset[3] * u.line_width;
+    const float along = v.offset[2] * u.rim;
+    const Color color = v.element >= 0 && u.stress
+                            ? diverging(values.elements[static_cast<std::size_t>(v.element)])
+                            : v.color;
+    return Vertex{a + v.t * (b - a) + across * n + along * d, color};
+  };
+  const auto draw = [&](const MeshRange& range) {
+    for (std::int32_t i = range.first; i + 2 < range.first + range.count; i += 3)
+      out.triangle(place(mesh.vertices[static_cast<std::size_t>(i)]),
+                   place(mesh.vertices[static_cast<std::size_t>(i + 1)]),
+                   place(mesh.vertices[static_cast<std::size_t>(i + 2)]));
+  };
+  if (u.rim > 0.0f) draw(mesh.bar_rims);
+  draw(mesh.bar_fills);
+  draw(mesh.plane_fills);
+  if (u.mesh_lines) draw(mesh.plane_lines);
+  draw(mesh.plane_outlines);
+}
+
+}  // namespace fetic::render

@@ -1,0 +1,85 @@
+// `fetic render --movie` onto the targets of app/output_file.hpp: a private full device
+// (status 5, the node stays), a FIFO (a fragmented mp4 arrives through it), a symbolic
+// link (followed) and stdout ("-", the report on stderr).
+
+#include <catch2/catch.hpp>
+
+#include <sys/stat.h>
+
+#include <cstdlib>
+#include <string>
+#include <thread>
+
+#include "tests/support/process.hpp"
+
+using namespace fetic::test;
+namespace fs = std::filesystem;
+
+namespace {
+
+const std::vector<std::string> kRender = {
+    "render", bundled_scene("two_bars.toml"), "--final", "--size", "64x48", "--movie"};
+
+std::vector<std::string> render_to(const std::string& movie) {
+  std::vector<std::string> command = kRender;
+  command.push_back(movie);
+  return command;
+}
+
+bool has_ffmpeg() {
+  return std::system("command -v ffmpeg > /dev/null 2>&1") == 0;
+}
+
+// An mp4 starts with its ftyp box: 4 bytes of size, then "ftyp".
+bool looks_like_mp4(const std::string& bytes) {
+  return bytes.size() > 1000 && bytes.compare(4, 4, "ftyp") == 0;
+}
+
+}  // namespace
+
+TEST_CASE("render --movie onto a FIFO, a link and stdout", "[output]") {
+  if (!has_ffmpeg()) {
+    WARN("skipped: ffmpeg is not installed");
+    return;
+  }
+  TempDir dir;
+  const std::string fifo = dir / "movie.fifo";
+  REQUIRE(::mkfifo(fifo.c_str(), 0600) == 0);
+  std::string received;
+  std::thread reader([&] { received = read_text(fifo); });
+  const Result streamed = run_fetic(render_to(fifo));
+  reader.join();
+  INFO(streamed.err);
+  CHECK(streamed.status == 0);
+  CHECK(looks_like_mp4(received));
+  CHECK(is_fifo(fifo));
+
+  const std::string target = dir / "movie.mp4";
+  fs::create_symlink("movie.mp4", dir / "link.mp4");
+  const Result linked = run_fetic(render_to(dir / "link.mp4"));
+  CHECK(linked.status == 0);
+  CHECK(is_symlink(dir / "link.mp4"));
+  CHECK(looks_like_mp4(read_text(target)));
+
+  const Result out = run_fetic(render_to("-"));
+  CHECK(out.status == 0);
+  CHECK(looks_like_mp4(out.out));
+  CHECK_THAT(out.err, Catch::Contains("movie        -"));
+}
+
+TEST_CASE("render --movie onto a private full device: status 5, the device stays", "[output]") {
+  if (!has_ffmpeg()) {
+    WARN("skipped: ffmpeg is not installed");
+    return;
+  }
+  if (!can_make_devices()) {
+    WARN("skipped: mknod needs root");
+    return;
+  }
+  TempDir dir;
+  const std::string full = make_char_device(dir, "full", 1, 7);
+  const Result r = run_fetic(render_to(full));
+  CHECK(r.status == 5);
+  CHECK_THAT(r.err, Catch::Contains(full));
+  CHECK(is_char_device(full));
+}
