@@ -56,14 +56,39 @@ int interrupted_status() {
   return kExitInterrupted;
 }
 
+// The counts themselves, named by option and value: what generate_scene() requires.
+std::string count_problem(const GenerateArgs& args, const scenes::GenerateOptions& options) {
+  const bool plane = options.model == scenes::ModelKind::Plane;
+  if (options.elements < 1 || (plane && options.elements_across < 1))
+    return "--elements " + args.elements + ": the counts must be whole numbers of at least 1";
+  if (options.subdomains < 1 || (plane && options.subdomains_across < 1))
+    return "--subdomains " + args.subdomains + ": the counts must be whole numbers of at least 1";
+  if (options.subdomains > options.elements)
+    return "--subdomains " + args.subdomains + ": " + std::to_string(options.subdomains) +
+           " subdomains along a strut of " + std::to_string(options.elements) +
+           " elements; each subdomain needs an element";
+  if (plane && options.subdomains_across > options.elements_across)
+    return "--subdomains " + args.subdomains + ": " + std::to_string(options.subdomains_across) +
+           " subdomains across a strut " + std::to_string(options.elements_across) +
+           " elements wide; each subdomain needs an element";
+  return "";
+}
+
 // The limits a scene file must keep, checked before anything is made: the unknowns from
 // the options, the size of the text from a few pairs made for it.
 std::string limit_problem(const GenerateArgs& args, const scenes::GenerateOptions& options) {
-  const long long unknowns = scenes::generated_unknowns(options);
-  if (unknowns > scenes::kMaxUnknowns)
-    return "the scene would have " + std::to_string(unknowns) +
-           " unknowns, more than the limit of " + std::to_string(scenes::kMaxUnknowns) +
-           " a scene may have; use fewer pairs or elements";
+  // In floating point: the product of the counts overflows 64-bit integers.
+  const bool plane = options.model == scenes::ModelKind::Plane;
+  const double unknowns = 2.0 * options.pairs * (options.elements + 1.0) *
+                          (plane ? 2.0 * (options.elements_across + 1.0) : 1.0);
+  if (unknowns > static_cast<double>(scenes::kMaxUnknowns)) {
+    char text[200];
+    std::snprintf(text, sizeof text,
+                  "the scene would have %.0f unknowns, more than the limit of %lld a scene may "
+                  "have; use fewer pairs or elements",
+                  unknowns, static_cast<long long>(scenes::kMaxUnknowns));
+    return text;
+  }
   scenes::GenerateOptions sample = options;
   sample.pairs = std::min(options.pairs, 16);
   const double per_pair =
@@ -97,12 +122,17 @@ int run_generate(const GenerateArgs& args) {
   options.stop = [] { return interrupted(); };
   if (!parse_pair(args.elements, options.elements, options.elements_across) ||
       !parse_pair(args.subdomains, options.subdomains, options.subdomains_across)) {
-    std::cerr << "fetic generate: --elements and --subdomains take N or N,M\n";
+    std::cerr << "fetic generate: --elements and --subdomains take N or N,M (whole numbers), got "
+              << "--elements " << args.elements << " --subdomains " << args.subdomains << '\n';
     return kExitUsage;
   }
   std::string text;
   try {
     Activity generating("generating the scene");
+    if (const std::string problem = count_problem(args, options); !problem.empty()) {
+      std::cerr << "fetic generate: " << problem << '\n';
+      return kExitUsage;
+    }
     if (const std::string problem = limit_problem(args, options); !problem.empty()) {
       std::cerr << "fetic generate: " << problem << '\n';
       return problem.starts_with("not enough memory") ? kExitOutOfMemory : kExitUsage;

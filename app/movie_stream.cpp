@@ -1,6 +1,7 @@
 #include "app/movie_stream.hpp"
 
 #include <fcntl.h>
+#include <poll.h>
 #include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -11,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "app/child_process.hpp"
 #include "app/interrupt.hpp"
 
 extern char** environ;
@@ -18,11 +20,20 @@ extern char** environ;
 namespace fetic::app {
 namespace {
 
+// The pipe's write end is non-blocking: while ffmpeg takes no input (it may wait to open
+// a FIFO without a reader), the writer looks at the interrupt flag every 100 ms instead of
+// sleeping in write(), where a signal delivered to another thread would not wake it.
 bool write_all(int fd, const std::uint8_t* data, std::size_t size) {
   while (size > 0) {
     const ssize_t n = ::write(fd, data, size);
     if (n < 0) {
-      if (errno == EINTR && !interrupted()) continue;
+      if (interrupted()) return false;
+      if (errno == EAGAIN) {
+        pollfd ready{fd, POLLOUT, 0};
+        ::poll(&ready, 1, 100);
+        continue;
+      }
+      if (errno == EINTR) continue;
       return false;
     }
     data += n;
@@ -39,6 +50,7 @@ MovieStream::MovieStream(const ExternalTarget& target, int width, int height, in
   int fds[2];
   if (::pipe2(fds, O_CLOEXEC) != 0)
     throw OutputError(shown + ": cannot open a pipe to ffmpeg (" + std::strerror(errno) + ")");
+  ::fcntl(fds[1], F_SETFL, O_NONBLOCK);  // fetic's end only (see write_all)
   const std::string size = std::to_string(width) + "x" + std::to_string(height);
   // veryfast: about twice the speed of x264's default preset, and on these flat pictures
   // no larger; yuv420p for players; the pad makes odd sizes even, as H.264 needs.
@@ -164,10 +176,7 @@ bool MovieStream::finish() {
 }
 
 void MovieStream::stop_ffmpeg() {
-  ::kill(child_, SIGTERM);
-  int status = 0;
-  while (::waitpid(child_, &status, 0) < 0 && errno == EINTR) {
-  }
+  stop_child(child_);
   child_ = 0;
 }
 

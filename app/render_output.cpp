@@ -15,6 +15,7 @@
 
 #include <omp.h>
 
+#include "app/child_process.hpp"
 #include "app/exit_codes.hpp"
 #include "app/interrupt.hpp"
 #include "app/output_file.hpp"
@@ -174,12 +175,11 @@ int assemble_movie(const std::string& directory, int count, int fps, const std::
       // SIGINT/SIGTERM interrupt waitpid (no SA_RESTART): stop ffmpeg then, and wait for
       // it, so that its temporary file is removed only once nobody writes it any more.
       int status = 0;
-      bool stopped = false;
       while (waitpid(child, &status, 0) < 0) {
         if (errno != EINTR) return false;
-        if (interrupted() && !stopped) {
-          ::kill(child, SIGTERM);
-          stopped = true;
+        if (interrupted()) {
+          stop_child(child);
+          return false;
         }
       }
       return !interrupted() && WIFEXITED(status) && WEXITSTATUS(status) == 0;

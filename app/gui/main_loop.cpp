@@ -166,10 +166,13 @@ int App::run(render::GlfwWindow& window, std::vector<ScriptAction> script) {
   ImGui::DestroyContext();
 
   if (args_.bench > 0) print_bench(window);
+  const std::string lost_outputs = log_.lost_outputs();
+  if (!lost_outputs.empty()) std::cerr << "fetic gui: " << lost_outputs << '\n';
   if (const std::string lost = log_.close(); !lost.empty()) {
     std::cerr << lost << "; the state file is incomplete\n";
     return kExitOutput;
   }
+  if (!lost_outputs.empty()) return kExitOutput;
   if (script_failed) return kExitNotConverged;
   return kExitOk;
 }

@@ -34,7 +34,10 @@ void App::start_recording(const Request& r) {
   std::error_code error;
   fs::create_directories(rec->directory, error);
   if (error) {
-    say(rec->directory.string() + ": " + error.message(), true);
+    const std::string message = rec->directory.string() +
+                                ": cannot create the recording directory (" + error.message() + ")";
+    say(message, true);
+    log_.output_lost(message);
     return;
   }
   rec->pool = std::make_unique<render::PngEncoderPool>(default_encoder_threads(), 8);
@@ -78,7 +81,7 @@ void App::screenshot(const std::string& requested) {
                                            {"iteration", iteration},
                                            {"newest_iteration", newest}});
                              } catch (const std::exception& error) {
-                               log_.write({{"event", "error"}, {"message", error.what()}});
+                               log_.output_lost(error.what());
                              }
                            });
 }
@@ -144,11 +147,14 @@ void App::step_recording() {
         if (assemble_movie(finished->directory.string(), finished->next, 8, movie, std::cerr) ==
             kExitOk)
           event["movie"] = movie;
+        else
+          event["error"] = movie + ": the movie could not be made (see the messages above)";
       }
     } catch (const std::exception& error) {
-      event["error"] = error.what();
+      event["error"] = finished->directory.string() + ": " + error.what();
     }
     log_.write(event);
+    if (event.contains("error")) log_.output_lost(event["error"].get<std::string>());
   });
 }
 

@@ -10,6 +10,8 @@
 namespace fetic::app::gui {
 namespace {
 
+constexpr int kMaxScriptSeconds = 3600;
+
 std::optional<double> number(const std::string& text) {
   if (text.empty()) return std::nullopt;
   char* end = nullptr;
@@ -43,8 +45,11 @@ std::vector<ScriptAction> parse_script(const std::string& text, std::vector<Scri
     action.line = line;
     std::size_t i = 0;
     if (const auto time = number(w[0])) {
-      if (*time < 0) {
-        errors.push_back({line, "the time must not be negative"});
+      // A script is a demo or a test: an hour is plenty, and a time like 1e308 would
+      // keep the window open for ever.
+      if (!(*time >= 0 && *time <= kMaxScriptSeconds)) {
+        errors.push_back({line, "the time must be from 0 to " + std::to_string(kMaxScriptSeconds) +
+                                    " seconds, not '" + w[0] + "'"});
         continue;
       }
       action.at = *time;

@@ -149,6 +149,18 @@ TEST_CASE("generate refuses scenes beyond the limits at once, and stops on SIGIN
       {"generate", "--pairs", "1000000", "--model", "bar", "--elements", "4", "--subdomains", "1"});
   CHECK(text.status == 1);
   CHECK_THAT(text.err, Catch::Contains("MiB of TOML, more than the 64 MiB a scene file may have"));
+  // The product of the counts would overflow 64-bit integers.
+  const Result huge = run_fetic({"generate", "--elements", "1000000000,1000000000"});
+  CHECK(huge.status == 1);
+  CHECK_THAT(huge.err, Catch::Contains("the scene would have 40000000"));
+  // Counts generate_scene() cannot use, named by option and value.
+  const Result zero = run_fetic({"generate", "--elements", "3,0"});
+  CHECK(zero.status == 1);
+  CHECK_THAT(zero.err, Catch::Contains("--elements 3,0: the counts must be whole numbers"));
+  const Result split = run_fetic({"generate", "--subdomains", "33,1"});
+  CHECK(split.status == 1);
+  CHECK_THAT(split.err, Catch::Contains("--subdomains 33,1: 33 subdomains along a strut of 32 "
+                                        "elements; each subdomain needs an element"));
   CHECK(std::chrono::steady_clock::now() - start < std::chrono::seconds(20));
 
   TempDir dir;

@@ -409,6 +409,31 @@ TEST_CASE("a load sweep is recorded as frames; a method that cannot solve is rep
   CHECK(solved.back()["message"].get<std::string>().find("contact") != std::string::npos);
 }
 
+TEST_CASE("a screenshot or recording that cannot be written is an error event and status 5",
+          "[script]") {
+  REQUIRE(have_display());
+  const fs::path dir = fresh_directory("fetic_gui_lost");
+  const fs::path state = dir / "state.jsonl";
+  const fs::path script = dir / "script.txt";
+  const fs::path file = dir / "a_file";
+  std::ofstream(file) << "not a directory\n";
+  std::ofstream(script) << "wait\nscreenshot shot.png\nrecord-sweep 2\nquit\n";
+  App app({scene("two_bars.toml"), "--state-file", state.string(), "--script", script.string(),
+           "--screenshot-dir", file.string(), "--record-dir", file.string()});
+  const auto status = app.wait(90.0);
+  INFO("reported state:\n" << read_text(state));
+  REQUIRE(status);
+  CHECK(*status == 5);
+  std::vector<std::string> errors;
+  for (const json& e : events(state))
+    if (is(e, "error")) errors.push_back(e["message"].get<std::string>());
+  REQUIRE(errors.size() == 2);
+  std::sort(errors.begin(), errors.end());  // the screenshot is written off the UI thread
+  CHECK(errors[0].find((file / "shot.png").string() + ": cannot write") != std::string::npos);
+  CHECK(errors[1].find("cannot create the recording directory") != std::string::npos);
+  CHECK(read_text(file) == "not a directory\n");
+}
+
 TEST_CASE("a changed scene file is reloaded, keeping the app running", "[script]") {
   REQUIRE(have_display());
   const fs::path dir = fresh_directory("fetic_gui_reload");

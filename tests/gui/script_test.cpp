@@ -55,7 +55,7 @@ TEST_CASE("script errors name the line and the problem", "[script]") {
   CHECK(errors[1].message == "'load' needs a number from 0 to 1e+300, not 'x'");
   CHECK(errors[2].message == "unknown action 'jump'");
   CHECK(errors[3].line == 4);
-  CHECK(errors[4].message == "the time must not be negative");
+  CHECK(errors[4].message == "the time must be from 0 to 3600 seconds, not '-1'");
   CHECK(errors[5].message == "a time without an action");
   CHECK(errors[6].message == "'step' takes no argument");
 }
@@ -85,8 +85,9 @@ TEST_CASE("method and preconditioner names are checked; live stepping and cancel
 
 TEST_CASE("script numbers name their range", "[script]") {
   std::vector<ScriptError> errors;
-  parse_script("record-sweep 1000000000\nmethod bogus\n", errors);
-  REQUIRE(errors.size() == 2);
+  parse_script("record-sweep 1000000000\nmethod bogus\n1e308 quit\n", errors);
+  REQUIRE(errors.size() == 3);
   CHECK(errors[0].message == "'record-sweep' needs a number from 2 to 10000, not '1000000000'");
   CHECK(errors[1].message == "unknown method 'bogus' (feti-c, mprgp, active-set, feti, cg or sd)");
+  CHECK(errors[2].message == "the time must be from 0 to 3600 seconds, not '1e308'");
 }

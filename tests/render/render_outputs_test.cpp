@@ -1,10 +1,14 @@
 // `fetic render --movie` onto the targets of app/output_file.hpp: a private full device
 // (status 5, the node stays), a FIFO (a fragmented mp4 arrives through it), a symbolic
-// link (followed) and stdout ("-", the report on stderr).
+// link (followed) and stdout ("-", the report on stderr); SIGTERM while ffmpeg waits for
+// the FIFO's reader.
 
 #include <catch2/catch.hpp>
 
 #include <sys/stat.h>
+
+#include <cerrno>
+#include <csignal>
 
 #include <cstdlib>
 #include <string>
@@ -82,4 +86,30 @@ TEST_CASE("render --movie onto a private full device: status 5, the device stays
   CHECK(r.status == 5);
   CHECK_THAT(r.err, Catch::Contains(full));
   CHECK(is_char_device(full));
+}
+
+TEST_CASE("SIGTERM while ffmpeg waits for the movie FIFO's reader: 130, ffmpeg ended", "[output]") {
+  if (!has_ffmpeg()) {
+    WARN("skipped: ffmpeg is not installed");
+    return;
+  }
+  TempDir dir;
+  const std::string fifo = dir / "movie.fifo";
+  REQUIRE(::mkfifo(fifo.c_str(), 0600) == 0);
+  std::vector<std::string> steps = render_to(fifo);
+  steps[2] = "--load-steps";  // several frames: fetic blocks on the full pipe as well
+  steps.insert(steps.begin() + 3, "0:1:20");
+  for (const auto& command : {render_to(fifo), steps}) {
+    Process process(command);
+    const pid_t ffmpeg = process.wait_for_child_fifo_open();
+    REQUIRE(ffmpeg > 0);
+    process.signal(SIGTERM);
+    const Result r = process.wait(std::chrono::seconds(30));
+    INFO(r.err);
+    CHECK(r.status == 130);
+    CHECK_THAT(r.err, Catch::Contains(fifo) && Catch::Contains("interrupted by SIGTERM"));
+    // ffmpeg only counts a SIGTERM while it blocks in open(); fetic must end it anyway.
+    CHECK((::kill(ffmpeg, 0) != 0 && errno == ESRCH));
+    CHECK(is_fifo(fifo));
+  }
 }

@@ -168,21 +168,25 @@ class Process {
   bool wait_for_fifo_open() const {
     if (!wait_for_signal_handlers()) return false;
     int seen = 0;
-    return wait_until([&] {
-      std::ifstream wchan("/proc/" + std::to_string(pid_) + "/wchan");
-      std::string where;
-      wchan >> where;
-      if (where == "wait_for_partner") return true;
-      if (where != "0" && !where.empty()) {
-        seen = 0;
-        return false;
-      }
-      std::ifstream syscall("/proc/" + std::to_string(pid_) + "/syscall");
-      long current = -1;
-      seen = (syscall >> current) && current == SYS_openat ? seen + 1 : 0;
-      std::this_thread::sleep_for(std::chrono::milliseconds(40));
-      return seen >= 3;
+    return wait_until([&] { return blocked_opening_fifo(pid_, seen); });
+  }
+
+  // The same for a child of the program (ffmpeg writing the movie); its process id, or -1
+  // after 60 s.
+  pid_t wait_for_child_fifo_open() const {
+    if (!wait_for_signal_handlers()) return -1;
+    pid_t child = -1;
+    int seen = 0;
+    const bool blocked = wait_until([&] {
+      std::ifstream children("/proc/" + std::to_string(pid_) + "/task/" + std::to_string(pid_) +
+                             "/children");
+      pid_t first = -1;
+      if (!(children >> first)) return false;
+      if (first != child) seen = 0;
+      child = first;
+      return blocked_opening_fifo(child, seen);
     });
+    return blocked ? child : -1;
   }
   std::string stderr_so_far() const { return read_text(err_); }
 
@@ -208,6 +212,24 @@ class Process {
   }
 
  private:
+  // One poll: the process blocks opening a FIFO (`seen` counts polls that saw the open
+  // system call where the wait channel is hidden).
+  static bool blocked_opening_fifo(pid_t pid, int& seen) {
+    std::ifstream wchan("/proc/" + std::to_string(pid) + "/wchan");
+    std::string where;
+    wchan >> where;
+    if (where == "wait_for_partner") return true;
+    if (where != "0" && !where.empty()) {
+      seen = 0;
+      return false;
+    }
+    std::ifstream syscall("/proc/" + std::to_string(pid) + "/syscall");
+    long current = -1;
+    seen = (syscall >> current) && current == SYS_openat ? seen + 1 : 0;
+    std::this_thread::sleep_for(std::chrono::milliseconds(40));
+    return seen >= 3;
+  }
+
   template <class Condition>
   static bool wait_until(Condition condition) {
     const auto end = std::chrono::steady_clock::now() + std::chrono::seconds(60);
