@@ -90,8 +90,26 @@ std::optional<Headless> open_headless(const std::string& output, float text_size
 }
 
 bool make_output_directory(const std::string& directory) {
+  namespace fs = std::filesystem;
+  if (directory.empty()) {
+    std::cerr << "the output directory is an empty name; give the name of a directory\n";
+    return false;
+  }
   std::error_code error;
-  std::filesystem::create_directories(directory, error);
+  // What is there already, named: "File exists" or "Not a directory" would not say it.
+  const fs::file_status there = fs::symlink_status(directory, error);
+  if (fs::is_symlink(there) && !fs::exists(fs::status(directory, error))) {
+    std::cerr << scenes::printable(directory) << ": is a symbolic link to '"
+              << scenes::printable(fs::read_symlink(directory, error).string())
+              << "', which does not exist; give the name of a directory\n";
+    return false;
+  }
+  if (fs::exists(there) && !fs::is_directory(fs::status(directory, error))) {
+    std::cerr << scenes::printable(directory)
+              << ": is not a directory; the frames need a directory of their own\n";
+    return false;
+  }
+  fs::create_directories(directory, error);
   if (error || !std::filesystem::is_directory(directory)) {
     std::cerr << scenes::printable(directory) << ": cannot create the output directory"
               << (error ? " (" + error.message() + ")" : std::string()) << '\n';

@@ -173,6 +173,10 @@ int App::run(render::GlfwWindow& window, std::vector<ScriptAction> script) {
     return kExitOutput;
   }
   if (!lost_outputs.empty()) return kExitOutput;
+  if (interrupted()) {
+    std::cerr << "fetic gui: interrupted by " << interrupt_name() << "; the window closed\n";
+    return kExitInterrupted;
+  }
   if (script_failed) return kExitNotConverged;
   return kExitOk;
 }

@@ -97,6 +97,7 @@ class App {
     int status = 0;
     return pid_ > 0 && ::waitpid(pid_, &status, WNOHANG) == 0;
   }
+  void signal(int number) const { ::kill(pid_, number); }
 
  private:
   pid_t pid_ = 0;
@@ -454,6 +455,20 @@ TEST_CASE("a changed scene file is reloaded, keeping the app running", "[script]
       state, [](const json& e) { return is(e, "error"); }, 30.0);
   CHECK(error);
   CHECK(app.running());
+}
+
+TEST_CASE("SIGTERM closes the window: status 130", "[script]") {
+  REQUIRE(have_display());
+  const fs::path dir = fresh_directory("fetic_gui_sigterm");
+  const fs::path state = dir / "state.jsonl";
+  App app({scene("two_bars.toml"), "--state-file", state.string()});
+  REQUIRE(wait_for(state, [](const json& e) { return is(e, "ready"); }));
+  app.signal(SIGTERM);
+  const auto status = app.wait(30.0);
+  REQUIRE(status);
+  CHECK(*status == 130);
+  CHECK(wait_for(
+      state, [](const json& e) { return is(e, "quit"); }, 1.0));
 }
 
 TEST_CASE("without a display fetic gui says so and points to fetic render", "[no-display]") {

@@ -11,6 +11,7 @@
 #include <csignal>
 
 #include <cstdlib>
+#include <fstream>
 #include <string>
 #include <thread>
 
@@ -112,4 +113,29 @@ TEST_CASE("SIGTERM while ffmpeg waits for the movie FIFO's reader: 130, ffmpeg e
     CHECK((::kill(ffmpeg, 0) != 0 && errno == ESRCH));
     CHECK(is_fifo(fifo));
   }
+}
+
+TEST_CASE("frames onto a file, a dangling link or an empty name: status 5 naming what is there",
+          "[output]") {
+  TempDir dir;
+  const std::string file = dir / "a_file";
+  std::ofstream(file) << "kept\n";
+  const Result onto_file = run_fetic(
+      {"render", bundled_scene("two_bars.toml"), "--final", "--size", "64x48", "--out", file});
+  CHECK(onto_file.status == 5);
+  CHECK_THAT(onto_file.err, Catch::Contains(file + ": is not a directory"));
+  CHECK(read_text(file) == "kept\n");
+
+  const std::string link = dir / "link";
+  fs::create_symlink("missing/frames", link);
+  const Result dangling = run_fetic(
+      {"render", bundled_scene("two_bars.toml"), "--final", "--size", "64x48", "--out", link});
+  CHECK(dangling.status == 5);
+  CHECK_THAT(
+      dangling.err,
+      Catch::Contains(link + ": is a symbolic link to 'missing/frames', which does not exist"));
+
+  const Result empty = run_fetic({"figures", "--figure", "2.1", "--out", ""});
+  CHECK(empty.status == 5);
+  CHECK_THAT(empty.err, Catch::Contains("the output directory is an empty name"));
 }
