@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "app/commands.hpp"
+#include "app/data_paths.hpp"
 #include "app/exit_codes.hpp"
 #include "app/interrupt.hpp"
 #include "app/out_of_memory.hpp"
@@ -151,11 +152,12 @@ std::string table(const std::vector<Measurement>& rows) {
 int run_bench(const BenchArgs& args) {
   std::vector<std::string> scenes = args.scenes;
   if (scenes.empty()) {
-    scenes = {"scenes/thesis.toml", "scenes/two_bars.toml", "scenes/chain.toml",
-              "scenes/cantilevers.toml", "scenes/plane_pair.toml"};
+    for (const char* name :
+         {"thesis.toml", "two_bars.toml", "chain.toml", "cantilevers.toml", "plane_pair.toml"})
+      scenes.push_back(bundled_scene(name));
     if (!std::filesystem::exists(scenes.front())) {
-      std::cerr << "fetic bench: the bundled scenes are found relative to the repository "
-                   "root (scenes/*.toml); run it from there or name the scene files\n";
+      std::cerr << "fetic bench: the bundled scenes are not installed (looked for "
+                << scenes.front() << "; set FETIC_DATA_DIR or name the scene files)\n";
       return kExitUsage;
     }
   }

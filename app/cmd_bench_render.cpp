@@ -16,6 +16,7 @@
 #include <thread>
 
 #include "app/commands.hpp"
+#include "app/data_paths.hpp"
 #include "app/exit_codes.hpp"
 #include "app/interrupt.hpp"
 #include "app/method_options.hpp"
@@ -35,7 +36,7 @@ namespace {
 using Clock = std::chrono::steady_clock;
 
 struct BenchArgs {
-  std::string scene = "scenes/thesis.toml";
+  std::string scene = bundled_scene("thesis.toml");
   std::string method = "active-set";
   std::string size = "1280x720";
   int frames = 40;

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "app/commands.hpp"
+#include "app/data_paths.hpp"
 #include "app/exit_codes.hpp"
 #include "app/interrupt.hpp"
 #include "app/out_of_memory.hpp"
@@ -26,7 +27,7 @@ struct FiguresArgs {
   std::string out;
   std::string size = "1200x800";
   std::vector<std::string> figures;  // empty: all
-  std::string scene = "scenes/thesis.toml";
+  std::string scene = bundled_scene("thesis.toml");
 };
 
 int run_figures(const FiguresArgs& args) {

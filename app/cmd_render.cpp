@@ -17,8 +17,10 @@
 #include "app/movie_stream.hpp"
 #include "app/out_of_memory.hpp"
 #include "app/output_file.hpp"
+#include "app/progress.hpp"
 #include "app/render_output.hpp"
 #include "app/scene_input.hpp"
+#include "app/vtu_export.hpp"
 #include "render/colormap.hpp"
 #include "render/frame_composer.hpp"
 #include "render/frame_sequence.hpp"
@@ -44,6 +46,10 @@ struct RenderArgs {
   int threads = 0;
   int samples = 4;
   bool labels = false;
+  std::string vtu;  // also write each frame's state as ParaView files here
+  std::string vtu_format = "zlib";
+  bool progress = false;
+  bool quiet = false;
 };
 
 int run_render(const RenderArgs& args) {
@@ -89,9 +95,14 @@ int run_render(const RenderArgs& args) {
                                 render::base_text_size(size.width, size.height));
   if (!headless) return kExitNoDisplay;
 
+  ProgressLine progress(progress_mode(args.progress, args.quiet));
   // Survey pass: the same deterministic run, for fixed scales and the frame count.
-  const render::RunExtent extent =
-      render::survey(model, *method, plan, [] { return !interrupted(); });
+  const render::RunExtent extent = render::survey(model, *method, plan, [&] {
+    if (progress.due())
+      progress.update("render survey: iteration " + std::to_string(method->iteration()));
+    return !interrupted();
+  });
+  progress.clear();
   if (interrupted()) {
     std::cerr << scenes::printable(args.scene) << ": interrupted by " << interrupt_name()
               << " before any frame\n";
@@ -138,9 +149,21 @@ int run_render(const RenderArgs& args) {
   std::unique_ptr<render::PngEncoderPool> pool;
   if (frames_wanted) pool = std::make_unique<render::PngEncoderPool>(threads);
   int written = 0;
+  // ParaView's time: the load factor for a rising sweep of one frame per step, else the
+  // frame number.
+  bool time_is_load = !plan.every_iteration;
+  for (size_t k = 1; k < plan.load_factors.size(); ++k)
+    time_is_load = time_is_load && plan.load_factors[k] > plan.load_factors[k - 1];
+  std::unique_ptr<VtuSeries> vtu;
   const auto render_frames = [&](MovieStream* stream) {
     render::run_frames(*method, plan, [&](const render::Frame& frame) {
       if (interrupted()) return false;
+      progress.update("render frame " + std::to_string(frame.index + 1) + " of " +
+                      std::to_string(extent.frame_count));
+      if (vtu)
+        vtu->write(frame.snapshot, time_is_load
+                                       ? plan.load_factors[static_cast<size_t>(frame.load_step)]
+                                       : frame.index);
       const render::ComposedFrame composed = composer.compose(frame);
       render::Image image = headless->renderer->render(size.width, size.height, composed.layers(),
                                                        render::palette::background);
@@ -160,8 +183,11 @@ int run_render(const RenderArgs& args) {
       return true;
     });
     if (pool) pool->finish();
+    progress.clear();
   };
   try {
+    if (!args.vtu.empty())
+      vtu = std::make_unique<VtuSeries>(args.vtu, model, *parse_vtk_encoding(args.vtu_format));
     if (movie_wanted) {
       write_output_by(args.movie, [&](const ExternalTarget& target) {
         MovieStream stream(target, size.width, size.height, args.fps);
@@ -172,6 +198,7 @@ int run_render(const RenderArgs& args) {
       render_frames(nullptr);
     }
   } catch (const OutputError& error) {
+    progress.clear();
     if (interrupted()) {
       std::cerr << scenes::printable(movie_wanted ? args.movie : args.out) << ": interrupted by "
                 << interrupt_name()
@@ -270,6 +297,15 @@ void register_render(CLI::App& app, int& exit_code) {
                    "Multisampling: samples per pixel (1: none; the GL's maximum at most)")
       ->check(CLI::Range(1, 32))
       ->capture_default_str();
+  command->add_option("--vtu", args->vtu,
+                      "Also write every frame's state as ParaView files here (struts.pvd, "
+                      "contacts.pvd)");
+  command->add_option("--vtu-format", args->vtu_format, "Data encoding of the .vtu files")
+      ->check(CLI::IsMember({"ascii", "binary", "zlib"}))
+      ->capture_default_str();
+  command->add_flag("--progress", args->progress,
+                    "Show the progress line on stderr even when it is not a terminal");
+  command->add_flag("--quiet", args->quiet, "No progress line");
   command->callback([args, &exit_code] { exit_code = run_render(*args); });
 }
 

@@ -16,8 +16,10 @@
 #include "app/method_options.hpp"
 #include "app/out_of_memory.hpp"
 #include "app/output_file.hpp"
+#include "app/progress.hpp"
 #include "app/result_json.hpp"
 #include "app/scene_input.hpp"
+#include "app/solve_outputs.hpp"
 #include "scenes/scene_error.hpp"
 #include "solver/load_sweep.hpp"
 #include "solver/method.hpp"
@@ -28,9 +30,10 @@ namespace {
 struct SolveArgs {
   std::string scene;
   MethodArgs method;
-  std::string json;
+  SolveOutputArgs outputs;  // --json, --csv, --csv-steps, --vtu, ...
   bool reference = false;
   bool quiet = false;
+  bool progress = false;
 };
 
 double seconds_since(std::chrono::steady_clock::time_point start) {
@@ -41,6 +44,11 @@ std::string format(const char* pattern, double value) {
   char buffer[64];
   std::snprintf(buffer, sizeof buffer, pattern, value);
   return buffer;
+}
+
+// "1 iteration", "2 iterations".
+std::string count_of(long long n, const char* singular, const char* plural) {
+  return std::to_string(n) + " " + (n == 1 ? singular : plural);
 }
 
 void print_summary(std::ostream& out, const solver::Model& model, const solver::Snapshot& state,
@@ -56,18 +64,20 @@ void print_summary(std::ostream& out, const solver::Model& model, const solver::
         largest_node = static_cast<int>(n);
       }
   out << "scene        " << info.scene_path << " (" << scenes::to_string(model.kind) << ", "
-      << model.struts.size() << " struts, " << model.contact_labels.size() << " contacts, "
-      << model.dof_count() << " unknowns)\n";
+      << count_of(static_cast<long long>(model.struts.size()), "strut", "struts") << ", "
+      << count_of(static_cast<long long>(model.contact_labels.size()), "contact", "contacts")
+      << ", " << count_of(model.dof_count(), "unknown", "unknowns") << ")\n";
   out << "method       " << solver::to_string(info.method);
   if (solver::is_dual(info.method))
     out << " (preconditioner " << solver::to_string(info.preconditioner) << ")";
   out << ", load factor " << state.load_factor << ", tolerance " << info.tolerance << "\n";
   out << "converged    " << (state.status == solver::Status::Converged ? "yes" : "NO") << " after "
-      << state.iteration << " iterations, relative residual " << format("%.3e", state.residual)
-      << "\n";
+      << count_of(state.iteration, "iteration", "iterations") << ", relative residual "
+      << format("%.3e", state.residual) << "\n";
   if (!state.message.empty()) out << "             " << state.message << "\n";
-  out << "contacts     " << state.active_set_size() << " of " << model.pairs.size()
-      << " node pairs active";
+  out << "contacts     " << state.active_set_size() << " of "
+      << count_of(static_cast<long long>(model.pairs.size()), "node pair", "node pairs")
+      << " active";
   double total_force = 0.0;
   for (double force : state.force)
     if (std::isfinite(force)) total_force += force;
@@ -117,12 +127,11 @@ int run_solve(const SolveArgs& args) {
     std::cerr << scenes::printable(args.scene) << ": " << problem << '\n';
     return kExitUsage;
   }
-  MemoryUse use{{args.method.kind()}, !args.json.empty(), 0};
+  MemoryUse use{{args.method.kind()}, !args.outputs.json.empty(), 0};
   if (args.reference) use.methods.push_back(solver::MethodKind::ActiveSet);
   if (!memory_suffices(*scene, args.scene, use, status)) return status;
   Activity assembling("assembling the model");
   const solver::Model model = solver::build_model(*scene);
-  Activity setting_up("setting up the method (factorizing the subdomains)");
 
   RunInfo info;
   info.scene_path = args.scene;
@@ -130,6 +139,7 @@ int run_solve(const SolveArgs& args) {
   info.preconditioner = args.method.options().preconditioner;
   info.tolerance = args.method.tolerance;
 
+  Activity setting_up("setting up the method (factorizing the subdomains)");
   const auto setup_start = std::chrono::steady_clock::now();
   std::unique_ptr<solver::Method> method;
   std::map<double, std::vector<std::vector<solver::Vec2>>> references;
@@ -144,59 +154,88 @@ int run_solve(const SolveArgs& args) {
 
   const std::vector<double> load_factors = args.method.load_factors();
   const bool sweeping = !args.method.load_steps.empty();
-  // With --json - the result goes to stdout: the report goes to stderr then.
-  std::ostream& report = is_stdout(args.json) ? std::cerr : std::cout;
+  std::unique_ptr<SolveOutputs> outputs;
+  try {
+    outputs = std::make_unique<SolveOutputs>(args.outputs, model, load_factors);
+  } catch (const CLI::ValidationError& error) {
+    std::cerr << scenes::printable(args.scene) << ": " << error.what() << '\n';
+    return kExitUsage;
+  } catch (const OutputError& error) {
+    return report_output_error(error);
+  }
+  // With an output on stdout (-), the report goes to stderr.
+  std::ostream& report = outputs->uses_stdout() ? std::cerr : std::cout;
   if (sweeping && !args.quiet)
     report << "load steps   " << load_factors.size() << " from " << load_factors.front() << " to "
            << load_factors.back() << ", each warm-started\n";
   Activity solving("solving");
+  ProgressLine progress(progress_mode(args.progress, args.quiet));
+  int step_number = 0;
   const auto solve_start = std::chrono::steady_clock::now();
   solver::SweepHooks hooks;
   hooks.before_start = [&](double t) {
+    ++step_number;
     if (!args.reference) return;
     const auto it = references.find(t);
     method->set_reference(it != references.end() ? it->second
                                                  : std::vector<std::vector<solver::Vec2>>{});
   };
-  hooks.on_step = [&](const solver::SweepStep& step) {
-    if (!sweeping || args.quiet) return;
+  hooks.on_iteration = [&](double t, const solver::Method& running) {
+    outputs->iteration(running);
+    if (!progress.due()) return;
     char line[160];
-    std::snprintf(line, sizeof line,
-                  "  t = %-12.6g %-9s %4d iterations  %5d active  residual %.3e\n",
-                  step.load_factor, solver::to_string(step.state.status), step.state.iteration,
-                  step.state.active_set_size(), step.state.residual);
+    const auto& history = running.history();
+    std::snprintf(line, sizeof line, "solve  t = %g%s  iteration %d  residual %.3e  active %d", t,
+                  sweeping ? (" (step " + std::to_string(step_number) + " of " +
+                              std::to_string(load_factors.size()) + ")")
+                                 .c_str()
+                           : "",
+                  running.iteration(), history.empty() ? 0.0 : history.back().residual,
+                  history.empty() ? 0 : history.back().active_set);
+    progress.update(line);
+  };
+  hooks.on_step = [&](const solver::SweepStep& step) {
+    outputs->step(step);
+    if (!sweeping || args.quiet) return;
+    progress.clear();
+    char line[160];
+    std::snprintf(
+        line, sizeof line, "  t = %-12.6g %-9s %4d iterations  %5d active  residual %.3e\n",
+        step.load_factor,
+        step.state.status == solver::Status::Running ? "stopped"
+                                                     : solver::to_string(step.state.status),
+        step.state.iteration, step.state.active_set_size(), step.state.residual);
     report << line << std::flush;
   };
   hooks.keep_going = [] { return !interrupted(); };
-  const std::vector<solver::SweepStep> steps = solver::sweep(*method, load_factors, hooks);
+  std::vector<solver::SweepStep> steps;
+  try {
+    steps = solver::sweep(*method, load_factors, hooks);
+    progress.clear();
+    info.solve_seconds = seconds_since(solve_start) - outputs->writing_seconds();
+    // An interrupted solve still writes its outputs, with the current iterate marked
+    // "interrupted": true, "converged": false.
+    Activity writing("writing the outputs");
+    outputs->finish(steps, info, sweeping);
+  } catch (const OutputError& error) {
+    progress.clear();
+    return report_output_error(error);
+  }
   if (interrupted()) {
-    std::cerr << scenes::printable(args.scene) << ": interrupted by " << interrupt_name()
-              << " at iteration " << method->iteration() << "; no result file written\n";
+    const bool cut = steps.empty() || steps.size() < load_factors.size() ||
+                     steps.back().state.status == solver::Status::Running;
+    std::cerr << scenes::printable(args.scene) << ": interrupted by " << interrupt_name();
+    if (!cut)
+      std::cerr << " after the solve had finished; the outputs are complete";
+    else
+      std::cerr << " at iteration " << method->iteration();
+    if (cut && outputs->writes_anything())
+      std::cerr << "; the current iterate, marked interrupted, is in " << outputs->written_list();
+    std::cerr << '\n';
     return kExitInterrupted;
   }
-  info.solve_seconds = seconds_since(solve_start);
   const solver::SweepStep& last = steps.back();
-
   if (!args.quiet) print_summary(report, model, last.state, info);
-  if (!args.json.empty()) {
-    try {
-      Activity writing("writing the result file");
-      nlohmann::json result = result_json(model, last.state, last.history, info);
-      if (sweeping) {
-        nlohmann::json list = nlohmann::json::array();
-        for (const solver::SweepStep& step : steps)
-          list.push_back({{"load_factor", step.load_factor},
-                          {"converged", step.state.status == solver::Status::Converged},
-                          {"iterations", step.state.iteration},
-                          {"active_set", step.state.active_set_size()},
-                          {"residual", step.state.residual}});
-        result["steps"] = list;
-      }
-      write_output(args.json, [&](std::ostream& out) { out << result.dump(1) << '\n'; });
-    } catch (const OutputError& error) {
-      return report_output_error(error);
-    }
-  }
   for (const solver::SweepStep& step : steps)
     if (step.state.status != solver::Status::Converged) {
       std::cerr << scenes::printable(args.scene) << ": " << solver::to_string(info.method)
@@ -214,11 +253,13 @@ void register_solve(CLI::App& app, int& exit_code) {
   CLI::App* command = app.add_subcommand("solve", "Solve a scene and report the result");
   command->add_option("scene", args->scene, "Scene file (TOML, see docs/SCENES.md)")->required();
   add_method_options(command, args->method);
-  command->add_option("--json", args->json, "Write the result file (JSON) here (- for stdout)");
+  add_solve_output_options(command, args->outputs);
   command->add_flag("--reference", args->reference,
                     "Record each iteration's displacement error against an active-set solve "
                     "made in the same run");
-  command->add_flag("--quiet", args->quiet, "Print no summary");
+  command->add_flag("--quiet", args->quiet, "Print no summary and no progress");
+  command->add_flag("--progress", args->progress,
+                    "Show the progress line on stderr even when it is not a terminal");
   command->callback([args, &exit_code] { exit_code = run_solve(*args); });
 }
 

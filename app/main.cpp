@@ -9,6 +9,7 @@
 
 #include "app/commands.hpp"
 #include "app/exit_codes.hpp"
+#include "app/help_text.hpp"
 #include "app/interrupt.hpp"
 #include "app/out_of_memory.hpp"
 #include "app/standard_streams.hpp"
@@ -40,6 +41,7 @@ int main(int argc, char** argv) {
   fetic::app::register_figures(app, exit_code);
   fetic::app::register_bench_render(app, exit_code);
   fetic::app::register_gui(app, exit_code);
+  fetic::app::add_help_footers(app);
   if (argc > 1 && argv[1][0] != '-' && !known_command(app, argv[1])) {
     std::string commands;
     for (const CLI::App* command : app.get_subcommands({}))

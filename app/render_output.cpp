@@ -16,6 +16,7 @@
 #include <omp.h>
 
 #include "app/child_process.hpp"
+#include "app/data_paths.hpp"
 #include "app/exit_codes.hpp"
 #include "app/interrupt.hpp"
 #include "app/output_file.hpp"
@@ -78,7 +79,8 @@ std::optional<Headless> open_headless(const std::string& output, float text_size
     std::cerr << scenes::printable(output) << ": cannot render: " << error.what() << '\n';
     return std::nullopt;
   }
-  headless.font = std::make_unique<render::FontAtlas>(1.3f * text_size);
+  headless.font = std::make_unique<render::FontAtlas>(
+      1.3f * text_size, font_file("DejaVuSans.ttf"), font_file("DejaVuSans-Bold.ttf"));
   if (!headless.font->note().empty()) std::cerr << "note: " << headless.font->note() << '\n';
   try {
     headless.renderer = std::make_unique<render::GlRenderer>(*headless.context, *headless.font);

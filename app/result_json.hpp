@@ -1,6 +1,7 @@
 #pragma once
 // The result file of SCENES.md: scene, method, load factor, convergence, per-strut nodes
-// and displacements, per-contact pairs with gap, force and activity, and the history.
+// and displacements, per-contact pairs with gap, force and activity, and the history;
+// extended by stresses, axial forces, reactions and pair geometry (app/state_json.hpp).
 
 #include <string>
 
@@ -19,7 +20,9 @@ struct RunInfo {
   double solve_seconds = 0.0;
 };
 
-nlohmann::json result_json(const solver::Model& model, const solver::Snapshot& final_state,
-                           const std::vector<solver::HistoryEntry>& history, const RunInfo& info);
+// Keys in insertion order; app/json_layout.hpp puts the plain values first when written.
+nlohmann::ordered_json result_json(const solver::Model& model, const solver::Snapshot& final_state,
+                                   const std::vector<solver::HistoryEntry>& history,
+                                   const RunInfo& info);
 
 }  // namespace fetic::app

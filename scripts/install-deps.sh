@@ -13,6 +13,9 @@ packages=(
   coinor-libipopt-dev                       # benchmark: a general-purpose QP solver
   xvfb xauth xdotool                        # window tests
   ffmpeg                                    # movies
+  zlib1g-dev                                # compressed ParaView (.vtu) output
+  python3-vtk9                              # tests: VTK's reader checks the .vtu files
+  dpkg-dev file                             # cpack -G DEB (dpkg-shlibdeps finds the dependencies)
   libopenmpi-dev openmpi-bin                # distributed solves (mpirun -np N fetic solve)
   # scripts/fuzz.sh: clang with libFuzzer and the ASan/UBSan runtimes for clang, and
   # llvm-symbolizer for readable crash stacks (g++'s sanitizers need nothing more)

@@ -42,7 +42,15 @@ std::vector<SweepStep> sweep(Method& method, const std::vector<double>& load_fac
       const Snapshot warm = predict_warm_start(older, steps.back().state, t);
       method.start(t, &warm);
     }
-    run_to_end(method, hooks.keep_going);
+    if (hooks.on_iteration) {
+      hooks.on_iteration(t, method);
+      while (method.status() == Status::Running && (!hooks.keep_going || hooks.keep_going())) {
+        method.step();
+        hooks.on_iteration(t, method);
+      }
+    } else {
+      run_to_end(method, hooks.keep_going);
+    }
     steps.push_back({t, method.snapshot(), method.history()});
     if (hooks.on_step) hooks.on_step(steps.back());
   }

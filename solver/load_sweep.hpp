@@ -25,9 +25,10 @@ struct SweepStep {
 };
 
 struct SweepHooks {
-  std::function<void(double)> before_start;       // e.g. to set a reference
-  std::function<void(const SweepStep&)> on_step;  // sees each finished step
-  std::function<bool()> keep_going;               // false stops the sweep
+  std::function<void(double)> before_start;                 // e.g. to set a reference
+  std::function<void(const SweepStep&)> on_step;            // sees each finished step
+  std::function<bool()> keep_going;                         // false stops the sweep
+  std::function<void(double, const Method&)> on_iteration;  // after start and every step
 };
 
 // Runs `method` at every load factor, warm-starting each solve from the previous ones.

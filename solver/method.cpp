@@ -148,6 +148,11 @@ std::vector<std::vector<Vec2>> strut_displacements(const Model& model, const Sna
   for (size_t s = 0; s < sum.size(); ++s)
     for (size_t n = 0; n < sum[s].size(); ++n)
       if (count[s][n] > 1) sum[s][n] /= count[s][n];
+  // Clamped nodes are exactly at rest; total FETI holds them by multipliers, which leaves
+  // rounding-level displacements (1e-19) there.
+  for (size_t s = 0; s < sum.size(); ++s)
+    for (int node : model.clamped_nodes[s])
+      sum[s][static_cast<size_t>(node)].setZero();
   return sum;
 }
 

@@ -139,4 +139,11 @@ Eigen::VectorXd axial_stress(const StrutMesh& mesh, const NodeBox& box,
   return stress;
 }
 
+Eigen::Vector3d quad_centre_stress(const StrutMesh& mesh, int i, int k,
+                                   const Eigen::Matrix<double, 8, 1>& corner_dofs) {
+  double det_j = 0.0;
+  const Eigen::Matrix<double, 3, 8> B = quad_strain(quad_corners(mesh, i, k), 0.0, 0.0, det_j);
+  return plane_stress_elasticity(mesh.E, mesh.nu) * (B * corner_dofs);
+}
+
 }  // namespace fetic::solver

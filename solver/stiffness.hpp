@@ -37,4 +37,9 @@ SparseMatrix assemble_stiffness(const StrutMesh& mesh, const NodeBox& box);
 Eigen::VectorXd axial_stress(const StrutMesh& mesh, const NodeBox& box,
                              const Eigen::VectorXd& box_dofs);
 
+// Plane stress (sxx, syy, sxy) in global axes at the centre of element (i, k) of a plane
+// strut, from its corner DOFs (corners (i,k), (i+1,k), (i+1,k+1), (i,k+1); x then y each).
+Eigen::Vector3d quad_centre_stress(const StrutMesh& mesh, int i, int k,
+                                   const Eigen::Matrix<double, 8, 1>& corner_dofs);
+
 }  // namespace fetic::solver

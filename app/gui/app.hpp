@@ -14,6 +14,7 @@
 //   scene_file.cpp     reloading the scene file
 //   state_reports.cpp  the "solved" events of the state file after each swap
 //   bench.cpp          the --bench measurement
+//   paraview_export.cpp  the shown iterate as ParaView files
 
 #include <chrono>
 #include <cstdint>
@@ -31,6 +32,7 @@
 #include "app/gui/script.hpp"
 #include "app/gui/solver_worker.hpp"
 #include "app/gui/state_log.hpp"
+#include "app/vtu_export.hpp"
 #include "render/draw_list.hpp"
 #include "render/frame_sequence.hpp"
 #include "render/png_writer.hpp"
@@ -112,6 +114,9 @@ class App {
 
   // state_reports.cpp
   void report_frame();
+
+  // paraview_export.cpp
+  void export_paraview(const std::string& directory);
 
   // bench.cpp
   void bench_step(double now);
@@ -200,6 +205,10 @@ class App {
   Clock::time_point start_ = Clock::now();
 
   BenchMeasurement bench_;
+
+  // ParaView export: one series per directory and model.
+  std::unique_ptr<VtuSeries> vtu_;
+  std::shared_ptr<const solver::Model> vtu_model_;
 };
 
 }  // namespace fetic::app::gui

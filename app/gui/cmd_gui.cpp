@@ -125,6 +125,10 @@ void register_gui(CLI::App& app, int& exit_code) {
       ->capture_default_str();
   command->add_option("--record-dir", args->record_dir, "Where recordings go")
       ->capture_default_str();
+  command
+      ->add_option("--vtu-dir", args->vtu_dir,
+                   "Where the ParaView export button writes struts.pvd, contacts.pvd")
+      ->capture_default_str();
   command->add_flag("--no-overlay", args->no_overlay, "Start without the information panel");
   command
       ->add_option("--bench", args->bench,

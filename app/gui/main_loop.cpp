@@ -17,6 +17,7 @@
 #include <backends/imgui_impl_opengl3.h>
 #include <imgui.h>
 
+#include "app/data_paths.hpp"
 #include "app/exit_codes.hpp"
 #include "app/gui/app.hpp"
 #include "app/interrupt.hpp"
@@ -37,7 +38,8 @@ int App::run(render::GlfwWindow& window, std::vector<ScriptAction> script) {
   } catch (const OutputError& error) {
     return report_output_error(error);
   }
-  render::FontAtlas font;
+  // The window's text stays at the default sizes (up to 22 pixels).
+  render::FontAtlas font(22.0f, font_file("DejaVuSans.ttf"), font_file("DejaVuSans-Bold.ttf"));
   render::GlRenderer renderer(window, font);
   renderer_ = &renderer;
 
@@ -45,7 +47,8 @@ int App::run(render::GlfwWindow& window, std::vector<ScriptAction> script) {
   ImGui::CreateContext();
   ImGuiIO& io = ImGui::GetIO();
   io.IniFilename = nullptr;
-  if (fs::exists(render::kDejaVuSans)) io.Fonts->AddFontFromFileTTF(render::kDejaVuSans, 15.0f);
+  const std::string regular = font_file("DejaVuSans.ttf");
+  if (fs::exists(regular)) io.Fonts->AddFontFromFileTTF(regular.c_str(), 15.0f);
   ImGui::StyleColorsLight();
   // Our key callback first: ImGui's callbacks chain to the one installed before them.
   glfwSetWindowUserPointer(window.handle(), this);

@@ -17,6 +17,7 @@ struct Options {
   std::string script;
   std::string screenshot_dir = ".";
   std::string record_dir = "fetic-recordings";
+  std::string vtu_dir = "fetic-paraview";  // where "ParaView export" writes
   bool no_overlay = false;
   int bench = 0;  // load changes of the benchmark drag; 0: no benchmark
 };

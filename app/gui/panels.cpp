@@ -153,6 +153,10 @@ void App::output_buttons() {
   ImGui::SameLine();
   ImGui::SetNextItemWidth(-1);
   ImGui::SliderInt("##steps", &sweep_steps_, 2, 200, "%d steps");
+  if (ImGui::Button("ParaView export")) push({RequestKind::ExportParaView, 0.0, {}});
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("Add the shown iterate to %s/struts.pvd and contacts.pvd",
+                      args_.vtu_dir.c_str());
 }
 
 // What the solver is doing, or why it cannot: a running solve shows its progress and can

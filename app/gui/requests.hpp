@@ -28,6 +28,7 @@ enum class RequestKind {
   RecordSweep,       // value: steps; a load sweep 0 .. maximum as frames
   Reload,            // reload the scene file, keeping the view
   ResetView,         // undo pan and zoom
+  ExportParaView,    // text: directory (empty: --vtu-dir); the shown iterate as a .vtu frame
   Quit,
 };
 

@@ -147,6 +147,10 @@ std::vector<ScriptAction> parse_script(const std::string& text, std::vector<Scri
       ok = no_argument(RequestKind::RecordIterations);
     } else if (verb == "record-sweep") {
       ok = need_number(RequestKind::RecordSweep, 2.0, 10000.0);
+    } else if (verb == "export-vtu") {
+      r.kind = RequestKind::ExportParaView;
+      r.text = argument;
+      ok = true;
     } else if (verb == "reload") {
       ok = no_argument(RequestKind::Reload);
     } else if (verb == "wait") {

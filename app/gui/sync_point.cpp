@@ -184,6 +184,9 @@ void App::apply(const Request& r) {
     case RequestKind::Reload:
       reload();
       break;
+    case RequestKind::ExportParaView:
+      export_paraview(r.text);
+      break;
     case RequestKind::ResetView:
       zoom_ = 1.0f;
       pan_ = {0.0f, 0.0f};

@@ -480,3 +480,32 @@ TEST_CASE("without a display fetic gui says so and points to fetic render", "[no
   CHECK(output.find("no display") != std::string::npos);
   CHECK(output.find("fetic render") != std::string::npos);
 }
+
+TEST_CASE("the ParaView export writes the shown iterate as the next frame of a series",
+          "[script]") {
+  REQUIRE(have_display());
+  const fs::path dir = fresh_directory("fetic_gui_paraview");
+  const fs::path state = dir / "state.jsonl";
+  const fs::path script = dir / "script.txt";
+  std::ofstream(script) << "wait\nexport-vtu\nload 2\nwait\nexport-vtu\nquit\n";
+  App app({scene("two_bars.toml"), "--state-file", state.string(), "--script", script.string(),
+           "--vtu-dir", (dir / "vtu").string()});
+  const auto status = app.wait(90.0);
+  INFO("reported state:\n" << read_text(state));
+  REQUIRE(status);
+  CHECK(*status == 0);
+  std::vector<json> exports;
+  for (const json& e : events(state))
+    if (is(e, "paraview")) exports.push_back(e);
+  REQUIRE(exports.size() == 2);
+  CHECK(exports[1]["frames"] == 2);
+  CHECK(exports[1]["load_factor"].get<double>() == 2.0);
+  const std::string pvd = read_text(dir / "vtu" / "struts.pvd");
+  CHECK(pvd.find("struts_0001.vtu") != std::string::npos);
+  // The frame's field data (ASCII) carries the load factor of the shown solve.
+  const std::string frame = read_text(dir / "vtu" / "struts_0001.vtu");
+  const auto at = frame.find("Name=\"load_factor\"");
+  REQUIRE(at != std::string::npos);
+  CHECK(frame.find("\n2\n", at) < frame.find("</DataArray>", at));
+  CHECK(fs::exists(dir / "vtu" / "contacts_0001.vtu"));
+}

@@ -1,0 +1,128 @@
+#include "app/solve_outputs.hpp"
+
+#include <chrono>
+
+#include "app/json_layout.hpp"
+#include "app/output_file.hpp"
+#include "app/state_json.hpp"
+
+namespace fetic::app {
+
+void add_solve_output_options(CLI::App* command, SolveOutputArgs& args) {
+  command->add_option("--json", args.json,
+                      "Write the result file (JSON, docs/SCENES.md) here (- for stdout)");
+  command->add_option("--csv", args.csv,
+                      "Write the iteration history of every load step as CSV here (- for stdout)");
+  command->add_option("--csv-steps", args.csv_steps,
+                      "Write one CSV row per load step here: load factor, displacements of the "
+                      "--csv-node nodes [m], total force [N] and active pairs of every contact");
+  command->add_option("--csv-node", args.csv_nodes,
+                      "A node for --csv-steps: STRUT.from, STRUT.to or STRUT@i (repeatable; "
+                      "default: both ends of every contact)");
+  command->add_option("--vtu", args.vtu,
+                      "Write ParaView files here: struts.pvd and contacts.pvd with one .vtu "
+                      "pair per load step");
+  command->add_option("--vtu-format", args.vtu_format, "Data encoding of the .vtu files")
+      ->check(CLI::IsMember({"ascii", "binary", "zlib"}))
+      ->capture_default_str();
+  command->add_flag("--vtu-every-iteration", args.vtu_every_iteration,
+                    "One .vtu pair per iteration instead of per load step");
+}
+
+SolveOutputs::SolveOutputs(const SolveOutputArgs& args, const solver::Model& model,
+                           const std::vector<double>& load_factors)
+    : args_(args), model_(model) {
+  if (args.csv_nodes.empty()) {
+    nodes_ = contact_end_nodes(model);
+  } else {
+    for (const std::string& label : args.csv_nodes) {
+      std::string problem;
+      const auto node = find_node(model, label, problem);
+      if (!node) throw CLI::ValidationError("--csv-node", problem);
+      nodes_.push_back(*node);
+    }
+  }
+  // ParaView's time is the load factor for a rising sweep with a frame per step.
+  time_is_load_factor_ = !args.vtu_every_iteration;
+  for (size_t k = 1; k < load_factors.size(); ++k)
+    time_is_load_factor_ = time_is_load_factor_ && load_factors[k] > load_factors[k - 1];
+  if (!args.vtu.empty())
+    vtu_ = std::make_unique<VtuSeries>(args.vtu, model, *parse_vtk_encoding(args.vtu_format));
+}
+
+bool SolveOutputs::uses_stdout() const {
+  return is_stdout(args_.json) || is_stdout(args_.csv) || is_stdout(args_.csv_steps);
+}
+
+bool SolveOutputs::writes_anything() const {
+  return !args_.json.empty() || !args_.csv.empty() || !args_.csv_steps.empty() || vtu_;
+}
+
+std::string SolveOutputs::written_list() const {
+  std::string list;
+  const auto add = [&](const std::string& item) { list += (list.empty() ? "" : ", ") + item; };
+  if (!args_.json.empty()) add(args_.json);
+  if (!args_.csv.empty()) add(args_.csv);
+  if (!args_.csv_steps.empty()) add(args_.csv_steps);
+  if (vtu_) add(args_.vtu + "/struts.pvd, contacts.pvd");
+  return list;
+}
+
+namespace {
+
+class Stopwatch {
+ public:
+  explicit Stopwatch(double& total) : total_(total) {}
+  ~Stopwatch() {
+    total_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  }
+  Stopwatch(const Stopwatch&) = delete;
+  Stopwatch& operator=(const Stopwatch&) = delete;
+
+ private:
+  double& total_;
+  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
+};
+
+}  // namespace
+
+void SolveOutputs::iteration(const solver::Method& method) {
+  if (!vtu_ || !args_.vtu_every_iteration) return;
+  const Stopwatch watch(writing_seconds_);
+  vtu_->write(method.snapshot(), vtu_->frames());
+}
+
+void SolveOutputs::step(const solver::SweepStep& step) {
+  if (!vtu_ || args_.vtu_every_iteration) return;
+  const Stopwatch watch(writing_seconds_);
+  vtu_->write(step.state, time_is_load_factor_ ? step.load_factor : vtu_->frames());
+}
+
+void SolveOutputs::finish(const std::vector<solver::SweepStep>& steps, const RunInfo& info,
+                          bool sweeping) {
+  if (steps.empty()) return;
+  const solver::SweepStep& last = steps.back();
+  if (!args_.json.empty()) {
+    nlohmann::ordered_json result = result_json(model_, last.state, last.history, info);
+    if (sweeping) {
+      nlohmann::ordered_json list = nlohmann::ordered_json::array();
+      for (const solver::SweepStep& step : steps) {
+        nlohmann::ordered_json entry;
+        add_state(entry, model_, step.state);
+        entry["history"] = history_json(step.history);
+        list.push_back(std::move(entry));
+      }
+      result["steps"] = std::move(list);
+    }
+    write_output(args_.json, [&](std::ostream& out) {
+      out << scalars_first(std::move(result)).dump(1) << '\n';
+    });
+  }
+  if (!args_.csv.empty())
+    write_output(args_.csv, [&](std::ostream& out) { write_history_csv(out, steps); });
+  if (!args_.csv_steps.empty())
+    write_output(args_.csv_steps,
+                 [&](std::ostream& out) { write_steps_csv(out, model_, steps, nodes_); });
+}
+
+}  // namespace fetic::app

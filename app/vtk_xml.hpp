@@ -1,0 +1,52 @@
+#pragma once
+// VTK's XML formats, the part fetic writes: an unstructured grid (.vtu) with point, cell
+// and field data, and a collection (.pvd) that makes a time series of them for ParaView.
+// Data arrays are written as ASCII, as base64 binary, or as base64 binary of zlib-compressed
+// blocks ("vtkZLibDataCompressor"), with UInt64 headers, little-endian - what VTK's own
+// writer produces and every VTK reader (ParaView, python3-vtk9, meshio) reads.
+
+#include <cstdint>
+#include <optional>
+#include <ostream>
+#include <string>
+#include <variant>
+#include <vector>
+
+namespace fetic::app {
+
+enum class VtkEncoding { Ascii, Binary, Zlib };
+
+// "ascii", "binary", "zlib".
+std::optional<VtkEncoding> parse_vtk_encoding(const std::string& name);
+
+struct VtkArray {
+  std::string name;
+  int components = 1;
+  std::variant<std::vector<double>, std::vector<std::int32_t>, std::vector<std::uint8_t>,
+               std::vector<std::int64_t>>
+      values;  // components values per tuple
+};
+
+struct VtkGrid {
+  std::vector<double> points;              // x, y, z per point
+  std::vector<std::int64_t> connectivity;  // point indices of every cell, cell after cell
+  std::vector<std::int64_t> offsets;       // per cell: end of its points in connectivity
+  std::vector<std::uint8_t> types;         // per cell: VTK cell type (3 line, 9 quad)
+  std::vector<VtkArray> point_data, cell_data, field_data;
+};
+
+inline constexpr std::uint8_t kVtkLine = 3;
+inline constexpr std::uint8_t kVtkQuad = 9;
+
+void write_vtu(std::ostream& out, const VtkGrid& grid, VtkEncoding encoding);
+
+struct PvdEntry {
+  double time = 0.0;
+  std::string file;  // relative to the .pvd
+};
+void write_pvd(std::ostream& out, const std::vector<PvdEntry>& entries);
+
+// Standard base64 (RFC 4648) with padding.
+std::string base64(const std::uint8_t* data, std::size_t size);
+
+}  // namespace fetic::app

@@ -1,0 +1,145 @@
+#include "app/vtu_export.hpp"
+
+#include <cstdio>
+#include <filesystem>
+#include <system_error>
+
+#include "app/output_file.hpp"
+#include "solver/element_results.hpp"
+
+namespace fetic::app {
+namespace {
+
+std::vector<VtkArray> state_field_data(const solver::Snapshot& state) {
+  return {VtkArray{"load_factor", 1, std::vector<double>{state.load_factor}},
+          VtkArray{"iteration", 1, std::vector<std::int32_t>{state.iteration}},
+          VtkArray{"residual", 1, std::vector<double>{state.residual}},
+          VtkArray{"converged", 1,
+                   std::vector<std::uint8_t>{state.status == solver::Status::Converged}}};
+}
+
+void add_point(VtkGrid& grid, std::vector<double>& displacement, const solver::Vec2& x,
+               const solver::Vec2& u) {
+  grid.points.insert(grid.points.end(), {x.x(), x.y(), 0.0});
+  displacement.insert(displacement.end(), {u.x(), u.y(), 0.0});
+}
+
+}  // namespace
+
+VtkGrid struts_grid(const solver::Model& model, const solver::Snapshot& state) {
+  VtkGrid grid;
+  const auto u = solver::strut_displacements(model, state);
+  const auto elements = solver::element_results(model, state);
+  std::vector<double> displacement;
+  std::vector<std::int32_t> strut_ids, element_ids, subdomains;
+  std::vector<VtkArray> fields;  // stress_* and resultants, concatenated over struts
+  std::int64_t first_point = 0;
+  for (size_t s = 0; s < model.struts.size(); ++s) {
+    const solver::StrutMesh& mesh = model.struts[s];
+    for (int n = 0; n < mesh.node_count(); ++n)
+      add_point(grid, displacement, mesh.nodes[static_cast<size_t>(n)],
+                u[s][static_cast<size_t>(n)]);
+    const solver::StrutElements& e = elements[s];
+    for (int k = 0; k < e.element_count(); ++k) {
+      for (int a = 0; a < e.nodes_per_element; ++a)
+        grid.connectivity.push_back(
+            first_point + e.connectivity[static_cast<size_t>(k * e.nodes_per_element + a)]);
+      grid.offsets.push_back(static_cast<std::int64_t>(grid.connectivity.size()));
+      grid.types.push_back(e.nodes_per_element == 4 ? kVtkQuad : kVtkLine);
+      strut_ids.push_back(static_cast<std::int32_t>(s));
+      element_ids.push_back(k);
+      subdomains.push_back(e.subdomain[static_cast<size_t>(k)]);
+    }
+    // Every strut of a model has the same fields in the same order.
+    std::vector<std::pair<std::string, const std::vector<double>*>> named;
+    for (const solver::NamedValues& field : e.stress)
+      named.emplace_back("stress_" + field.name, &field.values);
+    for (const solver::NamedValues& field : e.resultants)
+      named.emplace_back(field.name, &field.values);
+    if (fields.empty())
+      for (const auto& [name, values] : named)
+        fields.push_back(VtkArray{name, 1, std::vector<double>{}});
+    for (size_t f = 0; f < named.size() && f < fields.size(); ++f) {
+      auto& target = std::get<std::vector<double>>(fields[f].values);
+      target.insert(target.end(), named[f].second->begin(), named[f].second->end());
+    }
+    first_point += mesh.node_count();
+  }
+  grid.point_data.push_back(VtkArray{"displacement", 3, std::move(displacement)});
+  grid.cell_data.push_back(VtkArray{"strut", 1, std::move(strut_ids)});
+  grid.cell_data.push_back(VtkArray{"element", 1, std::move(element_ids)});
+  grid.cell_data.push_back(VtkArray{"subdomain", 1, std::move(subdomains)});
+  for (VtkArray& field : fields)
+    grid.cell_data.push_back(std::move(field));
+  grid.field_data = state_field_data(state);
+  return grid;
+}
+
+VtkGrid contacts_grid(const solver::Model& model, const solver::Snapshot& state) {
+  VtkGrid grid;
+  const auto u = solver::strut_displacements(model, state);
+  std::vector<double> displacement, gap, force, normal;
+  std::vector<std::int32_t> contact, pair_index;
+  std::vector<std::uint8_t> active;
+  for (size_t p = 0; p < model.pairs.size(); ++p) {
+    const solver::ContactPair& pair = model.pairs[p];
+    const auto a = static_cast<size_t>(pair.strut_a), b = static_cast<size_t>(pair.strut_b);
+    add_point(grid, displacement, model.struts[a].nodes[static_cast<size_t>(pair.node_a)],
+              u[a][static_cast<size_t>(pair.node_a)]);
+    add_point(grid, displacement, model.struts[b].nodes[static_cast<size_t>(pair.node_b)],
+              u[b][static_cast<size_t>(pair.node_b)]);
+    grid.connectivity.insert(grid.connectivity.end(), {static_cast<std::int64_t>(2 * p),
+                                                       static_cast<std::int64_t>(2 * p + 1)});
+    grid.offsets.push_back(static_cast<std::int64_t>(grid.connectivity.size()));
+    grid.types.push_back(kVtkLine);
+    contact.push_back(pair.contact);
+    pair_index.push_back(pair.pair);
+    gap.push_back(pair.gap);
+    force.push_back(p < state.force.size() ? state.force[p] : 0.0);
+    active.push_back(p < state.in_working_set.size() && state.in_working_set[p] ? 1 : 0);
+    normal.insert(normal.end(), {pair.normal.x(), pair.normal.y(), 0.0});
+  }
+  grid.point_data.push_back(VtkArray{"displacement", 3, std::move(displacement)});
+  grid.cell_data.push_back(VtkArray{"contact", 1, std::move(contact)});
+  grid.cell_data.push_back(VtkArray{"pair", 1, std::move(pair_index)});
+  grid.cell_data.push_back(VtkArray{"gap", 1, std::move(gap)});
+  grid.cell_data.push_back(VtkArray{"force", 1, std::move(force)});
+  grid.cell_data.push_back(VtkArray{"active", 1, std::move(active)});
+  grid.cell_data.push_back(VtkArray{"normal", 3, std::move(normal)});
+  grid.field_data = state_field_data(state);
+  return grid;
+}
+
+VtuSeries::VtuSeries(std::string directory, const solver::Model& model, VtkEncoding encoding)
+    : directory_(std::move(directory)), model_(model), encoding_(encoding) {
+  std::error_code error;
+  std::filesystem::create_directories(directory_, error);
+  if (error || !std::filesystem::is_directory(directory_))
+    throw OutputError(directory_ + ": cannot create the directory for the ParaView files (" +
+                      (error ? error.message() : "not a directory") + ")");
+}
+
+std::string VtuSeries::file_name(const char* dataset, int index) const {
+  char name[64];
+  std::snprintf(name, sizeof name, "%s_%04d.vtu", dataset, index);
+  return name;
+}
+
+void VtuSeries::write(const solver::Snapshot& state, double time) {
+  const int index = frames();
+  const std::filesystem::path dir(directory_);
+  write_output((dir / file_name("struts", index)).string(),
+               [&](std::ostream& out) { write_vtu(out, struts_grid(model_, state), encoding_); });
+  write_output((dir / file_name("contacts", index)).string(),
+               [&](std::ostream& out) { write_vtu(out, contacts_grid(model_, state), encoding_); });
+  times_.push_back(time);
+  for (const char* dataset : {"struts", "contacts"}) {
+    std::vector<PvdEntry> entries;
+    for (int k = 0; k < frames(); ++k)
+      entries.push_back({times_[static_cast<size_t>(k)], file_name(dataset, k)});
+    write_output((dir / (std::string(dataset) + ".pvd")).string(),
+                 [&](std::ostream& out) { write_pvd(out, entries); });
+  }
+}
+
+}  // namespace fetic::app

@@ -1,0 +1,44 @@
+#pragma once
+// ParaView output: solver states as VTK unstructured grids, one pair of files per frame
+// (an iteration or a load step) in a directory, with a .pvd collection per dataset:
+//   struts.pvd   -> struts_0000.vtu, ...    the elements (lines or quadrilaterals)
+//   contacts.pvd -> contacts_0000.vtu, ...  one line per contact node pair
+// Arrays (docs/SCENES.md "ParaView output"): point data `displacement` (3 components);
+// strut cell data `strut`, `element`, `subdomain`, `stress_axial` (+ `stress_sxx`,
+// `stress_syy`, `stress_sxy`, `stress_von_mises` in the plane model), `axial_force`;
+// contact cell data `contact`, `pair`, `gap`, `force`, `active`, `normal`; field data
+// `load_factor`, `iteration`, `residual`, `converged`.
+
+#include <string>
+#include <vector>
+
+#include "app/vtk_xml.hpp"
+#include "solver/method.hpp"
+
+namespace fetic::app {
+
+VtkGrid struts_grid(const solver::Model& model, const solver::Snapshot& state);
+VtkGrid contacts_grid(const solver::Model& model, const solver::Snapshot& state);
+
+// Frames written one by one; the .pvd files always list the frames written so far
+// (rewritten after each frame, atomically), so an interrupted run leaves a complete
+// series. Throws OutputError naming the file on failure.
+class VtuSeries {
+ public:
+  VtuSeries(std::string directory, const solver::Model& model, VtkEncoding encoding);
+  // Writes the frame's two .vtu files and updates the .pvd files; `time` is the frame's
+  // time value in ParaView.
+  void write(const solver::Snapshot& state, double time);
+  int frames() const { return static_cast<int>(times_.size()); }
+  const std::string& directory() const { return directory_; }
+
+ private:
+  std::string file_name(const char* dataset, int index) const;
+
+  std::string directory_;
+  const solver::Model& model_;
+  VtkEncoding encoding_;
+  std::vector<double> times_;
+};
+
+}  // namespace fetic::app

@@ -1,0 +1,63 @@
+#pragma once
+// What an engineer reads off a solver state besides displacements: per element the
+// connectivity, the FETI subdomain, the stresses and the stress resultants (stress
+// recovery), and per clamped end the support reaction. Generic over the models: each
+// model supplies its element topology and recovery in element_results.cpp (bar: axial
+// stress; plane: sxx, syy, sxy, von Mises and the axial stress e1' sigma e1); a new model
+// adds a case there and everything that writes results (JSON, VTU, CSV) follows.
+
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "solver/method.hpp"
+#include "solver/model.hpp"
+
+namespace fetic::solver {
+
+struct NamedValues {
+  std::string name;
+  std::vector<double> values;  // one per element
+};
+
+struct StrutElements {
+  int nodes_per_element = 2;            // 2: line (bar, beam), 4: quadrilateral (counterclockwise)
+  std::vector<int> connectivity;        // nodes_per_element strut node indices per element
+  std::vector<int> subdomain;           // FETI subdomain per element (numbered as decompose() does)
+  std::vector<NamedValues> stress;      // "axial" for every model; plane adds "sxx", "syy",
+                                        // "sxy" (global axes), "von_mises"
+  std::vector<NamedValues> resultants;  // "axial_force" for every model
+
+  int element_count() const { return static_cast<int>(connectivity.size()) / nodes_per_element; }
+};
+
+// Elements of every strut with the stresses and resultants of `snapshot`. Each element's
+// values come from the displacements of the piece (subdomain) that holds it, so a torn
+// FETI iterate shows each subdomain's own stresses.
+std::vector<StrutElements> element_results(const Model& model, const Snapshot& snapshot);
+
+// The element topology alone (connectivity and subdomains, no values).
+std::vector<StrutElements> element_topology(const Model& model);
+
+// The force a clamped end exerts on its strut: r = K u - t f - (contact forces) at the
+// end's nodes. Summed over all supports, the reactions balance the applied loads.
+struct SupportReaction {
+  int strut = 0;
+  scenes::StrutEnd end = scenes::StrutEnd::From;
+  std::vector<int> nodes;         // the clamped nodes of that end
+  std::vector<Vec2> node_forces;  // per node [N]
+  Vec2 force{0, 0};               // their sum [N]
+};
+
+std::vector<SupportReaction> support_reactions(const Model& model, const Snapshot& snapshot);
+
+// Nodal forces the contact pairs exert on each strut (DOF-indexed like Model::loads):
+// a pair with pressure lambda pushes node a by -lambda n and node b by +lambda n.
+std::vector<Eigen::VectorXd> contact_nodal_forces(const Model& model, const Snapshot& snapshot);
+
+// The strut DOF vectors of a snapshot (the average of the pieces holding a node, as
+// strut_displacements), with every clamped DOF exactly zero.
+std::vector<Eigen::VectorXd> strut_dofs(const Model& model, const Snapshot& snapshot);
+
+}  // namespace fetic::solver
