@@ -7,6 +7,7 @@
 #include <iostream>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "app/commands.hpp"
@@ -16,10 +17,13 @@
 #include "app/method_options.hpp"
 #include "app/out_of_memory.hpp"
 #include "app/output_file.hpp"
+#include "app/processes.hpp"
 #include "app/progress.hpp"
 #include "app/result_json.hpp"
 #include "app/scene_input.hpp"
 #include "app/solve_outputs.hpp"
+#include "app/solve_profile.hpp"
+#include "solver/feti_method.hpp"
 #include "scenes/scene_error.hpp"
 #include "solver/load_sweep.hpp"
 #include "solver/method.hpp"
@@ -31,6 +35,7 @@ struct SolveArgs {
   std::string scene;
   MethodArgs method;
   SolveOutputArgs outputs;  // --json, --csv, --csv-steps, --vtu, ...
+  std::string profile;
   bool reference = false;
   bool quiet = false;
   bool progress = false;
@@ -93,6 +98,12 @@ void print_summary(std::ostream& out, const solver::Model& model, const solver::
       << format("%.3f", info.solve_seconds * 1e3) << " ms\n";
 }
 
+int report_result(const SolveArgs& args, const solver::Model& model,
+                  const std::vector<solver::SweepStep>& steps, const RunInfo& info,
+                  size_t load_factor_count, bool was_interrupted, int signal,
+                  const std::optional<OutputError>& output_error, SolveOutputs& outputs,
+                  std::ostream& report);
+
 // Displacements of a direct (active-set) solve at every load factor, for error histories.
 // A load factor the reference cannot solve (an unbounded scene) gets no error history; the
 // solve itself then reports the problem with its own status.
@@ -117,6 +128,20 @@ std::map<double, std::vector<std::vector<solver::Vec2>>> reference_solutions(
 }
 
 int run_solve(const SolveArgs& args) {
+  // Under mpirun every process runs this function in step: each reads the scene, builds
+  // the model (replicated metadata) and its own subdomains; every decision that ends the
+  // run is taken alike by all of them, and rank 0 alone prints and writes files.
+  const solver::Communicator& processes = app::processes();
+  if (processes.distributed() && !solver::distributable(args.method.kind())) {
+    std::cerr << "fetic solve: --method " << solver::to_string(args.method.kind())
+              << " runs in one process; under mpirun use --method feti or feti-c\n";
+    return kExitUsage;
+  }
+  if (processes.distributed() && args.outputs.vtu_every_iteration) {
+    std::cerr << "fetic solve: --vtu-every-iteration runs in one process (an iterate lives in "
+                 "pieces on every process); under mpirun --vtu writes one frame per load step\n";
+    return kExitUsage;
+  }
   int status = kExitOk;
   const auto scene = load_scene_or_report(args.scene, status);
   if (!scene) return status;
@@ -138,31 +163,47 @@ int run_solve(const SolveArgs& args) {
   info.method = args.method.kind();
   info.preconditioner = args.method.options().preconditioner;
   info.tolerance = args.method.tolerance;
+  info.ranks = processes.size();
 
   Activity setting_up("setting up the method (factorizing the subdomains)");
   const auto setup_start = std::chrono::steady_clock::now();
   std::unique_ptr<solver::Method> method;
   std::map<double, std::vector<std::vector<solver::Vec2>>> references;
   try {
-    method = solver::make_method(info.method, model, args.method.options());
+    method = solver::make_method(info.method, model, args.method.options(), processes);
     info.setup_seconds = seconds_since(setup_start);
+    if (auto* dual = dynamic_cast<const solver::FetiMethod*>(method.get()))
+      info.subdomains_per_rank = dual->system().partition().subdomains_per_part();
     if (args.reference) references = reference_solutions(model, args.method, args.scene);
   } catch (const solver::SolverError& error) {
     std::cerr << scenes::printable(args.scene) << ": " << error.what() << '\n';
     return kExitSolverSetup;
   }
 
+  auto* dual = dynamic_cast<const solver::FetiMethod*>(method.get());
+  ProfileRun profile;
+  if (dual) profile.before_solve = dual->profile();
   const std::vector<double> load_factors = args.method.load_factors();
   const bool sweeping = !args.method.load_steps.empty();
+  // Rank 0 alone writes: the other processes keep the checks (--csv-node) but no paths.
+  SolveOutputArgs output_args = args.outputs;
+  if (!processes.root()) {
+    output_args = SolveOutputArgs{};
+    output_args.csv_nodes = args.outputs.csv_nodes;
+  }
   std::unique_ptr<SolveOutputs> outputs;
+  int output_status = kExitOk;
   try {
-    outputs = std::make_unique<SolveOutputs>(args.outputs, model, load_factors);
+    outputs = std::make_unique<SolveOutputs>(output_args, model, load_factors);
   } catch (const CLI::ValidationError& error) {
     std::cerr << scenes::printable(args.scene) << ": " << error.what() << '\n';
-    return kExitUsage;
+    output_status = kExitUsage;
   } catch (const OutputError& error) {
-    return report_output_error(error);
+    output_status = report_output_error(error);
   }
+  // Agreed, so that no process goes on alone (rank 0 made the directories).
+  output_status = static_cast<int>(processes.max(static_cast<double>(output_status)));
+  if (output_status != kExitOk) return output_status;
   // With an output on stdout (-), the report goes to stderr.
   std::ostream& report = outputs->uses_stdout() ? std::cerr : std::cout;
   if (sweeping && !args.quiet)
@@ -207,30 +248,97 @@ int run_solve(const SolveArgs& args) {
         step.state.iteration, step.state.active_set_size(), step.state.residual);
     report << line << std::flush;
   };
-  hooks.keep_going = [] { return !interrupted(); };
+  // Every process asks between iterations, so all stop at the same one: for a signal
+  // (any process may have received it) or for an output rank 0 could not write.
+  std::optional<OutputError> output_error;
+  bool stop = false;
+  hooks.keep_going = [&] {
+    stop = stop || processes.any(interrupted() || output_error.has_value());
+    return !stop;
+  };
+  // Distributed, each step's whole state (the pieces of every process) is gathered for
+  // rank 0's outputs; the sweep itself keeps the local states for its warm starts. An
+  // output rank 0 cannot write must not leave the sweep early there (the others would
+  // wait in the next exchange): it is kept and agreed at the next keep_going.
+  std::vector<solver::Snapshot> whole_states;
+  if (processes.distributed()) {
+    hooks.on_step = [&, on_step = hooks.on_step](const solver::SweepStep& step) {
+      whole_states.push_back(method->gathered_snapshot());
+      if (!processes.root() || output_error) return;
+      try {
+        on_step({step.load_factor, whole_states.back(), step.history});
+      } catch (const OutputError& error) {
+        output_error = error;
+      }
+    };
+    hooks.on_iteration = [&, on_iteration = hooks.on_iteration](double t,
+                                                               const solver::Method& running) {
+      if (!processes.root() || output_error) return;
+      try {
+        on_iteration(t, running);
+      } catch (const OutputError& error) {
+        output_error = error;
+      }
+    };
+  }
   std::vector<solver::SweepStep> steps;
   try {
     steps = solver::sweep(*method, load_factors, hooks);
+  } catch (const OutputError& error) {
     progress.clear();
-    info.solve_seconds = seconds_since(solve_start) - outputs->writing_seconds();
+    return report_output_error(error);  // one process: nobody waits for it
+  }
+  progress.clear();
+  info.solve_seconds = seconds_since(solve_start) - outputs->writing_seconds();
+  for (size_t i = 0; i < whole_states.size() && i < steps.size(); ++i)
+    steps[i].state = whole_states[i];
+  const bool was_interrupted = processes.any(interrupted());
+  // The signal some process received (rank 0 may have received none).
+  const int signal = static_cast<int>(processes.max(static_cast<double>(interrupt_signal())));
+
+  if (!args.profile.empty() && dual) {
+    profile.after_solve = dual->profile();
+    profile.setup_seconds = info.setup_seconds;
+    profile.solve_seconds = info.solve_seconds;
+    profile.iterations = steps.empty() ? 0 : steps.back().state.iteration;
+    try {
+      write_solve_profile(args.profile, processes, profile);
+    } catch (const OutputError& error) {
+      if (processes.root()) status = report_output_error(error);
+    }
+  }
+  if (processes.root() && status == kExitOk)
+    status = report_result(args, model, steps, info, load_factors.size(), was_interrupted, signal,
+                           output_error, *outputs, report);
+  return static_cast<int>(processes.max(static_cast<double>(status)));
+}
+
+// Rank 0 (or the only process): the outputs, the interrupt message or the summary.
+int report_result(const SolveArgs& args, const solver::Model& model,
+                  const std::vector<solver::SweepStep>& steps, const RunInfo& info,
+                  size_t load_factor_count, bool was_interrupted, int signal,
+                  const std::optional<OutputError>& output_error, SolveOutputs& outputs,
+                  std::ostream& report) {
+  if (output_error) return report_output_error(*output_error);
+  const bool sweeping = !args.method.load_steps.empty();
+  try {
     // An interrupted solve still writes its outputs, with the current iterate marked
     // "interrupted": true, "converged": false.
     Activity writing("writing the outputs");
-    outputs->finish(steps, info, sweeping);
+    outputs.finish(steps, info, sweeping);
   } catch (const OutputError& error) {
-    progress.clear();
     return report_output_error(error);
   }
-  if (interrupted()) {
-    const bool cut = steps.empty() || steps.size() < load_factors.size() ||
+  if (was_interrupted) {
+    const bool cut = steps.empty() || steps.size() < load_factor_count ||
                      steps.back().state.status == solver::Status::Running;
-    std::cerr << scenes::printable(args.scene) << ": interrupted by " << interrupt_name();
+    std::cerr << scenes::printable(args.scene) << ": interrupted by " << signal_name(signal);
     if (!cut)
       std::cerr << " after the solve had finished; the outputs are complete";
     else
-      std::cerr << " at iteration " << method->iteration();
-    if (cut && outputs->writes_anything())
-      std::cerr << "; the current iterate, marked interrupted, is in " << outputs->written_list();
+      std::cerr << " at iteration " << (steps.empty() ? 0 : steps.back().state.iteration);
+    if (cut && outputs.writes_anything())
+      std::cerr << "; the current iterate, marked interrupted, is in " << outputs.written_list();
     std::cerr << '\n';
     return kExitInterrupted;
   }
@@ -260,7 +368,26 @@ void register_solve(CLI::App& app, int& exit_code) {
   command->add_flag("--quiet", args->quiet, "Print no summary and no progress");
   command->add_flag("--progress", args->progress,
                     "Show the progress line on stderr even when it is not a terminal");
-  command->callback([args, &exit_code] { exit_code = run_solve(*args); });
+  command->add_option("--profile", args->profile,
+                      "feti, feti-c: write what each process did in the solve (time split, "
+                      "messages, bytes, coarse problem, memory) as JSON here");
+  command->callback([args, &exit_code] {
+    try {
+      exit_code = run_solve(*args);
+    } catch (const std::bad_alloc&) {
+      // Distributed, a failure that only this process met would leave the others
+      // waiting in the next exchange: end them all (mpirun reports the status).
+      if (!processes().distributed()) throw;
+      report_from_any_rank("fetic solve: process " + std::to_string(processes().rank()) +
+                           ": out of memory while " + current_activity());
+      solver::mpi_abort(kExitOutOfMemory);
+    } catch (const std::exception& error) {
+      if (!processes().distributed()) throw;
+      report_from_any_rank("fetic solve: process " + std::to_string(processes().rank()) +
+                           " failed: " + error.what());
+      solver::mpi_abort(kExitSolverSetup);
+    }
+  });
 }
 
 }  // namespace fetic::app

@@ -14,4 +14,7 @@ void register_figures(CLI::App& app, int& exit_code);
 void register_bench_render(CLI::App& app, int& exit_code);
 void register_gui(CLI::App& app, int& exit_code);
 
+// Parses the command line and runs the command; returns its exit status.
+int run_command_line(int argc, char** argv);
+
 }  // namespace fetic::app

@@ -22,8 +22,12 @@ void install_interrupt_handlers() {
 
 bool interrupted() { return received != 0; }
 
-const char* interrupt_name() {
-  switch (received) {
+int interrupt_signal() { return received; }
+
+const char* interrupt_name() { return signal_name(received); }
+
+const char* signal_name(int signal) {
+  switch (signal) {
     case SIGINT: return "SIGINT";
     case SIGTERM: return "SIGTERM";
     default: return "";

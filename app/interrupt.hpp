@@ -9,5 +9,9 @@ void install_interrupt_handlers();
 bool interrupted();
 // "SIGINT" or "SIGTERM" (empty when not interrupted).
 const char* interrupt_name();
+// The same for a signal number (another process' signal, under MPI).
+const char* signal_name(int signal);
+// The signal received, or 0.
+int interrupt_signal();
 
 }  // namespace fetic::app

@@ -11,6 +11,7 @@
 #include "app/exit_codes.hpp"
 #include "app/help_text.hpp"
 #include "app/interrupt.hpp"
+#include "app/processes.hpp"
 #include "app/out_of_memory.hpp"
 #include "app/standard_streams.hpp"
 #include "scenes/scene_error.hpp"
@@ -24,40 +25,62 @@ bool known_command(const CLI::App& app, const std::string& word) {
   return false;
 }
 
+// Under mpirun only `fetic solve` runs distributed; every other command is refused
+// before anything is loaded, with one message (rank 0) and status 1 on every process.
+bool refuse_under_mpi(int argc, char** argv) {
+  if (!fetic::app::processes().distributed()) return false;
+  const std::string command = argc > 1 ? argv[1] : "";
+  if (command == "solve" || command == "--help" || command == "-h" || command == "--version")
+    return false;
+  std::cerr << "fetic " << fetic::scenes::printable(command)
+            << " runs in one process: start it without mpirun "
+            << "(under mpirun only 'fetic solve' runs, distributed over the processes)\n";
+  return true;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
-  fetic::app::guard_standard_streams();
-  fetic::app::install_out_of_memory_handler();
+  if (!fetic::app::start_processes(&argc, &argv)) return fetic::app::kExitUsage;
+  const int status = [&] {
+    if (refuse_under_mpi(argc, argv)) return static_cast<int>(fetic::app::kExitUsage);
+    return fetic::app::run_command_line(argc, argv);
+  }();
+  fetic::app::finish_processes(status);
+  return status;
+}
+
+int fetic::app::run_command_line(int argc, char** argv) {
+  guard_standard_streams();
+  install_out_of_memory_handler();
   CLI::App app{"fetic - frictionless contact of elastic struts by FETI and FETI-C"};
   app.require_subcommand(1);
   app.set_version_flag("--version", "fetic 0.1.0");
-  fetic::app::install_interrupt_handlers();
-  int exit_code = fetic::app::kExitOk;
-  fetic::app::register_solve(app, exit_code);
-  fetic::app::register_bench(app, exit_code);
-  fetic::app::register_generate(app, exit_code);
-  fetic::app::register_render(app, exit_code);
-  fetic::app::register_figures(app, exit_code);
-  fetic::app::register_bench_render(app, exit_code);
-  fetic::app::register_gui(app, exit_code);
-  fetic::app::add_help_footers(app);
+  install_interrupt_handlers();
+  int exit_code = kExitOk;
+  register_solve(app, exit_code);
+  register_bench(app, exit_code);
+  register_generate(app, exit_code);
+  register_render(app, exit_code);
+  register_figures(app, exit_code);
+  register_bench_render(app, exit_code);
+  register_gui(app, exit_code);
+  add_help_footers(app);
   if (argc > 1 && argv[1][0] != '-' && !known_command(app, argv[1])) {
     std::string commands;
     for (const CLI::App* command : app.get_subcommands({}))
       commands += (commands.empty() ? "" : ", ") + command->get_name();
-    std::cerr << "fetic: unknown command '" << fetic::scenes::printable(argv[1])
+    std::cerr << "fetic: unknown command '" << scenes::printable(argv[1])
               << "' (commands: " << commands << "; fetic --help)\n";
-    return fetic::app::kExitUsage;
+    return kExitUsage;
   }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {
     const int code = app.exit(error);
-    return fetic::app::finish_standard_output(code == 0 ? fetic::app::kExitOk
-                                                        : fetic::app::kExitUsage);
+    return finish_standard_output(code == 0 ? kExitOk : kExitUsage);
   } catch (const std::bad_alloc&) {
-    return fetic::app::finish_standard_output(fetic::app::report_out_of_memory());
+    return finish_standard_output(report_out_of_memory());
   }
-  return fetic::app::finish_standard_output(exit_code);
+  return finish_standard_output(exit_code);
 }

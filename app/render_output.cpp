@@ -20,6 +20,7 @@
 #include "app/exit_codes.hpp"
 #include "app/interrupt.hpp"
 #include "app/output_file.hpp"
+#include "solver/threads.hpp"
 #include "scenes/scene_error.hpp"
 
 extern char** environ;
@@ -63,7 +64,7 @@ void write_png_atomically(const std::string& path, const render::PngBytes& png) 
 
 void use_solver_threads_for_pictures(const solver::Model& model) {
   constexpr long long kParallelFrom = 200000;
-  omp_set_num_threads(model.dof_count() < kParallelFrom ? 1 : omp_get_num_procs());
+  solver::set_thread_budget(model.dof_count() < kParallelFrom ? 1 : omp_get_num_procs());
 }
 
 int default_encoder_threads() {

@@ -19,6 +19,8 @@ nlohmann::ordered_json result_json(const solver::Model& model, const solver::Sna
     result["preconditioner"] = solver::to_string(info.preconditioner);
   result["tolerance"] = info.tolerance;
   result["time_seconds"] = {{"setup", info.setup_seconds}, {"solve", info.solve_seconds}};
+  result["ranks"] = info.ranks;
+  if (!info.subdomains_per_rank.empty()) result["subdomains_per_rank"] = info.subdomains_per_rank;
   // load_factor, converged, iterations, struts, contacts, reactions, ...
   add_state(result, model, final_state);
   result["history"] = history_json(history);

@@ -18,6 +18,8 @@ struct RunInfo {
   double tolerance = 0.0;
   double setup_seconds = 0.0;
   double solve_seconds = 0.0;
+  int ranks = 1;                         // processes the solve ran on (mpirun -np)
+  std::vector<int> subdomains_per_rank;  // dual methods: subdomains each process held
 };
 
 // Keys in insertion order; app/json_layout.hpp puts the plain values first when written.

@@ -35,13 +35,10 @@ CholmodFactor::~CholmodFactor() = default;
 CholmodFactor::CholmodFactor(CholmodFactor&&) noexcept = default;
 CholmodFactor& CholmodFactor::operator=(CholmodFactor&&) noexcept = default;
 
-CholmodFactor::Result CholmodFactor::factorize(const SparseMatrix& A) {
-  if (!A.isCompressed()) throw std::logic_error("CholmodFactor: matrix must be compressed");
-  cholmod_free_factor(&impl_->factor, &impl_->common);
-  size_ = static_cast<int>(A.rows());
-  failed_column_ = -1;
-  if (size_ == 0) return Result::Ok;
-  // A view of the Eigen matrix: CHOLMOD reads it, never writes it.
+namespace {
+
+// A view of an Eigen matrix: CHOLMOD reads it, never writes it.
+cholmod_sparse view_of(const SparseMatrix& A) {
   cholmod_sparse view{};
   view.nrow = static_cast<size_t>(A.rows());
   view.ncol = static_cast<size_t>(A.cols());
@@ -55,12 +52,37 @@ CholmodFactor::Result CholmodFactor::factorize(const SparseMatrix& A) {
   view.dtype = CHOLMOD_DOUBLE;
   view.sorted = 1;
   view.packed = 1;
+  return view;
+}
+
+}  // namespace
+
+CholmodFactor::Result CholmodFactor::factorize(const SparseMatrix& A) {
+  if (!A.isCompressed()) throw std::logic_error("CholmodFactor: matrix must be compressed");
+  cholmod_free_factor(&impl_->factor, &impl_->common);
+  size_ = static_cast<int>(A.rows());
+  failed_column_ = -1;
+  if (size_ == 0) return Result::Ok;
+  cholmod_sparse view = view_of(A);
   cholmod_common& c = impl_->common;
   impl_->factor = cholmod_analyze(&view, &c);
   // CHOLMOD running out of memory is std::bad_alloc like any other allocation: the
   // commands report it as such (status 7), not as a singular or failed factorization.
   if (!impl_->factor && c.status == CHOLMOD_OUT_OF_MEMORY) throw std::bad_alloc();
   if (!impl_->factor) return Result::Failed;
+  return numeric(A);
+}
+
+CholmodFactor::Result CholmodFactor::refactorize(const SparseMatrix& A) {
+  if (!impl_->factor || static_cast<int>(A.rows()) != size_) return factorize(A);
+  if (!A.isCompressed()) throw std::logic_error("CholmodFactor: matrix must be compressed");
+  failed_column_ = -1;
+  return numeric(A);
+}
+
+CholmodFactor::Result CholmodFactor::numeric(const SparseMatrix& A) {
+  cholmod_sparse view = view_of(A);
+  cholmod_common& c = impl_->common;
   cholmod_factorize(&view, impl_->factor, &c);
   if (c.status == CHOLMOD_NOT_POSDEF || impl_->factor->minor < impl_->factor->n) {
     failed_column_ = static_cast<int>(impl_->factor->minor);

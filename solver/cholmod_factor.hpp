@@ -24,6 +24,10 @@ class CholmodFactor {
   // Factorizes the symmetric matrix A (only its lower triangle is read). Throws
   // std::bad_alloc when CHOLMOD runs out of memory (OutOfMemory is never returned).
   Result factorize(const SparseMatrix& A);
+  // The same for a matrix with the nonzero pattern of the last factorize(): the fill-
+  // reducing ordering and symbolic analysis are kept, only the numbers are factorized
+  // again (a working-set change in FETI-C changes values of G G', not its pattern).
+  Result refactorize(const SparseMatrix& A);
   // Column where factorization broke down (valid after NotPositiveDefinite).
   int failed_column() const { return failed_column_; }
   // CHOLMOD's cheap estimate min(diag L) / max(diag L), squared for an LL' factor.
@@ -39,6 +43,7 @@ class CholmodFactor {
 
  private:
   struct Impl;
+  Result numeric(const SparseMatrix& A);
   std::unique_ptr<Impl> impl_;
   int size_ = 0;
   int failed_column_ = -1;

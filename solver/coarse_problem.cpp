@@ -1,53 +1,194 @@
 #include "solver/coarse_problem.hpp"
 
+#include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <map>
 #include <queue>
 #include <stdexcept>
 
 namespace fetic::solver {
+namespace {
 
-CoarseProblem::CoarseProblem(const FetiSystem& system) : system_(system) {}
-
-void CoarseProblem::set_active_rows(const std::vector<char>& active) {
-  active_ = active;
-  const SparseMatrix& G = system_.G();
-  std::vector<Eigen::Triplet<double>> entries;
-  entries.reserve(static_cast<size_t>(G.nonZeros()));
-  for (int col = 0; col < G.outerSize(); ++col) {
-    if (!active_[col]) continue;
-    for (SparseMatrix::InnerIterator it(G, col); it; ++it)
-      entries.emplace_back(it.row(), col, it.value());
+class Stopwatch {
+ public:
+  explicit Stopwatch(double& total) : total_(total), start_(std::chrono::steady_clock::now()) {}
+  ~Stopwatch() {
+    total_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
   }
-  G_hat_.resize(G.rows(), G.cols());
-  G_hat_.setFromTriplets(entries.begin(), entries.end());
+  Stopwatch(const Stopwatch&) = delete;
+  Stopwatch& operator=(const Stopwatch&) = delete;
+
+ private:
+  double& total_;
+  std::chrono::steady_clock::time_point start_;
+};
+
+}  // namespace
+
+CoarseProblem::CoarseProblem(const FetiSystem& system) : system_(system) {
+  const Decomposition& d = system.decomposition();
+  contact_active_.assign(d.contact_rows(), 1);
+  active_.assign(system.rows(), 1);
+  build_pattern();
+}
+
+// The block rows of G G' this process computes: for own subdomain j, the sum over the
+// rows r touching j of g_r(modes of j) g_r', in increasing r (the same order on every
+// number of processes). Values are laid out per own subdomain, entries (a, b) sorted.
+void CoarseProblem::build_pattern() {
+  const FetiSystem& s = system_;
+  const Decomposition& d = s.decomposition();
+  const Communicator& comm = s.communicator();
+  const SparseMatrix& G = s.G();
+
+  // Per own subdomain: its entries (a, b) and, per local row it touches, the products.
+  std::vector<int> pattern;  // (a, b) pairs of this process' values, in value order
+  for (const SubdomainOperator& op : s.subdomains()) {
+    const Subdomain& sub = d.subdomains[op.index];
+    std::vector<int> rows;
+    for (const Incidence& in : op.incidence)
+      rows.push_back(in.row);
+    rows.erase(std::unique(rows.begin(), rows.end()), rows.end());  // incidence is by row
+    std::map<std::pair<int, int>, int> position;
+    for (int r : rows)
+      for (SparseMatrix::InnerIterator a(G, r); a; ++a) {
+        if (a.row() < sub.mode_offset || a.row() >= sub.mode_offset + sub.mode_count) continue;
+        for (SparseMatrix::InnerIterator b(G, r); b; ++b)
+          position.emplace(std::make_pair(static_cast<int>(a.row()), static_cast<int>(b.row())), 0);
+      }
+    const int first = static_cast<int>(own_values_.size());
+    int k = first;
+    for (auto& [ab, at] : position) {
+      at = k++;
+      pattern.push_back(ab.first);
+      pattern.push_back(ab.second);
+    }
+    own_values_.resize(k, 0.0);
+    for (int r : rows) {
+      RowProducts rp;
+      rp.row = r;
+      rp.first = static_cast<int>(products_.size());
+      int ia = 0;
+      for (SparseMatrix::InnerIterator a(G, r); a; ++a, ++ia) {
+        if (a.row() < sub.mode_offset || a.row() >= sub.mode_offset + sub.mode_count) continue;
+        int ib = 0;
+        for (SparseMatrix::InnerIterator b(G, r); b; ++b, ++ib)
+          products_.push_back(
+              {position.at({static_cast<int>(a.row()), static_cast<int>(b.row())}), ia, ib});
+      }
+      rp.end = static_cast<int>(products_.size());
+      row_products_.push_back(rp);
+    }
+  }
+
+  // The whole pattern, gathered once; the lower triangle becomes the matrix.
+  const std::vector<int> all = comm.all_gather(pattern);
+  const int n = d.total_modes;
+  std::vector<Eigen::Triplet<double>> lower;
+  for (size_t k = 0; k + 1 < all.size(); k += 2)
+    if (all[k] >= all[k + 1]) lower.emplace_back(all[k], all[k + 1], 1.0);
+  matrix_.resize(n, n);
+  matrix_.setFromTriplets(lower.begin(), lower.end());
+  matrix_.makeCompressed();
+  value_slot_.assign(all.size() / 2, -1);
+  for (size_t k = 0; k + 1 < all.size(); k += 2) {
+    const int a = all[k], b = all[k + 1];
+    if (a < b) continue;
+    // Position of (a, b) in column b of the compressed lower triangle.
+    const int* begin = matrix_.innerIndexPtr() + matrix_.outerIndexPtr()[b];
+    const int* end = matrix_.innerIndexPtr() + matrix_.outerIndexPtr()[b + 1];
+    value_slot_[k / 2] = static_cast<int>(std::lower_bound(begin, end, a) - matrix_.innerIndexPtr());
+  }
+}
+
+bool CoarseProblem::row_active(int global_row) const {
+  const int first_contact = system_.decomposition().equality_rows;
+  return global_row < first_contact || contact_active_[global_row - first_contact] != 0;
+}
+
+bool CoarseProblem::set_active_rows(const std::vector<char>& active) {
+  const FetiSystem& s = system_;
+  const DualSpace& space = s.space();
+  const int first_contact = s.decomposition().equality_rows;
+  // The owned contact rows whose flag changed, from every process.
+  std::vector<int> changes;
+  for (int r = space.first_contact(); r < space.rows(); ++r) {
+    if (!space.owned(r)) continue;
+    const int k = space.global_row(r) - first_contact;
+    const char flag = active[r] ? 1 : 0;
+    if (flag != contact_active_[k]) changes.push_back(flag ? k + 1 : -(k + 1));
+  }
+  const std::vector<int> all = s.communicator().all_gather(changes);
+  for (int change : all)
+    contact_active_[std::abs(change) - 1] = change > 0 ? 1 : 0;
+  for (int r = 0; r < space.rows(); ++r)
+    active_[r] = row_active(space.global_row(r)) ? 1 : 0;
+  if (all.empty() && factorized_) return false;
+  factorize();
+  return true;
+}
+
+void CoarseProblem::factorize() {
+  Stopwatch watch(system_.times().coarse);
+  const SparseMatrix& G = system_.G();
+  std::fill(own_values_.begin(), own_values_.end(), 0.0);
+  for (const RowProducts& rp : row_products_) {
+    if (!active_[rp.row]) continue;
+    const double* column = G.valuePtr() + G.outerIndexPtr()[rp.row];
+    for (int p = rp.first; p < rp.end; ++p)
+      own_values_[products_[p].value] += column[products_[p].a] * column[products_[p].b];
+  }
+  const std::vector<double> all = system_.communicator().all_gather(own_values_);
+  std::fill(matrix_.valuePtr(), matrix_.valuePtr() + matrix_.nonZeros(), 0.0);
+  for (size_t k = 0; k < all.size(); ++k)
+    if (value_slot_[k] >= 0) matrix_.valuePtr()[value_slot_[k]] = all[k];
+  ++factorizations_;
+  factorized_ = true;
 
   find_unheld_groups();
-  SparseMatrix A = G_hat_ * SparseMatrix(G_hat_.transpose());
-  if (!unheld_.empty()) {
+  if (unheld_.empty()) {
+    // The analysis of the fixed pattern is kept unless the last factor had extra entries.
+    const CholmodFactor::Result result =
+        pattern_extended_ ? factor_.factorize(matrix_) : factor_.refactorize(matrix_);
+    pattern_extended_ = false;
+    if (result == CholmodFactor::Result::Ok) return;
+  } else {
+    // Pin each free direction: G^ G^' + z z' (outside the fixed pattern, so analysed anew).
+    const Decomposition& d = system_.decomposition();
     std::vector<Eigen::Triplet<double>> extra;
     for (const UnheldGroup& group : unheld_) {
       const Eigen::VectorXd& z = group.direction;
       for (int a : group.subdomains)
         for (int b : group.subdomains) {
-          const int ma = system_.decomposition().subdomains[a].mode_offset;
-          const int mb = system_.decomposition().subdomains[b].mode_offset;
-          extra.emplace_back(ma, mb, z(ma) * z(mb));
+          const int ma = d.subdomains[a].mode_offset;
+          const int mb = d.subdomains[b].mode_offset;
+          if (ma >= mb) extra.emplace_back(ma, mb, z(ma) * z(mb));
         }
     }
-    SparseMatrix Z(A.rows(), A.cols());
+    SparseMatrix Z(matrix_.rows(), matrix_.cols());
     Z.setFromTriplets(extra.begin(), extra.end());
-    A += Z;
+    SparseMatrix A = matrix_ + Z;
+    A.makeCompressed();
+    pattern_extended_ = true;
+    if (factor_.factorize(A) == CholmodFactor::Result::Ok) return;
   }
-  A.makeCompressed();
-  if (factor_.factorize(A) != CholmodFactor::Result::Ok)
-    throw SolverError(
-        "the coarse problem G G' is singular: a group of subdomains is held by no active row "
-        "in a way the solver cannot resolve");
+  throw SolverError(
+      "the coarse problem G G' is singular: a group of subdomains is held by no active row "
+      "in a way the solver cannot resolve");
+}
+
+double CoarseProblem::g(int global_row, int subdomain) const {
+  double value = 0.0;
+  for (const RowEntry& entry : system_.decomposition().rows[global_row].entries)
+    if (entry.subdomain == subdomain) value += entry.value;  // bar: R = 1
+  return value;
 }
 
 // Bar model: subdomains linked by active rows form groups; a group containing no
 // Dirichlet row can translate along its axis. Its direction z solves g_a z_a + g_b z_b = 0
-// for every active row between subdomains a and b (g: the row's column of G).
+// for every active row between subdomains a and b (g: the row's column of G). Computed
+// from the replicated decomposition and working set, so alike on every process.
 void CoarseProblem::find_unheld_groups() {
   unheld_.clear();
   const Decomposition& d = system_.decomposition();
@@ -55,13 +196,9 @@ void CoarseProblem::find_unheld_groups() {
   const int count = static_cast<int>(d.subdomains.size());
   std::vector<std::vector<int>> rows_of(count);
   for (int r = 0; r < d.row_count(); ++r)
-    if (active_[r])
+    if (row_active(r))
       for (const RowEntry& entry : d.rows[r].entries)
         rows_of[entry.subdomain].push_back(r);
-  const SparseMatrix& G = system_.G();
-  auto g = [&](int row, int subdomain) {  // G(mode of subdomain, row)
-    return G.coeff(d.subdomains[subdomain].mode_offset, row);
-  };
   std::vector<double> value(count, 0.0);
   std::vector<char> seen(count, 0);
   for (int start = 0; start < count; ++start) {
@@ -108,17 +245,21 @@ void CoarseProblem::find_unheld_groups() {
 }
 
 Eigen::VectorXd CoarseProblem::solve(const Eigen::VectorXd& b) const {
+  Stopwatch watch(system_.times().coarse);
   Eigen::VectorXd x(b.size());
   factor_.solve(b.data(), x.data());
   return x;
 }
 
 Eigen::VectorXd CoarseProblem::apply_G(const Eigen::VectorXd& v) const {
-  return G_hat_ * v;
+  return system_.apply_G(v, &active_);
 }
 
 Eigen::VectorXd CoarseProblem::apply_Gt(const Eigen::VectorXd& a) const {
-  return G_hat_.transpose() * a;
+  Eigen::VectorXd out = system_.G().transpose() * a;
+  for (int r = 0; r < out.size(); ++r)
+    if (!active_[r]) out(r) = 0.0;
+  return out;
 }
 
 void CoarseProblem::project(Eigen::VectorXd& v) const {

@@ -6,6 +6,16 @@
 //   G^'(G^ G^')^+ e                     (the particular multipliers, (6.45), (8.25))
 //   (G^ G^')^+ G^ r                     (rigid-body amplitudes, (6.50))
 //
+// Distribution (MPI): G^ G^' is small (rigid-body modes x modes) and replicated - every
+// process holds and factorizes all of it, so a solve needs no communication. Each
+// process computes the block rows of its own subdomains (from the rows of B they touch,
+// all local to it) and one all_gather assembles the matrix. Its nonzero pattern is that
+// of all rows and never changes: a working-set change only changes values, and the
+// factorization keeps CHOLMOD's ordering and symbolic analysis. The working set itself
+// (which contact rows are active) is replicated too: each process contributes its
+// owned contact rows and every process applies the same changes, so all refactorize at
+// the same moment with the same numbers.
+//
 // G^ G^' is singular exactly when a group of bar struts held only by contacts has none
 // of its contact rows active: the group can then translate freely along its axis. Such
 // a direction z is found from the structure (subdomains linked by active rows, none of
@@ -31,28 +41,62 @@ class CoarseProblem {
  public:
   explicit CoarseProblem(const FetiSystem& system);
 
-  // Factorizes G^ G^' for the rows with active[r] != 0.
-  void set_active_rows(const std::vector<char>& active);
-  const std::vector<char>& active_rows() const { return active_; }
+  // Makes the rows with active[r] != 0 (local rows) the rows of G^; equality rows are
+  // always active. Collective: every process must call it at the same point. Factorizes
+  // G^ G^' again when the set of active rows (over all processes) changed, and returns
+  // whether it did.
+  bool set_active_rows(const std::vector<char>& active);
+  const std::vector<char>& active_rows() const { return active_; }  // local rows
+  // Whether contact row `k` (global contact index: global row - equality rows) is active,
+  // known alike on every process.
+  bool contact_active(int k) const { return contact_active_[k] != 0; }
 
   Eigen::VectorXd solve(const Eigen::VectorXd& b) const;     // (G^ G^')^+ b
-  Eigen::VectorXd apply_G(const Eigen::VectorXd& v) const;   // G^ v
-  Eigen::VectorXd apply_Gt(const Eigen::VectorXd& a) const;  // G^' a (zero on inactive rows)
+  Eigen::VectorXd apply_G(const Eigen::VectorXd& v) const;   // G^ v (replicated)
+  Eigen::VectorXd apply_Gt(const Eigen::VectorXd& a) const;  // G^' a (local rows; 0 if inactive)
   void project(Eigen::VectorXd& v) const;                    // v <- P^ v
   Eigen::VectorXd particular(const Eigen::VectorXd& e) const;
   Eigen::VectorXd amplitudes(const Eigen::VectorXd& r) const;  // (G^ G^')^+ G^ r
 
   const std::vector<UnheldGroup>& unheld() const { return unheld_; }
   std::size_t factor_memory() const { return factor_.peak_memory(); }
+  int size() const { return system_.modes(); }
+  // Nonzeros of G G' (the stored lower triangle) and how often it was factorized.
+  std::size_t matrix_nonzeros() const { return static_cast<std::size_t>(matrix_.nonZeros()); }
+  int factorizations() const { return factorizations_; }
 
  private:
+  void build_pattern();
+  void factorize();
   void find_unheld_groups();
+  bool row_active(int global_row) const;
+  // Entry of G for (mode of `subdomain`, global row): bar model only (find_unheld_groups).
+  double g(int global_row, int subdomain) const;
 
   const FetiSystem& system_;
-  std::vector<char> active_;
-  SparseMatrix G_hat_;  // modes x rows, inactive columns removed (kept as zero columns)
+  std::vector<char> active_;          // per local row
+  std::vector<char> contact_active_;  // per contact row of the whole problem (replicated)
+  bool factorized_ = false;
+
+  // This process' block rows of G G': per own subdomain, its local rows; each row's
+  // products g_a g_b go to value positions of the block rows.
+  struct Product {
+    int value = 0;  // into own_values_
+    int a = 0, b = 0;  // positions of the two factors in the row's column of G
+  };
+  struct RowProducts {
+    int row = 0;  // local row
+    int first = 0, end = 0;  // into products_
+  };
+  std::vector<RowProducts> row_products_;  // in increasing local row, grouped by own subdomain
+  std::vector<Product> products_;
+  std::vector<double> own_values_;
+  std::vector<int> value_slot_;  // per gathered value: its position in matrix_ (or -1)
+  SparseMatrix matrix_;          // lower triangle of G^ G^', fixed pattern
   std::vector<UnheldGroup> unheld_;
   CholmodFactor factor_;
+  bool pattern_extended_ = false;  // factor_ holds G^G^' + zz' (a pattern of its own)
+  int factorizations_ = 0;
 };
 
 }  // namespace fetic::solver

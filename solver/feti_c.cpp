@@ -6,44 +6,45 @@
 
 namespace fetic::solver {
 
-FetiC::FetiC(const Model& model, const SolveOptions& options) : FetiMethod(model, options, 0) {
-  if (options.max_iterations <= 0) max_iterations_ = 10 * system_.rows() + 1000;
-  G_abs_ = system_.G().cwiseAbs();
+FetiC::FetiC(const Model& model, const SolveOptions& options, const Communicator& communicator)
+    : FetiMethod(model, options, 0, communicator) {
+  if (options.max_iterations <= 0)
+    max_iterations_ = 10 * system_.space().global_rows() + 1000;
 }
 
 void FetiC::set_working_set(const std::vector<char>& active) {
   active_ = active;
-  if (coarse_.active_rows() != active_) coarse_.set_active_rows(active_);
+  coarse_.set_active_rows(active_);
 }
 
 bool FetiC::balanced(const Eigen::VectorXd& lambda) const {
   const Eigen::VectorXd imbalance = coarse_.apply_G(lambda) - e_;
   const double scale =
-      e_.lpNorm<Eigen::Infinity>() + (G_abs_ * lambda.cwiseAbs()).lpNorm<Eigen::Infinity>();
+      e_.lpNorm<Eigen::Infinity>() + system_.apply_abs_G(lambda).lpNorm<Eigen::Infinity>();
   return imbalance.lpNorm<Eigen::Infinity>() <= 1e-12 * scale;
 }
 
 bool FetiC::plan(Eigen::VectorXd& lambda) {
-  const int first_contact = system_.decomposition().equality_rows;
+  const int first_contact = space().first_contact();
   const int rows = system_.rows();
   bool changed = false;
-  for (int pass = 0; pass <= rows; ++pass) {
+  for (int pass = 0; pass <= space().global_rows(); ++pass) {
     std::vector<char> active = active_;
     for (int k = first_contact; k < rows; ++k) {
       if (lambda(k) <= 0.0) lambda(k) = 0.0;
       active[k] = lambda(k) > 0.0;
     }
-    if (active != active_) changed = true;
+    if (space().any(active != active_)) changed = true;
     set_working_set(active);
     if (hold_loaded_groups()) changed = true;
     if (balanced(lambda)) return changed;
     // Restore equilibrium on the new working set (8.25).
     coarse_.project(lambda);
     lambda += coarse_.particular(e_);
-    bool nonnegative = true;
+    bool negative = false;
     for (int k = first_contact; k < rows; ++k)
-      if (active_[k] && lambda(k) < 0.0) nonnegative = false;
-    if (nonnegative) return changed;
+      if (active_[k] && lambda(k) < 0.0) negative = true;
+    if (!space().any(negative)) return changed;
   }
   return changed;
 }
@@ -52,9 +53,9 @@ bool FetiC::plan(Eigen::VectorXd& lambda) {
 // pushes it: G^ lambda = e has no solution then. The rows in front of the push (those
 // whose force opposes it) re-enter W with lambda = 0; the projection gives them the force.
 bool FetiC::hold_loaded_groups() {
-  const int first_contact = system_.decomposition().equality_rows;
+  const int first_contact = space().first_contact();
   bool added = false;
-  for (int round = 0; round < system_.rows() && !coarse_.unheld().empty(); ++round) {
+  for (int round = 0; round < space().global_rows() && !coarse_.unheld().empty(); ++round) {
     std::vector<char> active = active_;
     bool any = false;
     for (const UnheldGroup& group : coarse_.unheld()) {
@@ -67,7 +68,7 @@ bool FetiC::hold_loaded_groups() {
           any = true;
         }
     }
-    if (!any) break;
+    if (!space().any(any)) break;
     added = true;
     set_working_set(active);
   }
@@ -75,7 +76,7 @@ bool FetiC::hold_loaded_groups() {
 }
 
 void FetiC::compute_search_residual() {
-  const int first_contact = system_.decomposition().equality_rows;
+  const int first_contact = space().first_contact();
   const int rows = system_.rows();
   w_hat_ = r_;
   coarse_.project(w_hat_);
@@ -100,19 +101,19 @@ void FetiC::record_state() {
     converge();
   else
     watch_stagnation(residual);
-  int working = 0;
-  for (int k = system_.decomposition().equality_rows; k < system_.rows(); ++k)
-    working += active_[k];
-  record(residual, working);
+  long long working = 0;
+  for (int k = space().first_contact(); k < system_.rows(); ++k)
+    working += active_[k] && space().owned(k) ? 1 : 0;
+  record(residual, static_cast<int>(space().communicator().sum(working)));
 }
 
 void FetiC::begin(const Snapshot* warm) {
   d_ = system_.d(load_factor_);
   e_ = system_.e(load_factor_);
   const int rows = system_.rows();
-  const int first_contact = system_.decomposition().equality_rows;
+  const int first_contact = space().first_contact();
   std::vector<char> active(rows, 1);
-  const bool use_warm = warm && warm->dual.size() == rows;
+  const bool use_warm = !space().any(!(warm && warm->dual.size() == rows));
   if (use_warm)
     for (int k = first_contact; k < rows; ++k)
       active[k] = warm->dual(k) > 0.0;
@@ -142,8 +143,8 @@ void FetiC::begin(const Snapshot* warm) {
 
 void FetiC::advance() {
   // A PCPG step on the face A = E + W + penetrating rows.
-  if (coarse_.active_rows() != face_) coarse_.set_active_rows(face_);
-  if (face_ != previous_face_) restart_ = true;
+  coarse_.set_active_rows(face_);
+  if (space().any(face_ != previous_face_)) restart_ = true;
   previous_face_ = face_;
   Eigen::VectorXd w = r_;
   coarse_.project(w);
@@ -168,7 +169,7 @@ void FetiC::advance() {
   const Eigen::VectorXd trial = lambda_ + a * p_;
   Eigen::VectorXd planned = trial;
   const bool changed = plan(planned);
-  const bool modified = changed || planned != trial;
+  const bool modified = changed || space().any(planned != trial);
   lambda_ = planned;
   if (modified)
     system_.residual(lambda_, load_factor_, r_);

@@ -34,22 +34,23 @@ namespace fetic::solver {
 
 class FetiC final : public FetiMethod {
  public:
-  FetiC(const Model& model, const SolveOptions& options);
+  FetiC(const Model& model, const SolveOptions& options,
+        const Communicator& communicator = Communicator::self());
   MethodKind kind() const override { return MethodKind::FetiC; }
 
  private:
   void begin(const Snapshot* warm) override;
   void advance() override;
   // The planning procedure (Def. 8.4): clip lambda_k <= 0 out of W, restore G^ lambda = e,
-  // repeat until both hold. Returns true when W changed.
+  // repeat until both hold. Returns true when W changed (on any process).
   bool plan(Eigen::VectorXd& lambda);
+  // Collective: every process calls it at the same point.
   void set_working_set(const std::vector<char>& active);
   bool hold_loaded_groups();
   bool balanced(const Eigen::VectorXd& lambda) const;
   void compute_search_residual();
   void record_state();
 
-  SparseMatrix G_abs_;        // |G|, for the scale of G lambda - e
   std::vector<char> active_;  // per row: equality rows always; contact rows in W
   std::vector<char> face_;    // A: rows of the current step
   std::vector<char> previous_face_;

@@ -6,9 +6,10 @@
 
 namespace fetic::solver {
 
-FetiMethod::FetiMethod(const Model& model, const SolveOptions& options, int default_max_iterations)
+FetiMethod::FetiMethod(const Model& model, const SolveOptions& options, int default_max_iterations,
+                       const Communicator& communicator)
     : Method(model, options, default_max_iterations),
-      system_(model),
+      system_(model, communicator),
       preconditioner_(system_, options.preconditioner, options.scaling),
       coarse_(system_) {}
 
@@ -21,37 +22,66 @@ Eigen::VectorXd FetiMethod::rigid_amplitudes() const {
   // it): any translation that keeps its gaps open is a solution. Choose the one that
   // moves it least, i.e. keep it where it is unless a neighbour pushes it.
   const Decomposition& d = system_.decomposition();
-  const SparseMatrix& G = system_.G();
+  const DualSpace& space = system_.space();
   for (const UnheldGroup& group : coarse_.unheld()) {
     const Eigen::VectorXd u = system_.subdomain_displacements(lambda_, alpha, load_factor_);
+    Eigen::VectorXd Bu;
+    system_.apply_B(u, Bu);
     // Gap of every row under the current placement, and its rate of change per unit
     // translation s of the group along its direction z: gap(s) = gap(0) - s (G'z)_k.
-    const Eigen::VectorXd rate = G.transpose() * group.direction;
+    const Eigen::VectorXd rate = system_.G().transpose() * group.direction;
     double low = -std::numeric_limits<double>::infinity();
     double high = std::numeric_limits<double>::infinity();
-    for (int r = d.equality_rows; r < d.row_count(); ++r) {
+    for (int r = space.first_contact(); r < space.rows(); ++r) {
       if (rate(r) == 0.0) continue;
-      double bu = 0.0;
-      for (const RowEntry& entry : d.rows[r].entries)
-        bu += entry.value * u(d.subdomains[entry.subdomain].dof_offset + entry.dof);
-      const double gap = std::max(0.0, d.rows[r].rhs - bu);
+      const double gap = std::max(0.0, system_.rhs()(r) - Bu(r));
       if (rate(r) > 0.0)
         high = std::min(high, gap / rate(r));
       else
         low = std::max(low, gap / rate(r));
     }
+    low = space.max(low);
+    high = -space.max(-high);
     // Displacement of the group per unit s, and the s that minimizes its norm.
-    double along = 0.0, size = 0.0;
+    ExactSum sums[2];  // along, size: exact, so alike for any number of processes
     for (int j : group.subdomains) {
+      const int i = system_.own_index(j);
+      if (i < 0) continue;
       const Subdomain& sub = d.subdomains[j];
-      const Eigen::VectorXd motion = system_.subdomains()[j].R * group.direction(sub.mode_offset);
-      along += motion.dot(u.segment(sub.dof_offset, sub.dof_count));
-      size += motion.squaredNorm();
+      const Eigen::VectorXd motion = system_.subdomains()[i].R * group.direction(sub.mode_offset);
+      const Eigen::VectorXd part = u.segment(system_.dof_offset(i), sub.dof_count);
+      sums[0].merge(exact_dot(motion.data(), part.data(), motion.size()));
+      sums[1].merge(exact_dot(motion.data(), motion.data(), motion.size()));
     }
+    system_.communicator().sum(sums, 2);
+    const double along = sums[0].value(), size = sums[1].value();
     const double s = size > 0.0 ? std::clamp(-along / size, std::min(low, high), high) : 0.0;
     alpha += s * group.direction;
   }
   return alpha;
+}
+
+ProcessProfile FetiMethod::profile() const {
+  ProcessProfile p;
+  const CommunicationStats& stats = system_.communicator().stats();
+  p.subdomains = static_cast<int>(system_.subdomains().size());
+  for (const SubdomainOperator& op : system_.subdomains())
+    p.unknowns += system_.decomposition().subdomains[op.index].dof_count;
+  p.rows = system_.rows();
+  p.shared_rows = system_.space().shared_rows();
+  p.f_applications = system_.f_applications();
+  p.local_seconds = system_.times().local_solves;
+  p.coarse_seconds = system_.times().coarse;
+  p.exchange_seconds = stats.exchange_seconds;
+  p.reduction_seconds = stats.reduction_seconds;
+  p.gather_seconds = stats.gather_seconds;
+  p.communication = stats;
+  p.coarse_size = coarse_.size();
+  p.coarse_nonzeros = static_cast<long long>(coarse_.matrix_nonzeros());
+  p.coarse_factorizations = coarse_.factorizations();
+  p.coarse_memory = coarse_.factor_memory();
+  p.factor_memory = system_.factor_memory() + preconditioner_.factor_memory();
+  return p;
 }
 
 void FetiMethod::update_residual(double a, const Eigen::VectorXd& q) {
@@ -88,15 +118,17 @@ void FetiMethod::fail_breakdown(double yw, double pq) {
 
 void FetiMethod::fill_contacts(Snapshot& s) const {
   const Decomposition& d = system_.decomposition();
+  const DualSpace& space = system_.space();
   const int pairs = static_cast<int>(model_.pairs.size());
   s.force.assign(pairs, 0.0);
   s.in_working_set.assign(pairs, 0);
-  const auto& active = coarse_.active_rows();
+  const bool any_rows = !history().empty();
   for (int k = 0; k < pairs; ++k) {
     const int row = d.pair_row[k];
     if (row < 0) continue;
-    s.force[k] = std::max(0.0, lambda_(row));
-    s.in_working_set[k] = !active.empty() && active[row] ? 1 : 0;
+    s.in_working_set[k] = coarse_.contact_active(row - d.equality_rows) ? 1 : 0;
+    const int local = space.local_row(row);
+    if (any_rows && local >= 0) s.force[k] = std::max(0.0, lambda_(local));
   }
 }
 
@@ -108,12 +140,68 @@ Snapshot FetiMethod::snapshot() const {
   s.message = message();
   s.load_factor = load_factor_;
   s.residual = history().empty() ? 0.0 : history().back().residual;
-  if (lambda_.size() == system_.rows()) {
+  if (!history().empty()) {  // started (alike on every process)
     s.pieces = system_.pieces(lambda_, rigid_amplitudes(), load_factor_);
     s.dual = lambda_;
   }
   fill_contacts(s);
   return s;
+}
+
+Snapshot FetiMethod::gathered_snapshot() const {
+  Snapshot s = snapshot();
+  const Communicator& comm = system_.communicator();
+  if (!comm.distributed()) return s;
+  // Pieces as numbers: subdomain, then per node (ux, uy); forces of owned pair rows.
+  const Decomposition& d = system_.decomposition();
+  const DualSpace& space = system_.space();
+  std::vector<double> pieces, forces;
+  for (size_t i = 0; i < s.pieces.size(); ++i) {
+    pieces.push_back(system_.subdomains()[i].index);
+    for (const Vec2& u : s.pieces[i].displacement) {
+      pieces.push_back(u.x());
+      pieces.push_back(u.y());
+    }
+  }
+  for (size_t k = 0; k < s.force.size(); ++k) {
+    const int row = d.pair_row[k];
+    if (row < 0) continue;
+    const int local = space.local_row(row);
+    if (local >= 0 && space.owned(local)) {
+      forces.push_back(static_cast<double>(k));
+      forces.push_back(s.force[k]);
+    }
+  }
+  const std::vector<double> all_pieces = comm.gather_to_root(pieces);
+  const std::vector<double> all_forces = comm.gather_to_root(forces);
+  s.dual.resize(0);  // the multipliers stay distributed
+  if (!comm.root()) return s;
+  std::vector<Piece> ordered(d.subdomains.size());
+  for (size_t at = 0; at < all_pieces.size();) {
+    const int j = static_cast<int>(all_pieces[at++]);
+    const Subdomain& sub = d.subdomains[j];
+    Piece& piece = ordered[j];
+    piece.strut = sub.strut;
+    piece.box = sub.box;
+    piece.displacement.resize(sub.box.node_count());
+    for (Vec2& u : piece.displacement) {
+      u = Vec2(all_pieces[at], all_pieces[at + 1]);
+      at += 2;
+    }
+  }
+  s.pieces = std::move(ordered);
+  for (size_t at = 0; at + 1 < all_forces.size(); at += 2)
+    s.force[static_cast<size_t>(all_forces[at])] = all_forces[at + 1];
+  return s;
+}
+
+double FetiMethod::reference_error() const {
+  // Rank 0 compares the whole state; every process records the same number.
+  const Snapshot whole = gathered_snapshot();
+  double error = 0.0;
+  if (system_.communicator().root()) error = relative_error(strut_displacements(model_, whole), reference());
+  system_.communicator().broadcast(error);
+  return error;
 }
 
 }  // namespace fetic::solver

@@ -16,9 +16,35 @@
 
 namespace fetic::solver {
 
+// What one process did and holds, cumulative since the method was made (subtract two
+// readings for a phase). For the benchmark of the distributed solve.
+struct ProcessProfile {
+  int subdomains = 0;
+  long long unknowns = 0;     // DOFs of the own subdomains
+  int rows = 0;               // local rows of B
+  int shared_rows = 0;        // of which also held by another process
+  long long f_applications = 0;
+  double local_seconds = 0.0;      // local solves (F, d, residual, preconditioner)
+  double coarse_seconds = 0.0;     // coarse factorizations and solves
+  double exchange_seconds = 0.0;   // neighbour exchanges
+  double reduction_seconds = 0.0;  // scalar reductions
+  double gather_seconds = 0.0;     // gathers (coarse vectors and matrix)
+  CommunicationStats communication;
+  int coarse_size = 0;
+  long long coarse_nonzeros = 0;
+  int coarse_factorizations = 0;
+  std::size_t coarse_memory = 0;   // CHOLMOD's peak for the replicated coarse factor
+  std::size_t factor_memory = 0;   // own subdomain and preconditioner factors
+};
+
 class FetiMethod : public Method {
  public:
+  ProcessProfile profile() const;
+  // This process' part of the state: its subdomains' pieces, the forces of the contact
+  // pairs whose rows it holds, the working set of all pairs, its local multipliers.
   Snapshot snapshot() const override;
+  // The whole state on rank 0 (collective; the same as snapshot() in one process).
+  Snapshot gathered_snapshot() const override;
   const FetiSystem& system() const { return system_; }
   // Bytes CHOLMOD holds at its peak for the subdomain, preconditioner and coarse factors.
   std::size_t factor_memory() const {
@@ -26,7 +52,9 @@ class FetiMethod : public Method {
   }
 
  protected:
-  FetiMethod(const Model& model, const SolveOptions& options, int default_max_iterations);
+  FetiMethod(const Model& model, const SolveOptions& options, int default_max_iterations,
+             const Communicator& communicator);
+  double reference_error() const override;
   long long f_applications() const override { return system_.f_applications(); }
 
   // Rigid-body amplitudes alpha = (G^ G^')^+ G^ (F lambda - d) for the current rows,

@@ -1,7 +1,13 @@
 #include "solver/feti_preconditioner.hpp"
 
 #include <algorithm>
+#include <limits>
 #include <map>
+#include <string>
+#include <set>
+#include <utility>
+
+#include "solver/threads.hpp"
 
 namespace fetic::solver {
 namespace {
@@ -21,53 +27,106 @@ SparseMatrix extract(const SparseMatrix& K, const std::vector<int>& row_position
   return S;
 }
 
+using DofKey = std::pair<int, int>;  // (subdomain, subdomain-local DOF)
+
 }  // namespace
+
+// Diagonal stiffness of every DOF the local rows' scaling needs: own subdomains' from
+// their K, the neighbours' asked of their processes (one request and one answer).
+std::vector<std::vector<double>> FetiPreconditioner::scaling_weights(bool scaled) const {
+  const Decomposition& d = system_.decomposition();
+  const DualSpace& space = system_.space();
+  const Communicator& comm = space.communicator();
+  const auto& ops = system_.subdomains();
+
+  std::map<DofKey, double> stiffness;
+  if (scaled) {
+    std::vector<std::set<DofKey>> wanted(comm.size());
+    for (int r = 0; r < space.rows(); ++r) {
+      const Row& row = d.rows[space.global_row(r)];
+      for (const auto* list : {&row.entries, &row.copies})
+        for (const RowEntry& entry : *list) {
+          const int own = system_.own_index(entry.subdomain);
+          if (own >= 0)
+            stiffness[{entry.subdomain, entry.dof}] = ops[own].K.coeff(entry.dof, entry.dof);
+          else
+            wanted[system_.partition().owner_of(entry.subdomain)].insert(
+                {entry.subdomain, entry.dof});
+        }
+    }
+    std::vector<std::vector<double>> requests(comm.size());
+    for (int q = 0; q < comm.size(); ++q)
+      for (const auto& [sub, dof] : wanted[q]) {
+        requests[q].push_back(sub);
+        requests[q].push_back(dof);
+      }
+    const auto asked = comm.all_to_all(requests);
+    std::vector<std::vector<double>> answers(comm.size());
+    for (int q = 0; q < comm.size(); ++q)
+      for (size_t k = 0; k + 1 < asked[q].size(); k += 2) {
+        const int sub = static_cast<int>(asked[q][k]), dof = static_cast<int>(asked[q][k + 1]);
+        answers[q].push_back(ops[system_.own_index(sub)].K.coeff(dof, dof));
+      }
+    const auto answered = comm.all_to_all(answers);
+    for (int q = 0; q < comm.size(); ++q) {
+      size_t k = 0;
+      for (const DofKey& key : wanted[q])
+        stiffness[key] = answered[q][k++];
+    }
+  }
+
+  // An entry of subdomain i in a row shared with subdomain j gets k_j / (sum of k over
+  // every copy of the DOF): 1/multiplicity between equal neighbours.
+  std::vector<std::vector<double>> weights(space.rows());
+  for (int r = 0; r < space.rows(); ++r) {
+    const Row& row = d.rows[space.global_row(r)];
+    // Largest diagonal stiffness per side (a plane contact row has two entries a side).
+    std::map<int, double> side;
+    for (const RowEntry& entry : row.entries) {
+      const double k = scaled ? stiffness.at({entry.subdomain, entry.dof}) : 1.0;
+      auto [it, inserted] = side.emplace(entry.subdomain, k);
+      if (!inserted) it->second = std::max(it->second, k);
+    }
+    double total = 0.0;
+    if (scaled && side.size() >= 2) {
+      if (row.copies.empty())
+        for (const auto& [sub, k] : side)
+          total += k;
+      else
+        for (const RowEntry& copy : row.copies)
+          total += stiffness.at({copy.subdomain, copy.dof});
+    }
+    for (const RowEntry& entry : row.entries) {
+      if (system_.own_index(entry.subdomain) < 0) continue;
+      double weight = 1.0;
+      if (total > 0.0) {
+        double others = 0.0;
+        for (const auto& [sub, k] : side)
+          if (sub != entry.subdomain) others += k;
+        weight = others / total;
+      }
+      weights[r].push_back(weight);
+    }
+  }
+  return weights;
+}
 
 FetiPreconditioner::FetiPreconditioner(const FetiSystem& system, Preconditioner kind, bool scaled)
     : system_(system), kind_(kind) {
   if (kind_ == Preconditioner::None) return;
   const Decomposition& d = system.decomposition();
+  const DualSpace& space = system.space();
   const auto& ops = system.subdomains();
   const int count = static_cast<int>(ops.size());
-
-  // Per-entry weights of B (stiffness scaling): an entry of subdomain i in a row shared
-  // with subdomain j gets k_j / (sum of k over every copy of the DOF), k the diagonal
-  // stiffness: 1/multiplicity between equal neighbours.
-  std::vector<std::map<int, double>> weight(d.row_count());  // row -> subdomain -> weight
-  auto stiffness = [&](const RowEntry& entry) {
-    return ops[entry.subdomain].K.coeff(entry.dof, entry.dof);
-  };
-  for (int r = 0; r < d.row_count(); ++r) {
-    const Row& row = d.rows[r];
-    for (const RowEntry& entry : row.entries)
-      weight[r][entry.subdomain] = 1.0;
-    // Largest diagonal stiffness per side (a plane contact row has two entries a side).
-    std::map<int, double> side;
-    for (const RowEntry& entry : row.entries)
-      side[entry.subdomain] = std::max(side[entry.subdomain], stiffness(entry));
-    if (!scaled || side.size() < 2) continue;
-    double total = 0.0;
-    if (row.copies.empty())
-      for (const auto& [sub, k] : side)
-        total += k;
-    else
-      for (const RowEntry& copy : row.copies)
-        total += stiffness(copy);
-    if (!(total > 0.0)) continue;
-    for (const auto& [sub, k] : side) {
-      double others = 0.0;
-      for (const auto& [other, k_other] : side)
-        if (other != sub) others += k_other;
-      weight[r][sub] = others / total;
-    }
-  }
+  const std::vector<std::vector<double>> weights = scaling_weights(scaled);
 
   local_.resize(count);
-  row_entries_.assign(d.row_count(), {});
+  std::vector<std::vector<int>> position_in_boundary(count);
+  int failed = std::numeric_limits<int>::max();  // lowest own subdomain whose interior failed
   int offset = 0;
-  for (int j = 0; j < count; ++j) {
-    Local& local = local_[j];
-    const SubdomainOperator& op = ops[j];
+  for (int i = 0; i < count; ++i) {
+    Local& local = local_[i];
+    const SubdomainOperator& op = ops[i];
     for (const Incidence& in : op.incidence)
       local.boundary.push_back(in.dof);
     std::sort(local.boundary.begin(), local.boundary.end());
@@ -75,27 +134,55 @@ FetiPreconditioner::FetiPreconditioner(const FetiSystem& system, Preconditioner 
                          local.boundary.end());
     const int n = static_cast<int>(op.K.rows());
     const int nb = static_cast<int>(local.boundary.size());
-    std::vector<int> b_position(n, -1), i_position(n, -1);
+    std::vector<int>& b_position = position_in_boundary[i];
+    b_position.assign(n, -1);
+    std::vector<int> i_position(n, -1);
     for (int p = 0; p < nb; ++p)
       b_position[local.boundary[p]] = p;
     int ni = 0;
     for (int dof = 0; dof < n; ++dof)
       if (b_position[dof] < 0) i_position[dof] = ni++;
-    for (const Incidence& in : op.incidence) {
-      row_entries_[in.row].emplace_back(j, static_cast<int>(local.incidence.size()));
-      local.incidence.push_back({in.row, b_position[in.dof], in.value * weight[in.row][j]});
-    }
     local.K_bb = extract(op.K, b_position, nb, b_position, nb);
     if (kind_ == Preconditioner::Dirichlet && ni > 0) {
       local.K_ib = extract(op.K, i_position, ni, b_position, nb);
       const SparseMatrix K_ii = extract(op.K, i_position, ni, i_position, ni);
       if (local.K_ii.factorize(K_ii) != CholmodFactor::Result::Ok)
-        throw SolverError("Dirichlet preconditioner: the interior of a subdomain of strut '" +
-                          system.model().strut_names[d.subdomains[j].strut] + "' is singular");
+        failed = std::min(failed, op.index);
     }
     local.offset = offset;
     offset += nb;
   }
+  const std::string error = space.communicator().first_error(
+      failed, failed == std::numeric_limits<int>::max()
+                  ? std::string()
+                  : "Dirichlet preconditioner: the interior of a subdomain of strut '" +
+                        system.model().strut_names[d.subdomains[failed].strut] + "' is singular");
+  if (!error.empty()) throw SolverError(error);
+
+  // B's scaled entries per own subdomain, and per local row its terms grouped by
+  // subdomain in increasing order (the row's own entries come in that order already).
+  row_first_.assign(space.rows() + 1, 0);
+  for (int r = 0; r < space.rows(); ++r) {
+    row_first_[r] = static_cast<int>(terms_.size());
+    const Row& row = d.rows[space.global_row(r)];
+    std::vector<std::pair<const RowEntry*, double>> own;
+    size_t w = 0;
+    for (const RowEntry& entry : row.entries)
+      if (system.own_index(entry.subdomain) >= 0) own.emplace_back(&entry, weights[r][w++]);
+    std::stable_sort(own.begin(), own.end(), [](const auto& a, const auto& b) {
+      return a.first->subdomain < b.first->subdomain;
+    });
+    int previous = -1;
+    for (const auto& [entry, weight] : own) {
+      const int i = system.own_index(entry->subdomain);
+      const int p = position_in_boundary[i][entry->dof];
+      local_[i].incidence.push_back({r, p, entry->value * weight});
+      terms_.push_back({local_[i].offset + p, entry->value * weight,
+                        previous >= 0 && entry->subdomain != previous});
+      previous = entry->subdomain;
+    }
+  }
+  row_first_[space.rows()] = static_cast<int>(terms_.size());
   x_.resize(offset);
   y_.resize(offset);
 }
@@ -118,7 +205,7 @@ void FetiPreconditioner::apply(const Eigen::VectorXd& w, const std::vector<char>
     return;
   }
   const int count = static_cast<int>(local_.size());
-#pragma omp parallel for schedule(dynamic, 4)
+#pragma omp parallel for schedule(dynamic, 4) num_threads(threads_for(4 * x_.size()))
   for (int j = 0; j < count; ++j) {
     const Local& local = local_[j];
     const int nb = static_cast<int>(local.boundary.size());
@@ -136,16 +223,21 @@ void FetiPreconditioner::apply(const Eigen::VectorXd& w, const std::vector<char>
     }
   }
   z.resize(rows);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) num_threads(threads_for(rows))
   for (int r = 0; r < rows; ++r) {
-    double sum = 0.0;
+    double total = 0.0, partial = 0.0;
     if (!mask || (*mask)[r])
-      for (const auto& [j, e] : row_entries_[r]) {
-        const Incidence& in = local_[j].incidence[e];
-        sum += in.value * y_(local_[j].offset + in.dof);
+      for (int t = row_first_[r]; t < row_first_[r + 1]; ++t) {
+        const Term& term = terms_[t];
+        if (term.new_subdomain) {
+          total += partial;
+          partial = 0.0;
+        }
+        partial += term.value * y_(term.y);
       }
-    z(r) = sum;
+    z(r) = total + partial;
   }
+  system_.space().complete_rows(z);
 }
 
 }  // namespace fetic::solver

@@ -12,6 +12,10 @@
 // weighted by k_other / (k_a + k_b), k the diagonal stiffness at the DOF; this is the
 // multiplicity scaling 1/2 for equal neighbours and follows jumps in stiffness.
 // An optional row mask restricts input and output to the rows FETI-C works on.
+//
+// Distributed like F (feti_system.hpp): each process holds the blocks of its own
+// subdomains; the diagonal stiffness of a neighbour's DOF, which the scaling needs, is
+// asked of its process once, at set-up.
 
 #include <vector>
 
@@ -40,12 +44,21 @@ class FetiPreconditioner {
     CholmodFactor K_ii;
     int offset = 0;  // into the workspaces
   };
+  // One term of a row's sum: y_(index) * value; `new_subdomain` starts the next partial.
+  struct Term {
+    int y = 0;
+    double value = 0.0;
+    bool new_subdomain = false;
+  };
+
+  // Per local row and own subdomain entry: the scaling weight of that entry.
+  std::vector<std::vector<double>> scaling_weights(bool scaled) const;
 
   const FetiSystem& system_;
   Preconditioner kind_;
   std::vector<Local> local_;
-  std::vector<std::vector<std::pair<int, int>>>
-      row_entries_;  // per row: (subdomain, incidence index)
+  std::vector<int> row_first_;  // per local row, into terms_ (size rows + 1)
+  std::vector<Term> terms_;
   mutable Eigen::VectorXd x_, y_;
 };
 

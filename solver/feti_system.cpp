@@ -1,74 +1,180 @@
 #include "solver/feti_system.hpp"
 
 #include <algorithm>
-#include <atomic>
+#include <chrono>
+#include <limits>
+#include <map>
 #include <string>
 
 #include "solver/primal_problem.hpp"
 #include "solver/rigid_modes.hpp"
+#include "solver/threads.hpp"
 
 namespace fetic::solver {
 namespace {
 
 constexpr double kSingularRcond = 1e-15;
 
+class Stopwatch {
+ public:
+  explicit Stopwatch(double& total) : total_(total), start_(std::chrono::steady_clock::now()) {}
+  ~Stopwatch() {
+    total_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  }
+  Stopwatch(const Stopwatch&) = delete;
+  Stopwatch& operator=(const Stopwatch&) = delete;
+
+ private:
+  double& total_;
+  std::chrono::steady_clock::time_point start_;
+};
+
 }  // namespace
 
-FetiSystem::FetiSystem(const Model& model)
-    : model_(model), decomposition_(decompose(model)), space_(decomposition_) {
-  const int count = static_cast<int>(decomposition_.subdomains.size());
-  subdomains_.resize(count);
-  for (int r = 0; r < decomposition_.row_count(); ++r)
-    for (const RowEntry& entry : decomposition_.rows[r].entries)
-      subdomains_[entry.subdomain].incidence.push_back({r, entry.dof, entry.value});
+FetiSystem::FetiSystem(const Model& model, const Communicator& communicator)
+    : model_(model),
+      decomposition_(decompose(model)),
+      partition_(partition_subdomains(decomposition_, communicator.size())),
+      space_(decomposition_, partition_, communicator) {
+  const Decomposition& d = decomposition_;
+  const std::vector<int>& own = partition_.owned[communicator.rank()];
+  own_index_.assign(d.subdomains.size(), -1);
+  subdomains_.resize(own.size());
+  dof_offsets_.resize(own.size());
+  int dofs = 0;
+  for (size_t i = 0; i < own.size(); ++i) {
+    own_index_[own[i]] = static_cast<int>(i);
+    subdomains_[i].index = own[i];
+    dof_offsets_[i] = dofs;
+    dofs += d.subdomains[own[i]].dof_count;
+  }
 
+  // B's entries per own subdomain, and per local row the own entries grouped by subdomain.
+  row_parts_.resize(space_.rows());
+  for (int r = 0; r < space_.rows(); ++r) {
+    const Row& row = d.rows[space_.global_row(r)];
+    std::vector<const RowEntry*> entries;
+    for (const RowEntry& entry : row.entries)
+      if (own_index_[entry.subdomain] >= 0) entries.push_back(&entry);
+    std::stable_sort(entries.begin(), entries.end(), [](const RowEntry* a, const RowEntry* b) {
+      return a->subdomain < b->subdomain;
+    });
+    row_parts_[r].first = static_cast<int>(part_entries_.size());
+    int previous = -1;
+    for (const RowEntry* entry : entries) {
+      const int i = own_index_[entry->subdomain];
+      subdomains_[i].incidence.push_back({r, entry->dof, entry->value});
+      part_entries_.push_back({dof_offsets_[i] + entry->dof, entry->value,
+                               previous >= 0 && entry->subdomain != previous});
+      previous = entry->subdomain;
+    }
+    row_parts_[r].end = static_cast<int>(part_entries_.size());
+  }
+
+  factorize_subdomains();
+
+  c_ = Eigen::VectorXd::Zero(space_.rows());
+  for (int r = 0; r < space_.rows(); ++r)
+    c_(r) = d.rows[space_.global_row(r)].rhs;
+  build_G();
+  build_redundant_groups();
+  x_.resize(dofs);
+  y_.resize(dofs);
+}
+
+void FetiSystem::factorize_subdomains() {
+  const Decomposition& d = decomposition_;
+  const int count = static_cast<int>(subdomains_.size());
   std::vector<CholmodFactor::Result> results(count, CholmodFactor::Result::Ok);
   std::vector<char> singular(count, 0);
-#pragma omp parallel for schedule(dynamic)
-  for (int j = 0; j < count; ++j) {
-    const Subdomain& sub = decomposition_.subdomains[j];
-    const StrutMesh& mesh = model.struts[sub.strut];
-    SubdomainOperator& op = subdomains_[j];
+  long long work = 0;
+  for (const SubdomainOperator& op : subdomains_)
+    work += d.subdomains[op.index].dof_count;
+#pragma omp parallel for schedule(dynamic) num_threads(threads_for(work * 50))
+  for (int i = 0; i < count; ++i) {
+    SubdomainOperator& op = subdomains_[i];
+    const Subdomain& sub = d.subdomains[op.index];
+    const StrutMesh& mesh = model_.struts[sub.strut];
     op.K = assemble_stiffness(mesh, sub.box);
     op.R = rigid_body_modes(mesh, sub.box);
-    results[j] = op.K_plus.factorize(op.K, op.R);
-    singular[j] = results[j] == CholmodFactor::Result::Ok && op.K_plus.rcond() < kSingularRcond;
+    results[i] = op.K_plus.factorize(op.K, op.R);
+    singular[i] = results[i] == CholmodFactor::Result::Ok && op.K_plus.rcond() < kSingularRcond;
   }
-  for (int j = 0; j < count; ++j) {
-    if (results[j] == CholmodFactor::Result::Ok && !singular[j]) continue;
-    const Subdomain& sub = decomposition_.subdomains[j];
-    throw SolverError(singular_message(model, sub.strut, results[j],
-                                       "its subdomain at nodes " + std::to_string(sub.box.i0) +
-                                           ".." + std::to_string(sub.box.i1)));
-  }
+  // The lowest failing subdomain of any process is reported, by every process alike.
+  int failed = std::numeric_limits<int>::max();
+  std::string message;
+  for (int i = 0; i < count; ++i)
+    if (results[i] != CholmodFactor::Result::Ok || singular[i]) {
+      const Subdomain& sub = d.subdomains[subdomains_[i].index];
+      failed = subdomains_[i].index;
+      message = singular_message(model_, sub.strut, results[i],
+                                 "its subdomain at nodes " + std::to_string(sub.box.i0) + ".." +
+                                     std::to_string(sub.box.i1));
+      break;
+    }
+  message = communicator().first_error(failed, message);
+  if (!message.empty()) throw SolverError(message);
+}
 
-  c_ = Eigen::VectorXd::Zero(decomposition_.row_count());
-  for (int r = 0; r < decomposition_.row_count(); ++r)
-    c_(r) = decomposition_.rows[r].rhs;
-
-  std::vector<Eigen::Triplet<double>> g_entries;
-  for (int j = 0; j < count; ++j) {
-    const Subdomain& sub = decomposition_.subdomains[j];
-    const SubdomainOperator& op = subdomains_[j];
-    for (const Incidence& in : op.incidence)
+void FetiSystem::build_G() {
+  const Decomposition& d = decomposition_;
+  std::map<int, Eigen::MatrixXd> remote_modes;  // rigid motions of neighbours' subdomains
+  auto modes_of = [&](int subdomain) -> const Eigen::MatrixXd& {
+    const int i = own_index_[subdomain];
+    if (i >= 0) return subdomains_[i].R;
+    auto found = remote_modes.find(subdomain);
+    if (found == remote_modes.end()) {
+      const Subdomain& sub = d.subdomains[subdomain];
+      found = remote_modes.emplace(subdomain, rigid_body_modes(model_.struts[sub.strut], sub.box))
+                  .first;
+    }
+    return found->second;
+  };
+  std::vector<Eigen::Triplet<double>> entries;
+  for (int r = 0; r < space_.rows(); ++r)
+    for (const RowEntry& entry : d.rows[space_.global_row(r)].entries) {
+      const Subdomain& sub = d.subdomains[entry.subdomain];
+      const Eigen::MatrixXd& R = modes_of(entry.subdomain);
       for (int m = 0; m < sub.mode_count; ++m)
-        if (op.R(in.dof, m) != 0.0)
-          g_entries.emplace_back(sub.mode_offset + m, in.row, op.R(in.dof, m) * in.value);
+        if (R(entry.dof, m) != 0.0)
+          entries.emplace_back(sub.mode_offset + m, r, R(entry.dof, m) * entry.value);
+    }
+  G_.resize(d.total_modes, space_.rows());
+  G_.setFromTriplets(entries.begin(), entries.end());
+  G_abs_ = G_.cwiseAbs();
+}
+
+void FetiSystem::build_redundant_groups() {
+  for (const RedundantGroup& group : decomposition_.redundant_groups) {
+    LocalGroup local;
+    local.copies = group.copies;
+    local.own_end.assign(group.copies, 0);
+    bool held = false;
+    for (size_t k = 0; k < group.rows.size(); ++k) {
+      const Row& row = decomposition_.rows[group.rows[k]];
+      const auto [i, j] = group.ends[k];
+      // entries[0] is copy i, entries[1] copy j (decompose()).
+      local.own_end[i] = own_index_[row.entries[0].subdomain] >= 0;
+      local.own_end[j] = own_index_[row.entries[1].subdomain] >= 0;
+      const int r = space_.local_row(group.rows[k]);
+      held = held || r >= 0;
+      local.rows.push_back(r);
+      local.ends.push_back(group.ends[k]);
+    }
+    if (held) groups_.push_back(std::move(local));
   }
-  G_.resize(decomposition_.total_modes, decomposition_.row_count());
-  G_.setFromTriplets(g_entries.begin(), g_entries.end());
-  x_.resize(decomposition_.total_dofs);
-  y_.resize(decomposition_.total_dofs);
 }
 
 void FetiSystem::solve_subdomains(const Eigen::VectorXd* lambda, double s,
                                   double load_factor) const {
+  Stopwatch watch(times_.local_solves);
+  const Decomposition& d = decomposition_;
   const int count = static_cast<int>(subdomains_.size());
-#pragma omp parallel for schedule(dynamic, 4)
-  for (int j = 0; j < count; ++j) {
-    const Subdomain& sub = decomposition_.subdomains[j];
-    const SubdomainOperator& op = subdomains_[j];
-    auto x = x_.segment(sub.dof_offset, sub.dof_count);
+#pragma omp parallel for schedule(dynamic, 4) num_threads(threads_for(x_.size()))
+  for (int i = 0; i < count; ++i) {
+    const SubdomainOperator& op = subdomains_[i];
+    const Subdomain& sub = d.subdomains[op.index];
+    auto x = x_.segment(dof_offsets_[i], sub.dof_count);
     if (load_factor != 0.0)
       x = load_factor * sub.load;
     else
@@ -76,20 +182,35 @@ void FetiSystem::solve_subdomains(const Eigen::VectorXd* lambda, double s,
     if (lambda)
       for (const Incidence& in : op.incidence)
         x(in.dof) += s * in.value * (*lambda)(in.row);
-    op.K_plus.apply(x_.data() + sub.dof_offset, y_.data() + sub.dof_offset);
+    op.K_plus.apply(x_.data() + dof_offsets_[i], y_.data() + dof_offsets_[i]);
   }
 }
 
-void FetiSystem::gather_rows(Eigen::VectorXd& out) const {
-  const int rows = decomposition_.row_count();
+void FetiSystem::gather_rows(Eigen::VectorXd& out) const { sum_rows(y_, out); }
+
+void FetiSystem::apply_B(const Eigen::VectorXd& u, Eigen::VectorXd& out) const { sum_rows(u, out); }
+
+void FetiSystem::sum_rows(const Eigen::VectorXd& values, Eigen::VectorXd& out) const {
+  const int rows = space_.rows();
   out.resize(rows);
-#pragma omp parallel for schedule(static)
-  for (int r = 0; r < rows; ++r) {
-    double sum = 0.0;
-    for (const RowEntry& entry : decomposition_.rows[r].entries)
-      sum += entry.value * y_(decomposition_.subdomains[entry.subdomain].dof_offset + entry.dof);
-    out(r) = sum;
+  {
+    Stopwatch watch(times_.local_solves);
+#pragma omp parallel for schedule(static) num_threads(threads_for(rows))
+    for (int r = 0; r < rows; ++r) {
+      // The partial sums of the subdomains the row joins, added in subdomain order.
+      double total = 0.0, partial = 0.0;
+      for (int e = row_parts_[r].first; e < row_parts_[r].end; ++e) {
+        const PartEntry& entry = part_entries_[e];
+        if (entry.new_subdomain) {
+          total += partial;
+          partial = 0.0;
+        }
+        partial += entry.value * values(entry.y);
+      }
+      out(r) = total + partial;
+    }
   }
+  space_.complete_rows(out);
 }
 
 void FetiSystem::residual(const Eigen::VectorXd& lambda, double load_factor,
@@ -107,20 +228,64 @@ void FetiSystem::apply_F(const Eigen::VectorXd& p, Eigen::VectorXd& out) const {
 }
 
 Eigen::VectorXd FetiSystem::d(double load_factor) const {
+  ++f_applications_;
   solve_subdomains(nullptr, 0.0, load_factor);
   Eigen::VectorXd out;
   gather_rows(out);
   return out - c_;
 }
 
+Eigen::VectorXd FetiSystem::assemble_modes(const std::vector<double>& own) const {
+  const Communicator& comm = communicator();
+  const Decomposition& d = decomposition_;
+  Eigen::VectorXd modes = Eigen::VectorXd::Zero(d.total_modes);
+  const std::vector<double> all = comm.all_gather(own);
+  size_t at = 0;
+  for (int q = 0; q < comm.size(); ++q)
+    for (int s : partition_.owned[q]) {
+      const Subdomain& sub = d.subdomains[s];
+      for (int m = 0; m < sub.mode_count; ++m)
+        modes(sub.mode_offset + m) = all[at++];
+    }
+  return modes;
+}
+
 Eigen::VectorXd FetiSystem::e(double load_factor) const {
-  Eigen::VectorXd e = Eigen::VectorXd::Zero(decomposition_.total_modes);
-  for (size_t j = 0; j < subdomains_.size(); ++j) {
-    const Subdomain& sub = decomposition_.subdomains[j];
-    e.segment(sub.mode_offset, sub.mode_count) =
-        load_factor * (subdomains_[j].R.transpose() * sub.load);
+  std::vector<double> own;
+  for (const SubdomainOperator& op : subdomains_) {
+    const Eigen::VectorXd block =
+        load_factor * (op.R.transpose() * decomposition_.subdomains[op.index].load);
+    own.insert(own.end(), block.data(), block.data() + block.size());
   }
-  return e;
+  return assemble_modes(own);
+}
+
+Eigen::VectorXd FetiSystem::apply_G(const Eigen::VectorXd& v, const std::vector<char>* mask) const {
+  return own_modes_product(G_, v, mask);
+}
+
+Eigen::VectorXd FetiSystem::apply_abs_G(const Eigen::VectorXd& v) const {
+  return own_modes_product(G_abs_, v.cwiseAbs(), nullptr);
+}
+
+Eigen::VectorXd FetiSystem::own_modes_product(const SparseMatrix& M, const Eigen::VectorXd& v,
+                                              const std::vector<char>* mask) const {
+  // The own subdomains' modes of M v; each sums its rows in increasing global order, the
+  // same for any number of processes (a neighbour's modes are left to its process).
+  Eigen::VectorXd local = Eigen::VectorXd::Zero(decomposition_.total_modes);
+  for (int r = 0; r < M.outerSize(); ++r) {
+    if (mask && !(*mask)[r]) continue;
+    for (SparseMatrix::InnerIterator it(M, r); it; ++it)
+      local(it.row()) += it.value() * v(r);
+  }
+  if (!communicator().distributed()) return local;
+  std::vector<double> own;
+  for (const SubdomainOperator& op : subdomains_) {
+    const Subdomain& sub = decomposition_.subdomains[op.index];
+    own.insert(own.end(), local.data() + sub.mode_offset,
+               local.data() + sub.mode_offset + sub.mode_count);
+  }
+  return assemble_modes(own);
 }
 
 Eigen::VectorXd FetiSystem::subdomain_displacements(const Eigen::VectorXd& lambda,
@@ -128,10 +293,10 @@ Eigen::VectorXd FetiSystem::subdomain_displacements(const Eigen::VectorXd& lambd
                                                     double load_factor) const {
   solve_subdomains(&lambda, -1.0, load_factor);
   Eigen::VectorXd u = y_;
-  for (size_t j = 0; j < subdomains_.size(); ++j) {
-    const Subdomain& sub = decomposition_.subdomains[j];
-    u.segment(sub.dof_offset, sub.dof_count) +=
-        subdomains_[j].R * alpha.segment(sub.mode_offset, sub.mode_count);
+  for (size_t i = 0; i < subdomains_.size(); ++i) {
+    const Subdomain& sub = decomposition_.subdomains[subdomains_[i].index];
+    u.segment(dof_offsets_[i], sub.dof_count) +=
+        subdomains_[i].R * alpha.segment(sub.mode_offset, sub.mode_count);
   }
   return u;
 }
@@ -141,7 +306,8 @@ std::vector<Piece> FetiSystem::pieces(const Eigen::VectorXd& lambda, const Eigen
   const Eigen::VectorXd u = subdomain_displacements(lambda, alpha, load_factor);
   std::vector<Piece> result;
   result.reserve(subdomains_.size());
-  for (const Subdomain& sub : decomposition_.subdomains) {
+  for (size_t i = 0; i < subdomains_.size(); ++i) {
+    const Subdomain& sub = decomposition_.subdomains[subdomains_[i].index];
     const StrutMesh& mesh = model_.struts[sub.strut];
     Piece piece;
     piece.strut = sub.strut;
@@ -149,24 +315,47 @@ std::vector<Piece> FetiSystem::pieces(const Eigen::VectorXd& lambda, const Eigen
     piece.displacement.reserve(sub.box.node_count());
     for (int n = 0; n < sub.box.node_count(); ++n)
       piece.displacement.push_back(
-          node_displacement(mesh, u.data() + sub.dof_offset + n * mesh.dofs_per_node));
+          node_displacement(mesh, u.data() + dof_offsets_[i] + n * mesh.dofs_per_node));
     result.push_back(std::move(piece));
   }
   return result;
 }
 
 void FetiSystem::project_onto_range_of_B(Eigen::VectorXd& v) const {
-  for (const RedundantGroup& group : decomposition_.redundant_groups) {
-    double copy_sum[64];  // B_g' v_g per copy (a node has at most four copies)
+  // Every process takes part when any has redundant rows (the exchange below is collective
+  // among neighbours), also one that holds none of them.
+  if (decomposition_.redundant_groups.empty()) return;
+  // Each row's new value (s_i - s_j) / m, s_c = B_g' v for copy c, is the sum of one part
+  // per end: s_i / m from the process of copy i, -s_j / m from that of copy j. Rows of no
+  // group keep their value (on the owning process; the others add zero).
+  const bool distributed = communicator().distributed();
+  Eigen::VectorXd partial = v;
+  if (distributed)
+    for (int r = 0; r < space_.rows(); ++r)
+      if (!space_.owned(r)) partial(r) = 0.0;
+  double copy_sum[64];  // per copy (a node has at most four copies)
+  for (const LocalGroup& group : groups_) {
     const int m = std::min(group.copies, 64);
     std::fill(copy_sum, copy_sum + m, 0.0);
     for (size_t k = 0; k < group.rows.size(); ++k) {
-      copy_sum[group.ends[k].first] += v(group.rows[k]);
-      copy_sum[group.ends[k].second] -= v(group.rows[k]);
+      const int r = group.rows[k];
+      if (r < 0) continue;
+      const auto [i, j] = group.ends[k];
+      if (group.own_end[i]) copy_sum[i] += v(r);
+      if (group.own_end[j]) copy_sum[j] -= v(r);
     }
-    for (size_t k = 0; k < group.rows.size(); ++k)
-      v(group.rows[k]) = (copy_sum[group.ends[k].first] - copy_sum[group.ends[k].second]) / m;
+    for (size_t k = 0; k < group.rows.size(); ++k) {
+      const int r = group.rows[k];
+      if (r < 0) continue;
+      const auto [i, j] = group.ends[k];
+      const double from_i = group.own_end[i] ? copy_sum[i] / m : 0.0;
+      const double from_j = group.own_end[j] ? -copy_sum[j] / m : 0.0;
+      partial(r) = group.own_end[i] && group.own_end[j] ? from_i + from_j
+                                                        : (group.own_end[i] ? from_i : from_j);
+    }
   }
+  if (distributed) space_.complete_rows(partial);
+  v = partial;
 }
 
 std::size_t FetiSystem::factor_memory() const {

@@ -3,51 +3,79 @@
 // assembled (ALGORITHMS.md section 2):
 //   F = sum_j B_j K_j^+ B_j'      d = t sum_j B_j K_j^+ f_j - c
 //   G = [R_j' B_j']_j             e = t [R_j' f_j]_j
-// Every K_j^+ is factorized once, when the system is built (in parallel). An application
-// costs one forward/backward solve per subdomain; subdomains are processed in parallel
-// (OpenMP), each with its own CHOLMOD factor and workspace.
+//
+// Distribution (MPI): the subdomains are partitioned over the processes
+// (partition.hpp); each process assembles and factorizes only its own K_j, and holds the
+// dual vectors on its local rows (dual_space.hpp). Applying F is one local solve per own
+// subdomain, then one exchange of partial row sums with the neighbouring processes
+// (DualSpace::complete_rows). Vectors over the rigid-body modes (G lambda, e, alpha) are
+// small and replicated: each process computes the entries of its own subdomains and
+// all_gather assembles them (assemble_modes). In one process the same code runs with
+// nothing to exchange.
+//
+// Every row sum adds the partial sums of the subdomains it joins in subdomain order, so
+// one process and many compute the same bits; only scalar products (summed per process,
+// then in rank order) differ in rounding with the number of processes.
 
 #include <vector>
 
 #include <Eigen/Core>
 
+#include "solver/communicator.hpp"
 #include "solver/decomposition.hpp"
 #include "solver/dual_space.hpp"
 #include "solver/generalized_inverse.hpp"
 #include "solver/method.hpp"
+#include "solver/partition.hpp"
 
 namespace fetic::solver {
 
 struct Incidence {
-  int row = 0;
+  int row = 0;  // local row (DualSpace)
   int dof = 0;  // subdomain-local
   double value = 0.0;
 };
 
 struct SubdomainOperator {
+  int index = 0;  // global subdomain index
   SparseMatrix K;
   Eigen::MatrixXd R;  // rigid-body modes, dof_count x mode_count
   GeneralizedInverse K_plus;
   std::vector<Incidence> incidence;  // the entries of B_j, by row
 };
 
+// Time spent in each part of the operators (for the benchmark's split of an iteration).
+struct OperatorTimes {
+  double local_solves = 0.0;  // K_j^+ applications (and the preconditioner's local work)
+  double coarse = 0.0;        // coarse problem: factorizations and solves
+};
+
 class FetiSystem {
  public:
-  // Builds and factorizes every subdomain; throws SolverError naming the strut when a
-  // subdomain is singular beyond its rigid-body modes.
-  explicit FetiSystem(const Model& model);
+  // Builds and factorizes this process' subdomains; throws SolverError naming the strut
+  // when a subdomain (of any process) is singular beyond its rigid-body modes.
+  explicit FetiSystem(const Model& model, const Communicator& communicator = Communicator::self());
   FetiSystem(const FetiSystem&) = delete;
   FetiSystem& operator=(const FetiSystem&) = delete;
 
   const Model& model() const { return model_; }
+  const Communicator& communicator() const { return space_.communicator(); }
+  // The whole decomposition (replicated metadata: subdomain boxes, rows and their entries).
   const Decomposition& decomposition() const { return decomposition_; }
+  const Partition& partition() const { return partition_; }
   // The rows this process holds and the reductions over all of them (dual_space.hpp).
   const DualSpace& space() const { return space_; }
+  // This process' subdomains, in increasing global index.
   const std::vector<SubdomainOperator>& subdomains() const { return subdomains_; }
-  int rows() const { return decomposition_.row_count(); }
+  int rows() const { return space_.rows(); }  // local rows
   int modes() const { return decomposition_.total_modes; }
-  const Eigen::VectorXd& rhs() const { return c_; }  // c: gaps on contact rows, 0 elsewhere
-  const SparseMatrix& G() const { return G_; }       // modes x rows
+  const Eigen::VectorXd& rhs() const { return c_; }  // c on the local rows
+  // The columns of G for the local rows (modes x local rows); a column holds the rigid
+  // motions of every subdomain its row joins, own or not.
+  const SparseMatrix& G() const { return G_; }
+  OperatorTimes& times() const { return times_; }
+  // Applications of F so far (apply_F, residual and d each count one).
+  long long f_applications() const { return f_applications_; }
 
   // out = B K^+ (t f - B' lambda) - c, i.e. d - F lambda: the dual residual, one pass.
   void residual(const Eigen::VectorXd& lambda, double load_factor, Eigen::VectorXd& out) const;
@@ -55,39 +83,86 @@ class FetiSystem {
   void apply_F(const Eigen::VectorXd& p, Eigen::VectorXd& out) const;
   // d = t B K^+ f - c.
   Eigen::VectorXd d(double load_factor) const;
-  // e = t R' f.
+  // e = t R' f (replicated).
   Eigen::VectorXd e(double load_factor) const;
+  // G^ v for the rows with mask[r] != 0 (all rows without a mask), replicated.
+  Eigen::VectorXd apply_G(const Eigen::VectorXd& v, const std::vector<char>* mask = nullptr) const;
+  // The same for |G| |v| (a scale for G v), replicated.
+  Eigen::VectorXd apply_abs_G(const Eigen::VectorXd& v) const;
+  // out = B u for u over the own subdomains' DOFs (as subdomain_displacements), local rows.
+  void apply_B(const Eigen::VectorXd& u, Eigen::VectorXd& out) const;
+  // A replicated vector over all modes from the entries of this process' own subdomains
+  // (concatenated in the order of subdomains()).
+  Eigen::VectorXd assemble_modes(const std::vector<double>& own) const;
   // v <- its orthogonal projection onto range(B). Redundant gluing rows make F singular
   // on ker B'; rounding drifts into that kernel, which F cannot reduce, so the iterations
   // keep w and the directions in range(B). For the rows of a node with m copies (one
   // per pair) the projection is (1/m) B_g B_g'.
   void project_onto_range_of_B(Eigen::VectorXd& v) const;
 
-  // Primal displacements u_j = K_j^+ (t f_j - B_j' lambda) + R_j alpha_j as pieces.
+  // Primal displacements u_j = K_j^+ (t f_j - B_j' lambda) + R_j alpha_j of the own
+  // subdomains, as pieces.
   std::vector<Piece> pieces(const Eigen::VectorXd& lambda, const Eigen::VectorXd& alpha,
                             double load_factor) const;
-  // The same as one vector of all subdomain DOFs (concatenated).
+  // The same as one vector of the own subdomains' DOFs (concatenated; dof_offset()).
   Eigen::VectorXd subdomain_displacements(const Eigen::VectorXd& lambda,
                                           const Eigen::VectorXd& alpha, double load_factor) const;
+  // Position of own subdomain i's DOFs in the vectors above.
+  int dof_offset(int i) const { return dof_offsets_[i]; }
+  // Own subdomain position of a global subdomain, or -1.
+  int own_index(int subdomain) const { return own_index_[subdomain]; }
 
-  // Peak memory of the subdomain factors in bytes (CHOLMOD's own accounting).
+  // Peak memory of this process' subdomain factors in bytes (CHOLMOD's own accounting).
   std::size_t factor_memory() const;
-  // Applications of F so far (apply_F and residual), the dual methods' measure of cost.
-  long long f_applications() const { return f_applications_; }
 
  private:
-  // Y_j = K_j^+ (t f_j + s B_j' lambda) for every subdomain, into y_ (concatenated).
+  // Y_j = K_j^+ (t f_j + s B_j' lambda) for every own subdomain, into y_ (concatenated).
   void solve_subdomains(const Eigen::VectorXd* lambda, double s, double load_factor) const;
-  // out_r = sum over B's entries of row r of value * y_(subdomain, dof).
+  // out_r = sum over B's entries of row r of value * y_(subdomain, dof), all processes.
   void gather_rows(Eigen::VectorXd& out) const;
+  void factorize_subdomains();
+  // M v over the own subdomains' modes (M: modes x local rows, like G), replicated.
+  Eigen::VectorXd own_modes_product(const SparseMatrix& M, const Eigen::VectorXd& v,
+                                    const std::vector<char>* mask) const;
+  // out_r = sum over the own entries of row r of value * values(entry), all processes.
+  void sum_rows(const Eigen::VectorXd& values, Eigen::VectorXd& out) const;
+  void build_G();
+  void build_redundant_groups();
+
+  // Per local row, the entries on own subdomains, grouped by subdomain in increasing order.
+  struct RowPart {
+    int first = 0;  // into part_entries_
+    int end = 0;
+  };
+  struct PartEntry {
+    int y = 0;  // index into y_
+    double value = 0.0;
+    bool new_subdomain = false;  // starts the partial sum of the next subdomain
+  };
+  // A redundant group as this process sees it.
+  struct LocalGroup {
+    int copies = 0;
+    std::vector<int> own_copies;                  // copy indices whose subdomain is own
+    std::vector<int> rows;                        // local rows of the group (-1: not held)
+    std::vector<std::pair<int, int>> ends;        // (i, j) per row
+    std::vector<char> own_end;                    // per copy: its subdomain is own
+  };
 
   const Model& model_;
   Decomposition decomposition_;
+  Partition partition_;
   DualSpace space_;
   std::vector<SubdomainOperator> subdomains_;
+  std::vector<int> own_index_;
+  std::vector<int> dof_offsets_;
+  std::vector<RowPart> row_parts_;
+  std::vector<PartEntry> part_entries_;
+  std::vector<LocalGroup> groups_;
   Eigen::VectorXd c_;
   SparseMatrix G_;
-  mutable Eigen::VectorXd x_, y_;  // workspaces over all subdomain DOFs
+  SparseMatrix G_abs_;
+  mutable Eigen::VectorXd x_, y_;  // workspaces over the own subdomains' DOFs
+  mutable OperatorTimes times_;
   mutable long long f_applications_ = 0;
 };
 

@@ -8,7 +8,11 @@
 namespace fetic::solver {
 
 std::unique_ptr<Method> make_method(MethodKind kind, const Model& model,
-                                    const SolveOptions& options) {
+                                    const SolveOptions& options,
+                                    const Communicator& communicator) {
+  if (communicator.distributed() && !distributable(kind))
+    throw SolverError(std::string("--method ") + to_string(kind) +
+                      " runs in one process; under mpirun use feti or feti-c");
   switch (kind) {
     case MethodKind::SteepestDescent:
       return std::make_unique<SteepestDescent>(model, options);
@@ -17,11 +21,11 @@ std::unique_ptr<Method> make_method(MethodKind kind, const Model& model,
     case MethodKind::ActiveSet:
       return std::make_unique<ActiveSet>(model, options);
     case MethodKind::Feti:
-      return std::make_unique<Pcpg>(model, options);
+      return std::make_unique<Pcpg>(model, options, communicator);
     case MethodKind::FetiC:
-      return std::make_unique<FetiC>(model, options);
+      return std::make_unique<FetiC>(model, options, communicator);
     case MethodKind::Mprgp:
-      return std::make_unique<Mprgp>(model, options);
+      return std::make_unique<Mprgp>(model, options, communicator);
   }
   throw SolverError(std::string("unknown method '") + to_string(kind) + "'");
 }

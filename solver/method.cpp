@@ -61,6 +61,10 @@ std::optional<Preconditioner> parse_preconditioner(const std::string& name) {
   return std::nullopt;
 }
 
+bool distributable(MethodKind method) {
+  return method == MethodKind::Feti || method == MethodKind::FetiC;
+}
+
 bool handles_contact(MethodKind method) {
   return method == MethodKind::ActiveSet || method == MethodKind::FetiC ||
          method == MethodKind::Mprgp;
@@ -101,8 +105,7 @@ void Method::record(double residual, int active_set) {
   HistoryEntry entry{iteration_, residual, active_set};
   const long long applied = f_applications();
   if (applied >= 0) entry.f_applications = applied - f_applications_at_start_;
-  if (!reference_.empty())
-    entry.error = relative_error(strut_displacements(model_, snapshot()), reference_);
+  if (!reference_.empty()) entry.error = reference_error();
   history_.push_back(entry);
   if (!std::isfinite(residual)) {
     fail("the residual became " + std::string(std::isnan(residual) ? "NaN" : "infinite") +
@@ -112,6 +115,10 @@ void Method::record(double residual, int active_set) {
          " iterations (relative residual " + format_number(residual) + ", tolerance " +
          format_number(options_.tolerance) + ")");
   }
+}
+
+double Method::reference_error() const {
+  return relative_error(strut_displacements(model_, snapshot()), reference_);
 }
 
 void Method::fail(std::string why) {

@@ -15,6 +15,7 @@
 
 #include <Eigen/Core>
 
+#include "solver/communicator.hpp"
 #include "solver/model.hpp"
 #include "solver/stiffness.hpp"
 
@@ -94,6 +95,9 @@ class Method {
   // One iteration; does nothing unless the status is Running.
   void step();
   virtual Snapshot snapshot() const = 0;
+  // The whole state on rank 0 of a distributed solve (collective: every process calls
+  // it); the same as snapshot() in one process.
+  virtual Snapshot gathered_snapshot() const { return snapshot(); }
 
   Status status() const { return status_; }
   const std::string& message() const { return message_; }
@@ -113,6 +117,9 @@ class Method {
   virtual void advance() = 0;
   // Appends the history entry of the current iteration; fails past the iteration cap.
   void record(double residual, int active_set);
+  // ||u - reference|| / ||reference|| of the current iterate (collective when distributed).
+  virtual double reference_error() const;
+  const std::vector<std::vector<Vec2>>& reference() const { return reference_; }
   void converge() { status_ = Status::Converged; }
   // Applications of F since the method was made (-1: the method does not apply F).
   virtual long long f_applications() const { return -1; }
@@ -132,8 +139,13 @@ class Method {
   long long f_applications_at_start_ = 0;
 };
 
+// `communicator`: the processes a dual method (feti, feti-c) is distributed over; the
+// primal methods run in one process.
 std::unique_ptr<Method> make_method(MethodKind kind, const Model& model,
-                                    const SolveOptions& options);
+                                    const SolveOptions& options,
+                                    const Communicator& communicator = Communicator::self());
+// Whether `kind` runs distributed over several processes.
+bool distributable(MethodKind kind);
 
 // Steps a started method until it stops, or until keep_going() (when given) says no.
 void run_to_end(Method& method, const std::function<bool()>& keep_going = {});

@@ -20,8 +20,9 @@ constexpr int kMprgpStagnationWindow = 200;
 
 }  // namespace
 
-Mprgp::Mprgp(const Model& model, const SolveOptions& options, MprgpParameters parameters)
-    : FetiMethod(model, options, 0), parameters_(parameters) {
+Mprgp::Mprgp(const Model& model, const SolveOptions& options, const Communicator& communicator,
+             MprgpParameters parameters)
+    : FetiMethod(model, options, 0, communicator), parameters_(parameters) {
   if (options.max_iterations <= 0) max_iterations_ = 10 * system_.rows() + 1000;
   std::vector<char> equality_rows(space().rows(), 0);
   for (int k = 0; k < space().rows(); ++k)
@@ -51,8 +52,7 @@ void Mprgp::find_group_constraints() {
 }
 
 Eigen::VectorXd Mprgp::to_multipliers(const Eigen::VectorXd& x) const {
-  const Eigen::VectorXd Gx = system_.G() * x;
-  return x - coarse_.apply_Gt(coarse_.solve(Gx));
+  return x - coarse_.apply_Gt(coarse_.solve(system_.apply_G(x)));
 }
 
 Eigen::VectorXd Mprgp::to_gradient(const Eigen::VectorXd& w) const {
@@ -209,6 +209,8 @@ void Mprgp::begin(const Snapshot* warm) {
   for (int k = 0; k < rows; ++k)
     if (space().is_contact(k)) lower_(k) = -lambda0_(k);
 
+  c_nu_.setZero(rows);
+  qx_.setZero(rows);
   const std::string unbounded = unbounded_struts(model_, load_factor_);
   if (!unbounded.empty()) {
     x_ = lower_.cwiseMax(0.0);
@@ -227,8 +229,6 @@ void Mprgp::begin(const Snapshot* warm) {
     coarse_.project(x_);
   }
   x_ = x_.cwiseMax(lower_);
-  c_nu_.setZero(rows);
-  qx_.setZero(rows);
   recompute_gradient();
   r_ = r0_ - ftx_;
   set_scale();

@@ -57,7 +57,8 @@ struct MprgpParameters {
 
 class Mprgp final : public FetiMethod {
  public:
-  Mprgp(const Model& model, const SolveOptions& options, MprgpParameters parameters = {});
+  Mprgp(const Model& model, const SolveOptions& options,
+        const Communicator& communicator = Communicator::self(), MprgpParameters parameters = {});
   MethodKind kind() const override { return MethodKind::Mprgp; }
   Snapshot snapshot() const override;
 

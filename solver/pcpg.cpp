@@ -13,9 +13,9 @@ const Model& refuse_contacts(const Model& model) {
 
 }  // namespace
 
-Pcpg::Pcpg(const Model& model, const SolveOptions& options)
-    : FetiMethod(refuse_contacts(model), options, 0) {
-  if (options.max_iterations <= 0) max_iterations_ = 10 * system_.rows() + 100;
+Pcpg::Pcpg(const Model& model, const SolveOptions& options, const Communicator& communicator)
+    : FetiMethod(refuse_contacts(model), options, 0, communicator) {
+  if (options.max_iterations <= 0) max_iterations_ = 10 * system_.space().global_rows() + 100;
   coarse_.set_active_rows(std::vector<char>(system_.rows(), 1));
 }
 
@@ -23,7 +23,7 @@ void Pcpg::begin(const Snapshot* warm) {
   d_ = system_.d(load_factor_);
   e_ = system_.e(load_factor_);
   lambda_ = coarse_.particular(e_);
-  if (warm && warm->dual.size() == lambda_.size()) {
+  if (!space().any(!(warm && warm->dual.size() == lambda_.size()))) {
     // Keep the previous multipliers' part in ker G; restore G lambda = e for the new load.
     Eigen::VectorXd previous = warm->dual;
     coarse_.project(previous);

@@ -11,7 +11,8 @@ namespace fetic::solver {
 
 class Pcpg final : public FetiMethod {
  public:
-  Pcpg(const Model& model, const SolveOptions& options);
+  Pcpg(const Model& model, const SolveOptions& options,
+       const Communicator& communicator = Communicator::self());
   MethodKind kind() const override { return MethodKind::Feti; }
 
  private:

@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "solver/rigid_modes.hpp"
+#include "solver/threads.hpp"
 
 namespace fetic::solver {
 namespace {
@@ -123,7 +124,7 @@ PrimalProblem::PrimalProblem(const Model& model, bool factorize_blocks) : model_
 void PrimalProblem::apply_pseudo_inverse(const Eigen::VectorXd& x, Eigen::VectorXd& y) const {
   y.resize(size_);
   const int count = static_cast<int>(blocks_.size());
-#pragma omp parallel for schedule(dynamic)
+#pragma omp parallel for schedule(dynamic) num_threads(threads_for(size_))
   for (int b = 0; b < count; ++b) {
     const StrutBlock& block = blocks_[b];
     block.inverse.apply(x.data() + block.offset, y.data() + block.offset);

@@ -1,0 +1,80 @@
+#include "app/solve_profile.hpp"
+
+#include <sys/resource.h>
+
+#include <nlohmann/json.hpp>
+
+#include "app/output_file.hpp"
+
+namespace fetic::app {
+namespace {
+
+// The numbers of one process, in a fixed order (a gather moves doubles).
+std::vector<double> flatten(const ProfileRun& run) {
+  const solver::ProcessProfile& a = run.before_solve;
+  const solver::ProcessProfile& b = run.after_solve;
+  const solver::CommunicationStats& ca = a.communication;
+  const solver::CommunicationStats& cb = b.communication;
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return {static_cast<double>(b.subdomains),
+          static_cast<double>(b.unknowns),
+          static_cast<double>(b.rows),
+          static_cast<double>(b.shared_rows),
+          static_cast<double>(b.f_applications - a.f_applications),
+          b.local_seconds - a.local_seconds,
+          b.coarse_seconds - a.coarse_seconds,
+          b.exchange_seconds - a.exchange_seconds,
+          b.reduction_seconds - a.reduction_seconds,
+          b.gather_seconds - a.gather_seconds,
+          static_cast<double>(cb.exchanges - ca.exchanges),
+          static_cast<double>(cb.messages - ca.messages),
+          static_cast<double>(cb.bytes - ca.bytes),
+          static_cast<double>(cb.reductions - ca.reductions),
+          static_cast<double>(cb.gathers - ca.gathers),
+          static_cast<double>(cb.gathered_bytes - ca.gathered_bytes),
+          static_cast<double>(b.coarse_size),
+          static_cast<double>(b.coarse_nonzeros),
+          static_cast<double>(b.coarse_factorizations - a.coarse_factorizations),
+          static_cast<double>(b.coarse_memory),
+          static_cast<double>(b.factor_memory),
+          static_cast<double>(usage.ru_maxrss) * 1024.0,
+          b.coarse_seconds};
+}
+
+const char* const kFields[] = {"subdomains",       "unknowns",          "rows",
+                               "shared_rows",      "f_applications",    "local_seconds",
+                               "coarse_seconds",   "exchange_seconds",  "reduction_seconds",
+                               "gather_seconds",   "exchanges",         "messages",
+                               "bytes",            "reductions",        "gathers",
+                               "gathered_bytes",   "coarse_size",       "coarse_nonzeros",
+                               "coarse_factorizations", "coarse_memory_bytes",
+                               "factor_memory_bytes",   "peak_resident_bytes",
+                               "coarse_seconds_with_setup"};
+
+}  // namespace
+
+void write_solve_profile(const std::string& path, const solver::Communicator& processes,
+                         const ProfileRun& run) {
+  const std::vector<double> mine = flatten(run);
+  const std::vector<double> all = processes.gather_to_root(mine);
+  if (!processes.root()) return;
+  nlohmann::json profile;
+  profile["ranks"] = processes.size();
+  profile["iterations"] = run.iterations;
+  profile["setup_seconds"] = run.setup_seconds;
+  profile["solve_seconds"] = run.solve_seconds;
+  nlohmann::json list = nlohmann::json::array();
+  const size_t fields = mine.size();
+  for (int q = 0; q < processes.size(); ++q) {
+    nlohmann::json entry;
+    entry["rank"] = q;
+    for (size_t f = 0; f < fields; ++f)
+      entry[kFields[f]] = all[q * fields + f];
+    list.push_back(entry);
+  }
+  profile["processes"] = list;
+  write_output(path, [&](std::ostream& out) { out << profile.dump(1) << "\n"; });
+}
+
+}  // namespace fetic::app

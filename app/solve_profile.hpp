@@ -1,0 +1,26 @@
+#pragma once
+// `fetic solve --profile FILE`: what each process did during the solve phase (after
+// set-up) - time in local solves, neighbour exchanges, reductions, gathers and the coarse
+// problem; messages, bytes and reductions; the coarse problem's size; factor memory and
+// peak resident memory - gathered on rank 0 and written as JSON. The distributed
+// benchmark (bench/mpi_scaling.py) reads it.
+
+#include <string>
+
+#include "solver/feti_method.hpp"
+
+namespace fetic::app {
+
+struct ProfileRun {
+  solver::ProcessProfile before_solve;  // reading after set-up
+  solver::ProcessProfile after_solve;
+  double setup_seconds = 0.0;
+  double solve_seconds = 0.0;
+  int iterations = 0;
+};
+
+// Collective. Rank 0 writes `path` (throws OutputError when it cannot).
+void write_solve_profile(const std::string& path, const solver::Communicator& processes,
+                         const ProfileRun& run);
+
+}  // namespace fetic::app

@@ -1,0 +1,335 @@
+// `fetic solve` under mpirun, end to end: the result file is the serial one plus "ranks"
+// and "subdomains_per_rank"; rank 0 alone reports; every failure ends every process with
+// the documented status and one message; an interrupt stops every process quickly and
+// leaves no partial file; commands that do not run distributed are refused. Every run
+// has a deadline (`timeout`), so a hang fails the test instead of blocking CI.
+
+#include <catch2/catch.hpp>
+
+#include <fcntl.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <thread>
+
+#include <nlohmann/json.hpp>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Run {
+  int status = -1;
+  std::string output;
+};
+
+const std::string kMpirun = std::string(FETIC_MPIEXEC) + " --allow-run-as-root --oversubscribe";
+
+std::string temporary(const std::string& name) {
+  return (fs::temp_directory_path() / ("fetic_mpi_" + std::to_string(::getpid()) + "_" + name))
+      .string();
+}
+
+Run run(const std::string& command) {
+  const std::string log = temporary("log.txt");
+  const int raw = std::system(("timeout 120 " + command + " > " + log + " 2>&1").c_str());
+  Run result;
+  result.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+  std::ifstream in(log);
+  result.output.assign(std::istreambuf_iterator<char>(in), {});
+  fs::remove(log);
+  return result;
+}
+
+Run fetic(const std::string& arguments, int processes = 0) {
+  const std::string launcher =
+      processes > 0 ? kMpirun + " -np " + std::to_string(processes) + " " : std::string();
+  return run(launcher + FETIC_EXECUTABLE + " " + arguments);
+}
+
+std::string scene(const std::string& name) {
+  return std::string(FETIC_BUNDLED_SCENES_DIR) + "/" + name;
+}
+
+int occurrences(const std::string& text, const std::string& what) {
+  int count = 0;
+  for (size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1))
+    ++count;
+  return count;
+}
+
+nlohmann::json read_json(const std::string& path) {
+  std::ifstream in(path);
+  return nlohmann::json::parse(in);
+}
+
+// Largest difference of the displacements and contact forces of two result files,
+// relative to the largest value of each.
+void require_same_result(const nlohmann::json& a, const nlohmann::json& b) {
+  REQUIRE(a["struts"].size() == b["struts"].size());
+  double scale = 0.0, difference = 0.0;
+  for (size_t s = 0; s < a["struts"].size(); ++s)
+    for (size_t n = 0; n < a["struts"][s]["displacements"].size(); ++n)
+      for (int c = 0; c < 2; ++c) {
+        const double x = a["struts"][s]["displacements"][n][c];
+        const double y = b["struts"][s]["displacements"][n][c];
+        scale = std::max(scale, std::abs(x));
+        difference = std::max(difference, std::abs(x - y));
+      }
+  CHECK(difference <= 1e-10 * scale);
+  double force_scale = 0.0, force_difference = 0.0;
+  for (size_t c = 0; c < a["contacts"].size(); ++c)
+    for (size_t p = 0; p < a["contacts"][c]["pairs"].size(); ++p) {
+      const auto& x = a["contacts"][c]["pairs"][p];
+      const auto& y = b["contacts"][c]["pairs"][p];
+      CHECK(x["active"] == y["active"]);
+      force_scale = std::max(force_scale, x["force"].get<double>());
+      force_difference =
+          std::max(force_difference, std::abs(x["force"].get<double>() - y["force"].get<double>()));
+    }
+  CHECK(force_difference <= 1e-10 * force_scale);
+  CHECK(a["iterations"] == b["iterations"]);
+  CHECK(a["converged"] == b["converged"]);
+}
+
+// A plane scene whose second strut is far too thin for double precision: its subdomain
+// stiffness is singular beyond the rigid-body modes. Both struts are clamped, so the
+// scene is valid; distributed over two processes the thin strut lands on rank 1.
+std::string write_singular_scene() {
+  const std::string path = temporary("singular.toml");
+  std::ofstream out(path);
+  out << "model = \"plane\"\n"
+         "[defaults]\nE = 2.1e11\nnu = 0.3\nthickness = 0.01\nelements = 4\nelements_across = 1\n"
+         "subdomains = 2\n"
+         "[[strut]]\nname = \"sturdy\"\nfrom = [0.0, 0.0]\nto = [1.0, 0.0]\nheight = 0.1\n"
+         "fixed = [\"from\"]\n"
+         "[[strut]]\nname = \"hair\"\nfrom = [0.0, 1.0]\nto = [1.0, 1.0]\nheight = 1e-12\n"
+         "fixed = [\"from\"]\n"
+         "[[load]]\nstrut = \"sturdy\"\nat = \"to\"\nforce = [100.0, 0.0]\n";
+  return path;
+}
+
+}  // namespace
+
+TEST_CASE("mpirun -np 3 fetic solve writes the serial result, with ranks and subdomains per rank") {
+  const std::string serial_json = temporary("serial.json"), mpi_json = temporary("mpi.json");
+  const Run serial = fetic("solve " + scene("thesis.toml") + " --json " + serial_json);
+  REQUIRE(serial.status == 0);
+  const Run distributed = fetic("solve " + scene("thesis.toml") + " --json " + mpi_json, 3);
+  INFO(distributed.output);
+  REQUIRE(distributed.status == 0);
+  CHECK(occurrences(distributed.output, "converged    yes") == 1);  // rank 0 alone reports
+  const nlohmann::json a = read_json(serial_json), b = read_json(mpi_json);
+  CHECK(a["ranks"] == 1);
+  CHECK(b["ranks"] == 3);
+  REQUIRE(b["subdomains_per_rank"].size() == 3);
+  int subdomains = 0;
+  for (int count : b["subdomains_per_rank"]) {
+    CHECK(count > 0);
+    subdomains += count;
+  }
+  CHECK(subdomains == 200);  // 100 struts, 2 subdomains each
+  require_same_result(a, b);
+  fs::remove(serial_json);
+  fs::remove(mpi_json);
+}
+
+TEST_CASE("mpirun -np 2 fetic solve: a plane scene and a load sweep as in one process") {
+  for (const std::string& arguments : {scene("plane_pair.toml") + " --preconditioner lumped",
+                                      scene("chain.toml") + " --load-steps 0:2:5"}) {
+    const std::string serial_json = temporary("serial.json"), mpi_json = temporary("mpi.json");
+    REQUIRE(fetic("solve " + arguments + " --json " + serial_json).status == 0);
+    const Run distributed = fetic("solve " + arguments + " --json " + mpi_json, 2);
+    INFO(arguments << "\n" << distributed.output);
+    REQUIRE(distributed.status == 0);
+    require_same_result(read_json(serial_json), read_json(mpi_json));
+    fs::remove(serial_json);
+    fs::remove(mpi_json);
+  }
+}
+
+TEST_CASE("under mpirun every failure gives one message and the same status on every process") {
+  SECTION("an invalid scene: 2") {
+    const Run r = fetic("solve " + std::string(FETIC_BUNDLED_SCENES_DIR) +
+                            "/../tests/scenes/invalid/strut_negative_E.toml",
+                        3);
+    INFO(r.output);
+    CHECK(r.status == 2);
+    CHECK(occurrences(r.output, "'E' must be greater than 0") == 1);
+  }
+  SECTION("a singular subdomain on rank 1: 3") {
+    const std::string path = write_singular_scene();
+    const Run serial = fetic("solve " + path);
+    const Run r = fetic("solve " + path, 2);
+    INFO(serial.output << "\n---\n" << r.output);
+    CHECK(serial.status == 3);
+    CHECK(r.status == 3);
+    CHECK(occurrences(r.output, "strut 'hair': the stiffness") == 1);
+    fs::remove(path);
+  }
+  SECTION("no convergence: 4, and the result file says so") {
+    const std::string json = temporary("capped.json");
+    const Run r = fetic("solve " + scene("plane_pair.toml") + " --max-iterations 3 --json " + json, 3);
+    INFO(r.output);
+    CHECK(r.status == 4);
+    CHECK(occurrences(r.output, "did not converge") == 1);
+    CHECK(read_json(json)["converged"] == false);
+    fs::remove(json);
+  }
+  SECTION("a method that does not run distributed: 1") {
+    const Run r = fetic("solve " + scene("thesis.toml") + " --method active-set", 2);
+    CHECK(r.status == 1);
+    CHECK(occurrences(r.output, "runs in one process") == 1);
+    // MPRGP is a dual method but not distributed yet (issue 13).
+    const Run m = fetic("solve " + scene("thesis.toml") + " --method mprgp", 2);
+    CHECK(m.status == 1);
+    CHECK(occurrences(m.output, "runs in one process") == 1);
+  }
+  SECTION("a command that does not run distributed: 1") {
+    const Run r = fetic("render " + scene("thesis.toml") + " --out " + temporary("frames"), 2);
+    CHECK(r.status == 1);
+    CHECK(occurrences(r.output, "runs in one process") == 1);
+    CHECK_FALSE(fs::exists(temporary("frames")));
+  }
+}
+
+// A long distributed load sweep (3 processes), started in the background.
+class LongSolve {
+ public:
+  LongSolve() {
+    const std::string command = kMpirun + " -np 3 " + FETIC_EXECUTABLE + " solve " +
+                                scene("chain.toml") + " --load-steps 0:1:100000 --json " + json_;
+    child_ = fork();
+    if (child_ == 0) {
+      const int out = ::open(log_.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+      dup2(out, 1);
+      dup2(out, 2);
+      execl("/bin/sh", "sh", "-c", ("exec " + command).c_str(), static_cast<char*>(nullptr));
+      _exit(127);
+    }
+  }
+  ~LongSolve() {
+    if (!ended_) {
+      ::kill(child_, SIGKILL);
+      ::waitpid(child_, &raw_, 0);
+    }
+    fs::remove(log_);
+    fs::remove(json_);
+  }
+
+  // Waits until the sweep runs (its first step printed), at most 60 s.
+  bool wait_until_running() {
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+    while (std::chrono::steady_clock::now() < deadline) {
+      if (output().find("t = ") != std::string::npos) return ranks().size() == 3;
+      std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    }
+    return false;
+  }
+  // The fetic processes mpirun started (its children) that still run: a process that
+  // has exited stays a zombie until mpirun collects it, which mpirun may do late.
+  std::vector<pid_t> ranks() const {
+    const std::string list = temporary("ranks.txt");
+    std::system(("ps --ppid " + std::to_string(child_) + " -o pid=,stat=,comm= > " + list).c_str());
+    std::ifstream in(list);
+    std::vector<pid_t> pids;
+    pid_t pid;
+    std::string state, name;
+    while (in >> pid >> state >> name)
+      if (name == "fetic" && state.find('Z') == std::string::npos) pids.push_back(pid);
+    fs::remove(list);
+    return pids;
+  }
+  // Seconds from now until no fetic process is left, and until mpirun has exited.
+  std::pair<double, double> time_to_stop() {
+    const auto sent = std::chrono::steady_clock::now();
+    double ranks_gone = -1.0;
+    while (std::chrono::steady_clock::now() - sent < std::chrono::seconds(20)) {
+      const double now =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - sent).count();
+      if (ranks_gone < 0 && ranks().empty()) ranks_gone = now;
+      if (::waitpid(child_, &raw_, WNOHANG) == child_) {
+        ended_ = true;
+        return {ranks_gone < 0 ? now : ranks_gone, now};
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    return {ranks_gone, -1.0};
+  }
+  pid_t mpirun() const { return child_; }
+  int status() const { return WIFEXITED(raw_) ? WEXITSTATUS(raw_) : -1; }
+  std::string output() const {
+    std::ifstream in(log_);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  }
+  // An interrupted solve writes its result file with the steps done so far (rank 0,
+  // whole: renamed into place), never a temporary file left behind.
+  bool wrote_interrupted_result() const {
+    if (!fs::exists(json_)) return false;
+    const nlohmann::json result = read_json(json_);
+    const size_t steps = result.at("steps").size();
+    return result.at("ranks") == 3 && steps >= 1 && steps < 100000;
+  }
+  bool left_temporaries() const {
+    for (const auto& entry : fs::directory_iterator(fs::temp_directory_path()))
+      if (entry.path().filename().string().rfind(fs::path(json_).filename().string() + ".", 0) == 0)
+        return true;
+    return false;
+  }
+  bool wrote_result() const { return fs::exists(json_); }
+
+ private:
+  std::string json_ = temporary("interrupted.json"), log_ = temporary("interrupt_log.txt");
+  pid_t child_ = -1;
+  int raw_ = 0;
+  bool ended_ = false;
+};
+
+TEST_CASE("SIGTERM to one process stops all of them within a second: status 130, the iterate marked interrupted") {
+  // As a batch system's kill of one task: the processes agree between two iterations.
+  LongSolve solve;
+  REQUIRE(solve.wait_until_running());
+  ::kill(solve.ranks()[1], SIGTERM);
+  const auto [ranks_gone, mpirun_gone] = solve.time_to_stop();
+  const std::string output = solve.output();
+  INFO("processes gone after " << ranks_gone << " s, mpirun after " << mpirun_gone << " s\n"
+                               << output);
+  REQUIRE(mpirun_gone >= 0.0);
+  CHECK(ranks_gone < 1.0);
+  CHECK(solve.status() == 130);
+  CHECK(occurrences(output, "interrupted by SIGTERM") == 1);
+  CHECK(solve.wrote_interrupted_result());
+  CHECK_FALSE(solve.left_temporaries());
+}
+
+TEST_CASE("SIGTERM and SIGINT to mpirun stop every process, no partial file") {
+  // mpirun may end rank 0 while it writes: then no file, else a whole one marked
+  // interrupted; never a partial or temporary one.
+  // mpirun forwards either as SIGTERM, after its own grace period (Open MPI 4.1:
+  // odls_base_sigkill_timeout, 1 s), and then exits with 1 whatever the processes return
+  // (they return 130). While it tears the job down it may no longer forward the
+  // processes' last output, so rank 0's message is not required here.
+  for (int signal : {SIGTERM, SIGINT}) {
+    LongSolve solve;
+    REQUIRE(solve.wait_until_running());
+    ::kill(solve.mpirun(), signal);
+    const auto [ranks_gone, mpirun_gone] = solve.time_to_stop();
+    const std::string output = solve.output();
+    INFO("signal " << signal << ": processes gone after " << ranks_gone << " s, mpirun after "
+                   << mpirun_gone << " s\n"
+                   << output);
+    REQUIRE(mpirun_gone >= 0.0);
+    CHECK(ranks_gone < 2.0);  // mpirun's 1 s, then fetic's own stop
+    CHECK(mpirun_gone < 5.0);
+    CHECK(solve.status() != 0);
+    CHECK(occurrences(output, "interrupted by SIGTERM") <= 1);
+    if (solve.wrote_result()) CHECK(solve.wrote_interrupted_result());
+    CHECK_FALSE(solve.left_temporaries());
+  }
+}
