@@ -151,8 +151,7 @@ int run_render(const RenderArgs& args) {
   info.title =
       model.title.empty() ? std::filesystem::path(args.scene).filename().string() : model.title;
   info.method = method_name;
-  if (kind == solver::MethodKind::Feti || kind == solver::MethodKind::FetiC)
-    info.method += " (" + args.method.preconditioner + ")";
+  if (solver::is_dual(kind)) info.method += " (" + args.method.preconditioner + ")";
   const render::FrameComposer composer(model, view, extent, info,
                                        static_cast<int>(plan.load_factors.size()));
 

@@ -76,7 +76,7 @@ void print_summary(std::ostream& out, const solver::Model& model, const solver::
       << count_of(static_cast<long long>(model.contact_labels.size()), "contact", "contacts")
       << ", " << count_of(model.dof_count(), "unknown", "unknowns") << ")\n";
   out << "method       " << solver::to_string(info.method);
-  if (info.method == solver::MethodKind::Feti || info.method == solver::MethodKind::FetiC)
+  if (solver::is_dual(info.method))
     out << " (preconditioner " << solver::to_string(info.preconditioner) << ")";
   out << ", load factor " << state.load_factor << ", tolerance " << info.tolerance << "\n";
   out << "converged    " << (state.status == solver::Status::Converged ? "yes" : "NO") << " after "

@@ -77,7 +77,9 @@ int run_gui(const gui::Options& args) {
     }
   // The window may switch to any method and keeps the iterates of a solve for scrubbing.
   if (!memory_suffices(*scene, args.scene,
-                       {{solver::MethodKind::FetiC, solver::MethodKind::ActiveSet}, false, 100},
+                       {{solver::MethodKind::FetiC, solver::MethodKind::Mprgp,
+                         solver::MethodKind::ActiveSet},
+                        false, 100},
                        status))
     return status;
   Activity running("running the window");

@@ -89,7 +89,7 @@ void App::draw_picture(int width, int height) {
   render::OverlayInfo info;
   info.title = title_;
   info.method = solver::to_string(shown_->method);
-  if (shown_->method == solver::MethodKind::Feti || shown_->method == solver::MethodKind::FetiC)
+  if (solver::is_dual(shown_->method))
     info.method += std::string(" (") + solver::to_string(shown_->preconditioner) + ")";
   info.status = shown_status();
   const render::DrawList glyphs =
