@@ -1,7 +1,7 @@
-// fetic bench [SCENES...]: every method that applies, on each scene: iterations, set-up
-// and solve time (median of repeated runs), and the ratio of each to the primal
-// active-set method measured in the same run. Also warm against cold starts after a 5%
-// load change. Ratios, not absolute times, are what carries over between machines.
+// fetic bench [SCENES...]: every method that applies, on each scene: iterations,
+// applications of F (dual methods), set-up and solve time (median of repeated runs), and the ratio
+// of each to the primal active-set method measured in the same run. Also warm against cold starts
+// after a 5% load change. Ratios, not absolute times, are what carries over between machines.
 
 #include <algorithm>
 #include <chrono>
@@ -38,7 +38,7 @@ struct Variant {
   bool scaling = true;
   std::string label() const {
     std::string text = solver::to_string(method);
-    if (method == solver::MethodKind::Feti || method == solver::MethodKind::FetiC) {
+    if (solver::is_dual(method)) {
       text += std::string("/") + solver::to_string(preconditioner);
       if (!scaling && preconditioner != solver::Preconditioner::None) text += "-unscaled";
     }
@@ -50,6 +50,7 @@ struct Measurement {
   std::string scene, variant;
   long long unknowns = 0;
   int iterations = 0;
+  long long f_applications = -1;  // in the solve; the dual methods' measure of cost
   bool converged = false;
   double setup_ms = 0.0, solve_ms = 0.0;
   int warm_iterations = -1, cold_iterations = -1;  // after a 5% load change
@@ -78,6 +79,8 @@ std::vector<Variant> variants_for(const solver::Model& model) {
     if (contact_free) variants.push_back({MethodKind::Feti, p});
     variants.push_back({MethodKind::FetiC, p});
   }
+  for (Preconditioner p : {Preconditioner::Dirichlet, Preconditioner::Lumped, Preconditioner::None})
+    variants.push_back({MethodKind::Mprgp, p});
   variants.push_back({MethodKind::FetiC, Preconditioner::Dirichlet, false});
   return variants;
 }
@@ -103,9 +106,9 @@ Measurement measure(const solver::Model& model, const std::string& scene, const 
   }
   m.solve_ms = median(times);
   m.iterations = method->iteration();
+  if (!method->history().empty()) m.f_applications = method->history().back().f_applications;
   m.converged = method->status() == solver::Status::Converged;
-  if (m.converged && (variant.method == solver::MethodKind::FetiC ||
-                      variant.method == solver::MethodKind::ActiveSet)) {
+  if (m.converged && solver::handles_contact(variant.method)) {
     const solver::Snapshot previous = method->snapshot();
     method->start(1.05, &previous);
     solver::run_to_end(*method);
@@ -120,8 +123,8 @@ Measurement measure(const solver::Model& model, const std::string& scene, const 
 std::string table(const std::vector<Measurement>& rows) {
   std::ostringstream out;
   char line[256];
-  std::snprintf(line, sizeof line, "%-22s %-28s %9s %6s %10s %10s %9s %9s %11s\n", "scene",
-                "method", "unknowns", "iter", "setup ms", "solve ms", "solve/AS", "total/AS",
+  std::snprintf(line, sizeof line, "%-22s %-28s %9s %6s %6s %10s %10s %9s %9s %11s\n", "scene",
+                "method", "unknowns", "iter", "F", "setup ms", "solve ms", "solve/AS", "total/AS",
                 "warm/cold");
   out << line;
   for (size_t i = 0; i < rows.size(); ++i) {
@@ -136,10 +139,11 @@ std::string table(const std::vector<Measurement>& rows) {
     std::string warm = "-";
     if (m.warm_iterations >= 0)
       warm = std::to_string(m.warm_iterations) + "/" + std::to_string(m.cold_iterations);
-    std::snprintf(line, sizeof line, "%-22s %-28s %9lld %5d%s %10.3f %10.3f %9.3f %9.3f %11s\n",
+    const std::string applied = m.f_applications >= 0 ? std::to_string(m.f_applications) : "-";
+    std::snprintf(line, sizeof line, "%-22s %-28s %9lld %5d%s %6s %10.3f %10.3f %9.3f %9.3f %11s\n",
                   std::filesystem::path(m.scene).filename().string().c_str(), m.variant.c_str(),
-                  m.unknowns, m.iterations, m.converged ? " " : "!", m.setup_ms, m.solve_ms,
-                  solve_ratio, total_ratio, warm.c_str());
+                  m.unknowns, m.iterations, m.converged ? " " : "!", applied.c_str(), m.setup_ms,
+                  m.solve_ms, solve_ratio, total_ratio, warm.c_str());
     out << line;
   }
   return out.str();
@@ -167,8 +171,9 @@ int run_bench(const BenchArgs& args) {
     if (!scene) return status;
     if (!memory_suffices(
             *scene, path,
-            {{solver::MethodKind::ActiveSet, solver::MethodKind::FetiC, solver::MethodKind::Feti,
-              solver::MethodKind::ConjugateGradient, solver::MethodKind::SteepestDescent},
+            {{solver::MethodKind::ActiveSet, solver::MethodKind::FetiC, solver::MethodKind::Mprgp,
+              solver::MethodKind::Feti, solver::MethodKind::ConjugateGradient,
+              solver::MethodKind::SteepestDescent},
              false,
              0},
             status))
@@ -199,18 +204,20 @@ int run_bench(const BenchArgs& args) {
   report << "Median of " << args.repeat
          << " solves per row. solve/AS, total/AS: time relative to the active-set method on "
             "the same scene, measured in this run (total = set-up + solve). warm/cold: "
-            "iterations of a re-solve after a 5% load change, warm-started against cold. "
+            "iterations of a re-solve after a 5% load change, warm-started against cold. F: "
+            "applications of the FETI operator F in the solve (MPRGP's power method for "
+            "||F|| runs once, in the set-up). "
             "'!' marks a solve that did not converge.\n\n"
          << table(rows);
   if (!args.csv.empty()) {
     try {
       write_output(args.csv, [&](std::ostream& out) {
         out << "scene,method,unknowns,iterations,converged,setup_ms,solve_ms,warm_iterations,"
-               "cold_iterations\n";
+               "cold_iterations,f_applications\n";
         for (const Measurement& m : rows)
           out << m.scene << ',' << m.variant << ',' << m.unknowns << ',' << m.iterations << ','
               << m.converged << ',' << m.setup_ms << ',' << m.solve_ms << ',' << m.warm_iterations
-              << ',' << m.cold_iterations << '\n';
+              << ',' << m.cold_iterations << ',' << m.f_applications << '\n';
       });
     } catch (const OutputError& error) {
       return report_output_error(error);

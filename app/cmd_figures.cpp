@@ -52,7 +52,8 @@ int run_figures(const FiguresArgs& args) {
     if (scene_status == kExitInterrupted) return scene_status;
     if (scene && !memory_suffices(*scene, args.scene,
                                   {{solver::MethodKind::ActiveSet, solver::MethodKind::FetiC,
-                                    solver::MethodKind::Feti, solver::MethodKind::ConjugateGradient,
+                                    solver::MethodKind::Mprgp, solver::MethodKind::Feti,
+                                    solver::MethodKind::ConjugateGradient,
                                     solver::MethodKind::SteepestDescent},
                                    false,
                                    0},
@@ -109,7 +110,9 @@ int run_figures(const FiguresArgs& args) {
 void register_figures(CLI::App& app, int& exit_code) {
   auto args = std::make_shared<FiguresArgs>();
   CLI::App* command = app.add_subcommand(
-      "figures", "Draw the thesis' figures (2.1, 3.2, 4.3, 9.2, 9.3, 9.4) as PNG");
+      "figures",
+      "Draw the thesis' figures (2.1, 3.2, 4.3, 9.2, 9.3, 9.4) and S.1 (iterations against "
+      "subdomains: active set, FETI-C, MPRGP) as PNG");
   command->add_option("--out", args->out, "Directory for the PNG files")->required();
   command->add_option("--size", args->size, "Image size in pixels")
       ->check(image_size_check())

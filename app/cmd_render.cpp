@@ -20,6 +20,7 @@
 #include "app/progress.hpp"
 #include "app/render_output.hpp"
 #include "app/scene_input.hpp"
+#include "app/view_file.hpp"
 #include "app/vtu_export.hpp"
 #include "render/colormap.hpp"
 #include "render/frame_composer.hpp"
@@ -45,6 +46,9 @@ struct RenderArgs {
   int max_frames = 2000;
   int threads = 0;
   int samples = 4;
+  std::string view;  // a saved view (app/view_file.hpp)
+  // Given on the command line: these win over the view's entries.
+  bool size_given = false, magnification_given = false, color_given = false;
   bool labels = false;
   std::string vtu;  // also write each frame's state as ParaView files here
   std::string vtu_format = "zlib";
@@ -53,6 +57,13 @@ struct RenderArgs {
 };
 
 int run_render(const RenderArgs& args) {
+  SavedView saved;
+  if (!args.view.empty()) try {
+      saved = read_view_file(args.view);
+    } catch (const ViewFileError& error) {
+      std::cerr << error.what() << '\n';
+      return kExitUsage;
+    }
   int status = kExitOk;
   const auto scene = load_scene_or_report(args.scene, status);
   if (!scene) return status;
@@ -67,7 +78,11 @@ int run_render(const RenderArgs& args) {
   Activity rendering("rendering");
   const solver::Model model = solver::build_model(*scene);
   use_solver_threads_for_pictures(model);
-  const ImageSize size = *parse_image_size(args.size);
+  ImageSize size = *parse_image_size(args.size);
+  if (saved.width && saved.height && !args.size_given) {
+    size.width = *saved.width;
+    size.height = *saved.height;
+  }
 
   render::FramePlan plan;
   plan.load_factors = args.method.load_factors();
@@ -97,7 +112,7 @@ int run_render(const RenderArgs& args) {
 
   ProgressLine progress(progress_mode(args.progress, args.quiet));
   // Survey pass: the same deterministic run, for fixed scales and the frame count.
-  const render::RunExtent extent = render::survey(model, *method, plan, [&] {
+  render::RunExtent extent = render::survey(model, *method, plan, [&] {
     if (progress.due())
       progress.update("render survey: iteration " + std::to_string(method->iteration()));
     return !interrupted();
@@ -122,12 +137,21 @@ int run_render(const RenderArgs& args) {
   view.color_by = args.color == "stress" ? render::ColorBy::Stress : render::ColorBy::Subdomain;
   view.show_overlay = !args.no_overlay;
   view.show_labels = args.labels;
+  // A saved view: its entries, then the options given on the command line.
+  apply_view(saved, view);
+  view.width = size.width;
+  view.height = size.height;
+  if (args.magnification_given) view.magnification = args.magnification;
+  if (args.color_given)
+    view.color_by = args.color == "stress" ? render::ColorBy::Stress : render::ColorBy::Subdomain;
+  if (args.no_overlay) view.show_overlay = false;
+  if (args.labels) view.show_labels = true;
+  apply_scales(saved.scales, extent);
   render::OverlayInfo info;
   info.title =
       model.title.empty() ? std::filesystem::path(args.scene).filename().string() : model.title;
   info.method = method_name;
-  if (kind == solver::MethodKind::Feti || kind == solver::MethodKind::FetiC)
-    info.method += " (" + args.method.preconditioner + ")";
+  if (solver::is_dual(kind)) info.method += " (" + args.method.preconditioner + ")";
   const render::FrameComposer composer(model, view, extent, info,
                                        static_cast<int>(plan.load_factors.size()));
 
@@ -262,9 +286,12 @@ void register_render(CLI::App& app, int& exit_code) {
   command->add_option("--out", args->out,
                       "Write PNG frames frame_0000.png, frame_0001.png, ... into this directory");
   add_method_options(command, args->method);
-  command->add_option("--size", args->size, "Image size in pixels")
-      ->check(image_size_check())
-      ->capture_default_str();
+  CLI::Option* size = command->add_option("--size", args->size, "Image size in pixels")
+                          ->check(image_size_check())
+                          ->capture_default_str();
+  command->add_option("--view", args->view,
+                      "Draw with a view saved in the window (size, centre, zoom, magnification, "
+                      "colouring, toggles, scales; options given here win)");
   auto* every = command->add_flag("--every-iteration", args->every_iteration,
                                   "One frame per iteration, from the initial state (default for "
                                   "one load factor)");
@@ -277,14 +304,16 @@ void register_render(CLI::App& app, int& exit_code) {
   command->add_option("--fps", args->fps, "Frames per second of the movie")
       ->check(CLI::Range(1, 120))
       ->capture_default_str();
-  command
-      ->add_option("--magnification", args->magnification,
-                   "Displacement (and gap) magnification; 0 chooses one from the largest")
-      ->check(number_in(0.0, 0.0, Bound::Closed, Bound::None))
-      ->capture_default_str();
-  command->add_option("--color", args->color, "Colour struts by subdomain or by axial stress")
-      ->check(CLI::IsMember({"subdomain", "stress"}))
-      ->capture_default_str();
+  CLI::Option* magnification =
+      command
+          ->add_option("--magnification", args->magnification,
+                       "Displacement (and gap) magnification; 0 chooses one from the largest")
+          ->check(number_in(0.0, 0.0, Bound::Closed, Bound::None))
+          ->capture_default_str();
+  CLI::Option* color =
+      command->add_option("--color", args->color, "Colour struts by subdomain or by axial stress")
+          ->check(CLI::IsMember({"subdomain", "stress"}))
+          ->capture_default_str();
   command->add_flag("--no-overlay", args->no_overlay, "No information panel");
   command->add_flag("--labels", args->labels,
                     "Strut names beside the struts (where there is room)");
@@ -307,7 +336,12 @@ void register_render(CLI::App& app, int& exit_code) {
   command->add_flag("--progress", args->progress,
                     "Show the progress line on stderr even when it is not a terminal");
   command->add_flag("--quiet", args->quiet, "No progress line");
-  command->callback([args, &exit_code] { exit_code = run_render(*args); });
+  command->callback([args, size, magnification, color, &exit_code] {
+    args->size_given = size->count() > 0;
+    args->magnification_given = magnification->count() > 0;
+    args->color_given = color->count() > 0;
+    exit_code = run_render(*args);
+  });
 }
 
 }  // namespace fetic::app

@@ -21,10 +21,11 @@
 #include "app/progress.hpp"
 #include "app/result_json.hpp"
 #include "app/scene_input.hpp"
+#include "app/solve_monitor.hpp"
 #include "app/solve_outputs.hpp"
 #include "app/solve_profile.hpp"
-#include "solver/feti_method.hpp"
 #include "scenes/scene_error.hpp"
+#include "solver/feti_method.hpp"
 #include "solver/load_sweep.hpp"
 #include "solver/method.hpp"
 
@@ -36,6 +37,8 @@ struct SolveArgs {
   MethodArgs method;
   SolveOutputArgs outputs;  // --json, --csv, --csv-steps, --vtu, ...
   std::string profile;
+  std::string monitor;  // --monitor: one JSON line per iteration (app/solve_monitor.hpp)
+  int monitor_full = 0;
   bool reference = false;
   bool quiet = false;
   bool progress = false;
@@ -73,7 +76,7 @@ void print_summary(std::ostream& out, const solver::Model& model, const solver::
       << count_of(static_cast<long long>(model.contact_labels.size()), "contact", "contacts")
       << ", " << count_of(model.dof_count(), "unknown", "unknowns") << ")\n";
   out << "method       " << solver::to_string(info.method);
-  if (info.method == solver::MethodKind::Feti || info.method == solver::MethodKind::FetiC)
+  if (solver::is_dual(info.method))
     out << " (preconditioner " << solver::to_string(info.preconditioner) << ")";
   out << ", load factor " << state.load_factor << ", tolerance " << info.tolerance << "\n";
   out << "converged    " << (state.status == solver::Status::Converged ? "yes" : "NO") << " after "
@@ -135,6 +138,16 @@ int run_solve(const SolveArgs& args) {
   if (processes.distributed() && !solver::distributable(args.method.kind())) {
     std::cerr << "fetic solve: --method " << solver::to_string(args.method.kind())
               << " runs in one process; under mpirun use --method feti or feti-c\n";
+    return kExitUsage;
+  }
+  if (args.monitor_full > 0 && args.monitor.empty()) {
+    std::cerr << "fetic solve: --monitor-full needs --monitor FILE\n";
+    return kExitUsage;
+  }
+  if (is_stdout(args.monitor) && (is_stdout(args.outputs.json) || is_stdout(args.outputs.csv) ||
+                                  is_stdout(args.outputs.csv_steps))) {
+    std::cerr << "fetic solve: --monitor - and another output on - cannot both go to standard "
+                 "output\n";
     return kExitUsage;
   }
   if (processes.distributed() && args.outputs.vtu_every_iteration) {
@@ -209,10 +222,18 @@ int run_solve(const SolveArgs& args) {
     output_status = report_output_error(error);
   }
   // Agreed, so that no process goes on alone (rank 0 made the directories).
+  // The monitor: every process observes (a full line gathers the state, a collective),
+  // rank 0 alone opens and writes.
+  SolveMonitor monitor(model, args.monitor_full, processes.root());
+  if (output_status == kExitOk && !args.monitor.empty()) try {
+      monitor.open(args.monitor);
+    } catch (const OutputError& error) {
+      output_status = report_output_error(error);
+    }
   output_status = static_cast<int>(processes.max(static_cast<double>(output_status)));
   if (output_status != kExitOk) return output_status;
   // With an output on stdout (-), the report goes to stderr.
-  std::ostream& report = outputs->uses_stdout() ? std::cerr : std::cout;
+  std::ostream& report = outputs->uses_stdout() || is_stdout(args.monitor) ? std::cerr : std::cout;
   if (sweeping && !args.quiet)
     report << "load steps   " << load_factors.size() << " from " << load_factors.front() << " to "
            << load_factors.back() << ", each warm-started\n";
@@ -223,6 +244,7 @@ int run_solve(const SolveArgs& args) {
   solver::SweepHooks hooks;
   hooks.before_start = [&](double t) {
     ++step_number;
+    monitor.begin_load(t);
     if (!args.reference) return;
     const auto it = references.find(t);
     method->set_reference(it != references.end() ? it->second
@@ -279,7 +301,7 @@ int run_solve(const SolveArgs& args) {
       }
     };
     hooks.on_iteration = [&, on_iteration = hooks.on_iteration](double t,
-                                                               const solver::Method& running) {
+                                                                const solver::Method& running) {
       if (!processes.root() || output_error) return;
       try {
         on_iteration(t, running);
@@ -288,6 +310,16 @@ int run_solve(const SolveArgs& args) {
       }
     };
   }
+  // The monitor hook runs on every process, outside the rank-0 wrapping above: a full
+  // line gathers the state (a collective every process calls at the same iterations,
+  // the history being replicated). Its writes never throw (a failure is kept in the
+  // stream and reported at close), so rank 0 never leaves the sweep early for it.
+  if (!args.monitor.empty())
+    hooks.on_iteration = [&, on_iteration = hooks.on_iteration](double t,
+                                                                const solver::Method& running) {
+      on_iteration(t, running);
+      monitor.observe(running);
+    };
   std::vector<solver::SweepStep> steps;
   try {
     steps = solver::sweep(*method, load_factors, hooks);
@@ -314,9 +346,18 @@ int run_solve(const SolveArgs& args) {
       if (processes.root()) status = report_output_error(error);
     }
   }
+  // A monitor line that did not arrive: reported, and the status says so unless a signal
+  // ended the run.
+  int monitor_status = kExitOk;
+  if (!args.monitor.empty())
+    if (const std::string problem = monitor.close(); !problem.empty()) {
+      std::cerr << problem << '\n';
+      monitor_status = kExitOutput;
+    }
   if (processes.root() && status == kExitOk)
     status = report_result(args, model, steps, info, load_factors.size(), was_interrupted, signal,
                            output_error, *outputs, report);
+  if (monitor_status != kExitOk && status != kExitInterrupted) status = monitor_status;
   return static_cast<int>(processes.max(static_cast<double>(status)));
 }
 
@@ -373,6 +414,16 @@ void register_solve(CLI::App& app, int& exit_code) {
                     "Record each iteration's displacement error against an active-set solve "
                     "made in the same run");
   command->add_flag("--quiet", args->quiet, "Print no summary and no progress");
+  command->add_option("--monitor", args->monitor,
+                      "Write one JSON line per iteration here as the solve runs (- for stdout; "
+                      "a FIFO or pipe can follow it live; docs/COMMANDS.md)");
+  command
+      ->add_option("--monitor-full", args->monitor_full,
+                   "With --monitor: add the state (displacements, contact multipliers) every "
+                   "N-th iteration (N = 1 when not given)")
+      ->expected(0, 1)
+      ->default_str("1")
+      ->check(CLI::PositiveNumber);
   command->add_flag("--progress", args->progress,
                     "Show the progress line on stderr even when it is not a terminal");
   command->add_option("--profile", args->profile,

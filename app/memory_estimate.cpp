@@ -25,6 +25,10 @@ constexpr double kFetiPerUnknown = 380, kFetiPerStrut = 4500, kFetiPerSubdomain 
 // strut), the working-set system (dense, up to every pair: twice, for the LU).
 constexpr double kActivePerUnknown = 320, kActivePerStrut = 3300, kActivePerFactorEntry = 5,
                  kActivePerContactColumn = 23, kActivePerPairSquared = 16;
+// MPRGP: FETI-C's, plus its face projector's dense correction: the coarse solutions for
+// the modes next to contacts (modes x C) and two C x C matrices, C at most 6 per pair
+// (two plane subdomains of three modes each).
+constexpr double kModesPerSubdomain = 3, kCorrectionModesPerPair = 6;
 // CG and SD: K and a few vectors.
 constexpr double kGradientPerUnknown = 600, kGradientPerStrut = 3300;
 // nlohmann::json holds every node's position and displacement, then the text.
@@ -93,6 +97,12 @@ double method_bytes(const Counts& c, solver::MethodKind method) {
       return kBase + kFetiPerUnknown * c.unknowns + kFetiPerStrut * c.struts +
              kFetiPerSubdomain * c.subdomains + kFetiPerFactorEntry * c.subdomain_fill +
              kFetiPerInterfaceRow * c.interface_rows;
+    case solver::MethodKind::Mprgp: {
+      const double modes = kModesPerSubdomain * c.subdomains;
+      const double correction = std::min(modes, kCorrectionModesPerPair * c.pairs);
+      return method_bytes(c, solver::MethodKind::FetiC) +
+             8.0 * (modes * correction + 3.0 * correction * correction);
+    }
     case solver::MethodKind::ActiveSet:
       return kBase + kActivePerUnknown * c.unknowns + kActivePerStrut * c.struts +
              kActivePerFactorEntry * c.strut_fill + kActivePerContactColumn * c.contact_columns +

@@ -111,7 +111,7 @@ CLI::Validator integer_in(long long low, long long high) {
 }
 
 CLI::Validator method_name() {
-  return CLI::IsMember({"sd", "cg", "active-set", "feti", "feti-c"});
+  return CLI::IsMember({"sd", "cg", "active-set", "feti", "feti-c", "mprgp"});
 }
 
 CLI::Validator preconditioner_name() {
@@ -119,23 +119,22 @@ CLI::Validator preconditioner_name() {
 }
 
 void add_method_options(CLI::App* command, MethodArgs& args) {
-  command->add_option("--method", args.method, "Method: sd, cg, active-set, feti, feti-c")
+  command->add_option("--method", args.method, "Method: sd, cg, active-set, feti, feti-c, mprgp")
       ->check(method_name())
       ->capture_default_str();
   CLI::Option* preconditioner =
       command
           ->add_option("--preconditioner", args.preconditioner,
-                       "FETI preconditioner (feti, feti-c): none, lumped, dirichlet")
+                       "FETI preconditioner (feti, feti-c, mprgp): none, lumped, dirichlet")
           ->check(preconditioner_name())
           ->capture_default_str();
   // A preconditioner asked for a method that has none would be silently ignored.
   command->parse_complete_callback([&args, preconditioner] {
     const auto kind = solver::parse_method(args.method);
-    if (preconditioner->count() > 0 && kind && *kind != solver::MethodKind::Feti &&
-        *kind != solver::MethodKind::FetiC)
-      throw CLI::ValidationError(
-          "--preconditioner",
-          "only feti and feti-c have a preconditioner; " + args.method + " does not use one");
+    if (preconditioner->count() > 0 && kind && !solver::is_dual(*kind))
+      throw CLI::ValidationError("--preconditioner",
+                                 "only feti, feti-c and mprgp have a preconditioner; " +
+                                     args.method + " does not use one");
   });
   command->add_flag("--no-scaling", args.no_scaling,
                     "FETI preconditioners without stiffness scaling");

@@ -15,7 +15,7 @@ nlohmann::ordered_json result_json(const solver::Model& model, const solver::Sna
                      {"force", model.units.force},
                      {"stress", scenes::stress_unit(model.units)}};
   result["method"] = solver::to_string(info.method);
-  if (info.method == solver::MethodKind::Feti || info.method == solver::MethodKind::FetiC)
+  if (solver::is_dual(info.method))
     result["preconditioner"] = solver::to_string(info.preconditioner);
   result["tolerance"] = info.tolerance;
   result["time_seconds"] = {{"setup", info.setup_seconds}, {"solve", info.solve_seconds}};

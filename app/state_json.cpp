@@ -134,6 +134,7 @@ OrderedJson history_json(const std::vector<solver::HistoryEntry>& history) {
     item["residual"] = entry.residual;
     item["active_set"] = entry.active_set;
     if (!std::isnan(entry.error)) item["error"] = entry.error;
+    if (entry.f_applications >= 0) item["f_applications"] = entry.f_applications;
     entries.push_back(std::move(item));
   }
   return entries;

@@ -1,9 +1,10 @@
-// fetic-bench-scale: FETI-C on generated plane scenes up to a million unknowns, every
-// figure a ratio measured in the same run:
+// fetic-bench-scale: FETI-C and MPRGP on generated plane scenes up to a million unknowns,
+// every figure a ratio measured in the same run:
 //   1. against the direct floor (one CHOLMOD solve with FETI-C's final working set
 //      imposed as equalities), the primal active-set method and Ipopt;
-//   2. numerical scalability: iterations as the number of subdomains grows 16 times at
-//      fixed H/h, and as h shrinks at fixed H, for each preconditioner;
+//   2. numerical scalability: iterations and applications of F as the number of
+//      subdomains grows 16 (full: 64) times at fixed H/h, and as h shrinks at fixed H,
+//      for each method and preconditioner;
 //   3. memory: FETI-C's factors against the CHOLMOD factor of the whole problem;
 //   4. the frame model (generated pairs of portal frames): iterations as in 2, and a
 //      comparison row as in 1.
@@ -32,6 +33,7 @@
 #include "solver/direct_floor.hpp"
 #include "solver/feti_method.hpp"
 #include "solver/method.hpp"
+#include "solver/mprgp.hpp"
 #include "solver/primal_problem.hpp"
 
 namespace fetic::bench {
@@ -115,6 +117,8 @@ struct Table {
 
 struct FetiRun {
   int iterations = 0;
+  long long f_applications = 0;  // in the solve
+  int setup_f_applications = 0;  // MPRGP's power method for ||F||
   bool converged = false;
   double setup = 0.0, solve = 0.0;
   std::size_t memory = 0;
@@ -122,22 +126,36 @@ struct FetiRun {
   double total() const { return setup + solve; }
 };
 
-FetiRun run_feti_c(const solver::Model& model, solver::Preconditioner preconditioner) {
+FetiRun run_dual(solver::MethodKind kind, const solver::Model& model,
+                 solver::Preconditioner preconditioner) {
   FetiRun run;
   solver::SolveOptions options;
   options.preconditioner = preconditioner;
   auto start = Clock::now();
-  auto method = solver::make_method(solver::MethodKind::FetiC, model, options);
+  auto method = solver::make_method(kind, model, options);
   run.setup = seconds_since(start);
   start = Clock::now();
   method->start(1.0);
   solver::run_to_end(*method);
   run.solve = seconds_since(start);
   run.iterations = method->iteration();
+  run.f_applications = method->history().back().f_applications;
+  if (const auto* mprgp = dynamic_cast<const solver::Mprgp*>(method.get()))
+    run.setup_f_applications = mprgp->setup_f_applications();
   run.converged = method->status() == solver::Status::Converged;
   run.state = method->snapshot();
   run.memory = dynamic_cast<const solver::FetiMethod&>(*method).factor_memory();
   return run;
+}
+
+FetiRun run_feti_c(const solver::Model& model, solver::Preconditioner preconditioner) {
+  return run_dual(solver::MethodKind::FetiC, model, preconditioner);
+}
+
+// "iterations / F applications", "!" when the solve did not converge.
+std::string counts(const FetiRun& run) {
+  return std::to_string(run.iterations) + " / " + std::to_string(run.f_applications) +
+         (run.converged ? "" : "!");
 }
 
 double error_against(const solver::Model& model, const std::vector<solver::Piece>& pieces,
@@ -187,27 +205,35 @@ struct Args {
 Table comparison_table(const std::vector<scenes::GenerateOptions>& sizes, long long ipopt_limit,
                        long long active_set_limit) {
   Table table{
-      "1. FETI-C (Dirichlet) against the direct floor, the active-set method and Ipopt "
-      "(times in seconds; ratios = other / FETI-C; error = relative displacement "
-      "error against the floor)",
-      {"scene", "unknowns", "subdomains", "contact pairs", "FETI-C iter", "FETI-C s", "floor s",
-       "FETI-C/floor", "active-set s", "AS/FETI-C", "Ipopt s", "Ipopt/FETI-C", "FETI-C err",
-       "Ipopt err"},
+      "1. FETI-C and MPRGP (Dirichlet) against the direct floor, the active-set method and "
+      "Ipopt (times in seconds, set-up + solve; it / F: iterations / applications of F, "
+      "MPRGP's set-up power method included; ratios = other / FETI-C; error = relative "
+      "displacement error against the floor)",
+      {"scene", "unknowns", "subdomains", "contact pairs", "FETI-C it / F", "FETI-C s",
+       "MPRGP it / F", "MPRGP s", "floor s", "FETI-C/floor", "MPRGP/floor", "active-set s",
+       "AS/FETI-C", "Ipopt s", "Ipopt/FETI-C", "FETI-C err", "MPRGP err", "Ipopt err"},
       {}};
   for (const auto& options : sizes) {
     const scenes::Scene scene = scenes::generate_scene(options);
     const solver::Model model = solver::build_model(scene);
     const FetiRun feti = run_feti_c(model, solver::Preconditioner::Dirichlet);
+    const FetiRun mprgp =
+        run_dual(solver::MethodKind::Mprgp, model, solver::Preconditioner::Dirichlet);
     const solver::FloorSolution floor =
         solver::solve_with_working_set(model, 1.0, feti.state.in_working_set);
+    FetiRun mprgp_total = mprgp;
+    mprgp_total.f_applications += mprgp.setup_f_applications;
     std::vector<std::string> row{describe(options),
                                  std::to_string(model.dof_count()),
                                  std::to_string(feti.state.pieces.size()),
                                  std::to_string(model.pairs.size()),
-                                 std::to_string(feti.iterations) + (feti.converged ? "" : "!"),
+                                 counts(feti),
                                  fixed(feti.total()),
+                                 counts(mprgp_total),
+                                 fixed(mprgp.total()),
                                  fixed(floor.total_seconds()),
-                                 fixed(feti.total() / floor.total_seconds())};
+                                 fixed(feti.total() / floor.total_seconds()),
+                                 fixed(mprgp.total() / floor.total_seconds())};
     if (model.dof_count() <= active_set_limit) {
       const auto start = Clock::now();
       auto method = solver::make_method(solver::MethodKind::ActiveSet, model, {});
@@ -232,6 +258,7 @@ Table comparison_table(const std::vector<scenes::GenerateOptions>& sizes, long l
       row.insert(row.end(), {"-", "-"});
     }
     row.push_back(scientific(error_against(model, feti.state.pieces, floor.pieces)));
+    row.push_back(scientific(error_against(model, mprgp.state.pieces, floor.pieces)));
     row.push_back(ipopt_error);
     table.rows.push_back(row);
     // Progress on stderr (the big rows take minutes); the table is printed once, complete.
@@ -241,30 +268,45 @@ Table comparison_table(const std::vector<scenes::GenerateOptions>& sizes, long l
   return table;
 }
 
-Table scalability_table(const std::string& title,
-                        const std::vector<scenes::GenerateOptions>& sizes) {
+// Iterations / applications of F per method and preconditioner; MPRGP's power method
+// (set-up, once per model) in its own column. `dirichlet_only`: the largest scenes, where
+// the slower preconditioners would take too long to be useful.
+Table scalability_table(const std::string& title, const std::vector<scenes::GenerateOptions>& sizes,
+                        int dirichlet_only_above = 0) {
   Table table{
       title,
-      {"scene", "unknowns", "subdomains", "H/h", "dirichlet", "lumped", "none", "dirichlet s"},
+      {"scene", "unknowns", "subdomains", "H/h", "FETI-C dirichlet", "FETI-C lumped", "FETI-C none",
+       "MPRGP dirichlet", "MPRGP lumped", "MPRGP none", "MPRGP power F", "FETI-C d s", "MPRGP d s"},
       {}};
   for (const auto& options : sizes) {
     const scenes::Scene scene = scenes::generate_scene(options);
     const solver::Model model = solver::build_model(scene);
-    std::vector<std::string> row{
-        describe(options), std::to_string(model.dof_count()),
-        std::to_string(model.struts.size() * options.subdomains *
-                       (options.model == scenes::ModelKind::Plane ? options.subdomains_across : 1)),
-        std::to_string(options.elements / options.subdomains)};
-    double seconds = 0.0;
-    for (solver::Preconditioner p :
-         {solver::Preconditioner::Dirichlet, solver::Preconditioner::Lumped,
-          solver::Preconditioner::None}) {
-      const FetiRun run = run_feti_c(model, p);
-      row.push_back(std::to_string(run.iterations) + (run.converged ? "" : "!"));
-      if (p == solver::Preconditioner::Dirichlet) seconds = run.total();
-    }
-    row.push_back(fixed(seconds));
+    const int subdomains = options.pairs * 2 * options.subdomains * options.subdomains_across;
+    std::vector<std::string> row{describe(options), std::to_string(model.dof_count()),
+                                 std::to_string(subdomains),
+                                 std::to_string(options.elements / options.subdomains)};
+    double seconds[2] = {0.0, 0.0};
+    int power = 0;
+    for (solver::MethodKind kind : {solver::MethodKind::FetiC, solver::MethodKind::Mprgp})
+      for (solver::Preconditioner p :
+           {solver::Preconditioner::Dirichlet, solver::Preconditioner::Lumped,
+            solver::Preconditioner::None}) {
+        if (dirichlet_only_above > 0 && subdomains > dirichlet_only_above &&
+            p != solver::Preconditioner::Dirichlet) {
+          row.push_back("-");
+          continue;
+        }
+        const FetiRun run = run_dual(kind, model, p);
+        row.push_back(counts(run));
+        if (p == solver::Preconditioner::Dirichlet)
+          seconds[kind == solver::MethodKind::Mprgp ? 1 : 0] = run.total();
+        if (kind == solver::MethodKind::Mprgp) power = run.setup_f_applications;
+      }
+    row.push_back(std::to_string(power));
+    row.push_back(fixed(seconds[0]));
+    row.push_back(fixed(seconds[1]));
     table.rows.push_back(row);
+    std::cerr << "  done: " << row[0] << ", " << row[1] << " unknowns\n";
   }
   table.print();
   return table;
@@ -321,14 +363,19 @@ int run(const Args& args) {
   std::vector<scenes::GenerateOptions> more_subdomains{
       plane(2, 2 * step, step, 2, 1), plane(2, 4 * step, 2 * step, 4, 2),
       plane(2, 8 * step, 4 * step, 8, 4), plane(2, 16 * step, 8 * step, 16, 8)};
-  const Table scale_h = scalability_table(
-      "2a. Iterations as the subdomains grow 16 times at fixed H/h", more_subdomains);
+  // Full: one step further, 32x16 subdomains per strut (about a million unknowns), with
+  // the Dirichlet preconditioner only.
+  if (full) more_subdomains.push_back(plane(2, 32 * step, 16 * step, 32, 16));
+  const Table scale_h =
+      scalability_table("2a. Iterations / applications of F as the subdomains grow at fixed H/h",
+                        more_subdomains, 1024);
   scale_h.write_csv(args.csv_dir, "subdomains.csv");
   std::vector<scenes::GenerateOptions> finer{plane(2, 8, 4, 4, 2), plane(2, 16, 8, 4, 2),
                                              plane(2, 32, 16, 4, 2)};
   if (full) finer.push_back(plane(2, 64, 32, 4, 2));
-  const Table scale_small_h =
-      scalability_table("2b. Iterations as h shrinks at fixed H (4x2 subdomains per strut)", finer);
+  const Table scale_small_h = scalability_table(
+      "2b. Iterations / applications of F as h shrinks at fixed H (4x2 subdomains per strut)",
+      finer);
   scale_small_h.write_csv(args.csv_dir, "refinement.csv");
 
   // 3. memory.
@@ -365,8 +412,8 @@ int run(const Args& args) {
 
 int main(int argc, char** argv) {
   CLI::App app{
-      "fetic-bench-scale: FETI-C at scale against the direct floor, the active-set "
-      "method and Ipopt"};
+      "fetic-bench-scale: FETI-C and MPRGP at scale against the direct floor, the "
+      "active-set method and Ipopt"};
   fetic::bench::Args args;
   app.add_option("--preset", args.preset, "quick (about a minute) or full (about 1M unknowns)")
       ->check(CLI::IsMember({"quick", "full"}))

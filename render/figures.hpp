@@ -5,6 +5,9 @@
 //   9.2  the solved thesis problem, active contacts in red circles
 //   9.3  FETI-C: (a) error against the reference and (b) ||w|| per iteration
 //   9.4  active-set size per iteration, active-set method against FETI-C
+// and one of fetic's own:
+//   S.1  iterations and applications of F against the number of subdomains at fixed
+//        H/h: active-set method, FETI-C and MPRGP on generated plane scenes
 // The 2x2 problem is a real scene (one bar of two elements, clamped at one end) solved by
 // the solver's SD and CG steppers; 9.x run the methods on the thesis scene.
 
@@ -51,6 +54,19 @@ struct NamedHistory {
   std::vector<solver::HistoryEntry> history;
 };
 DrawList figure_active_set_sizes(const std::vector<NamedHistory>& runs, int width, int height);
+
+// S.1: each method's iterations and applications of F (-1 for the active-set method,
+// which does not apply F) per scene, as the subdomains double in both directions.
+struct ScalabilityCurve {
+  std::string method;
+  std::vector<double> subdomains, iterations, f_applications;
+  bool converged = true;
+};
+// Generated plane scenes (2 pairs) from 2x1 up to largest x largest/2 subdomains per strut,
+// elements_per_subdomain (H/h) elements per subdomain side.
+std::vector<ScalabilityCurve> scalability_runs(int elements_per_subdomain, int largest);
+DrawList figure_iterations_by_subdomains(const std::vector<ScalabilityCurve>& curves,
+                                         int elements_per_subdomain, int width, int height);
 
 // --- the catalogue ---
 

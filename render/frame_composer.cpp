@@ -29,7 +29,8 @@ FrameComposer::FrameComposer(const solver::Model& model, const View& view, const
       extent_(extent),
       info_(std::move(info)),
       load_steps_(load_steps),
-      framing_(frame_scene(model, view, extent, scene_region(view))) {}
+      framing_(frame_scene(model, view, extent, scene_region(view))),
+      placed_(view.zoom != 1.0 || view.centered ? placed(framing_, view) : framing_) {}
 
 ComposedFrame FrameComposer::compose(const Frame& frame) const {
   ComposedFrame composed;
@@ -37,9 +38,10 @@ ComposedFrame FrameComposer::compose(const Frame& frame) const {
     mesh_ = std::make_shared<const SceneMesh>(
         build_scene_mesh(model_, frame.snapshot, framing_, view_.color_by));
   composed.mesh = mesh_;
-  fill_mesh_values(*mesh_, model_, frame.snapshot, framing_, composed.values);
-  composed.uniforms = mesh_uniforms(*mesh_, framing_);
-  composed.region = framing_.region;
+  // The mesh is built for the fitted framing and drawn zoomed and moved, as the window does.
+  fill_mesh_values(*mesh_, model_, frame.snapshot, placed_, composed.values);
+  composed.uniforms = mesh_uniforms(*mesh_, placed_);
+  composed.region = placed_.region;
   SceneCaption caption{info_.method, {}};
   OverlayInfo info = info_;
   if (load_steps_ > 1) {
@@ -47,7 +49,7 @@ ComposedFrame FrameComposer::compose(const Frame& frame) const {
         "step " + std::to_string(frame.load_step + 1) + " of " + std::to_string(load_steps_);
     caption.load_step = info.load_step;
   }
-  composed.glyphs = draw_glyphs(model_, frame.snapshot, view_, framing_, caption);
+  composed.glyphs = draw_glyphs(model_, frame.snapshot, view_, placed_, caption);
   if (view_.show_overlay) {
     if (load_steps_ > 1) {
       // Plots against the load factor: the steps done so far, this one as it stands.

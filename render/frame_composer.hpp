@@ -48,6 +48,7 @@ class FrameComposer {
   OverlayInfo info_;
   int load_steps_ = 1;
   SceneFraming framing_;
+  SceneFraming placed_;  // framing_ with the view's zoom and centre
   mutable std::shared_ptr<const SceneMesh> mesh_;  // built for the first frame's pieces
 };
 

@@ -86,8 +86,16 @@ Rect geometry_region(const Rect& scene_region, float text_size);
 // (the window's pan and zoom): scale, lane and bar width follow.
 SceneFraming zoomed(const SceneFraming& framing, float zoom, Point center);
 
+// A saved view's zoom and centre (View::zoom, View::centered): the framing zoomed, with
+// the view's world centre drawn at the middle of the scene region.
+SceneFraming placed(const SceneFraming& framing, const View& view);
+
 // Fits the scene into `region` (between its bands), for the whole run.
 SceneFraming frame_scene(const solver::Model& model, const View& view, const RunExtent& extent,
                          const Rect& region);
+
+// Applies the view's zoom and centre to a fitted framing (frame_scene does; the window,
+// which pans and zooms by itself, places a loaded view's centre with it).
+void place_view(SceneFraming& framing, const View& view);
 
 }  // namespace fetic::render

@@ -27,6 +27,12 @@ struct View {
   bool show_legend = true;    // what the glyphs mean
   bool show_scale = true;     // a length scale bar
   float bar_width = 0.0f;     // on-screen width of bars in pixels; 0: from the image size
+  // A window's pan and zoom (a saved view, app/view_file.hpp): the fit is scaled by
+  // `zoom`, and when `centered` the world point (center_x, center_y) is drawn at the
+  // centre of the scene region.
+  double zoom = 1.0;
+  bool centered = false;
+  double center_x = 0.0, center_y = 0.0;
 };
 
 // Text height in pixels that suits an image of this size: a 48th of its height (of its

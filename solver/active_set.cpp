@@ -250,6 +250,12 @@ void ActiveSet::advance() {
   record_move();
 }
 
+std::vector<char> ActiveSet::working_set() const {
+  std::vector<char> in(model_.pairs.size(), 0);
+  for (int row : working_) in[row] = 1;
+  return in;
+}
+
 Snapshot ActiveSet::snapshot() const {
   Snapshot s;
   s.method = MethodKind::ActiveSet;

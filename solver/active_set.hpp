@@ -27,6 +27,7 @@ class ActiveSet final : public Method {
   void begin(const Snapshot* warm) override;
   void advance() override;
   Snapshot snapshot() const override;
+  std::vector<char> working_set() const override;
 
   const PrimalProblem& problem() const { return problem_; }
 

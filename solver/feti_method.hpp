@@ -55,6 +55,7 @@ class FetiMethod : public Method {
   FetiMethod(const Model& model, const SolveOptions& options, int default_max_iterations,
              const Communicator& communicator);
   double reference_error() const override;
+  long long f_applications() const override { return system_.f_applications(); }
 
   // Rigid-body amplitudes alpha = (G^ G^')^+ G^ (F lambda - d) for the current rows,
   // with groups of floating struts the active rows leave free placed as close to where

@@ -2,6 +2,7 @@
 #include "solver/feti_c.hpp"
 #include "solver/gradient_methods.hpp"
 #include "solver/method.hpp"
+#include "solver/mprgp.hpp"
 #include "solver/pcpg.hpp"
 
 namespace fetic::solver {
@@ -23,6 +24,8 @@ std::unique_ptr<Method> make_method(MethodKind kind, const Model& model,
       return std::make_unique<Pcpg>(model, options, communicator);
     case MethodKind::FetiC:
       return std::make_unique<FetiC>(model, options, communicator);
+    case MethodKind::Mprgp:
+      return std::make_unique<Mprgp>(model, options, communicator);
   }
   throw SolverError(std::string("unknown method '") + to_string(kind) + "'");
 }

@@ -17,6 +17,8 @@ const char* to_string(MethodKind method) {
       return "feti";
     case MethodKind::FetiC:
       return "feti-c";
+    case MethodKind::Mprgp:
+      return "mprgp";
   }
   return "?";
 }
@@ -46,8 +48,9 @@ const char* to_string(Status status) {
 }
 
 std::optional<MethodKind> parse_method(const std::string& name) {
-  for (MethodKind kind : {MethodKind::SteepestDescent, MethodKind::ConjugateGradient,
-                          MethodKind::ActiveSet, MethodKind::Feti, MethodKind::FetiC})
+  for (MethodKind kind :
+       {MethodKind::SteepestDescent, MethodKind::ConjugateGradient, MethodKind::ActiveSet,
+        MethodKind::Feti, MethodKind::FetiC, MethodKind::Mprgp})
     if (name == to_string(kind)) return kind;
   return std::nullopt;
 }
@@ -63,7 +66,12 @@ bool distributable(MethodKind method) {
 }
 
 bool handles_contact(MethodKind method) {
-  return method == MethodKind::ActiveSet || method == MethodKind::FetiC;
+  return method == MethodKind::ActiveSet || method == MethodKind::FetiC ||
+         method == MethodKind::Mprgp;
+}
+
+bool is_dual(MethodKind method) {
+  return method == MethodKind::Feti || method == MethodKind::FetiC || method == MethodKind::Mprgp;
 }
 
 int Snapshot::active_set_size() const {
@@ -84,6 +92,7 @@ void Method::start(double load_factor, const Snapshot* warm) {
   status_ = Status::Running;
   message_.clear();
   history_.clear();
+  f_applications_at_start_ = f_applications();
   if (warm && warm->method != kind()) warm = nullptr;
   begin(warm);
 }
@@ -94,6 +103,8 @@ void Method::step() {
 
 void Method::record(double residual, int active_set) {
   HistoryEntry entry{iteration_, residual, active_set};
+  const long long applied = f_applications();
+  if (applied >= 0) entry.f_applications = applied - f_applications_at_start_;
   if (!reference_.empty()) entry.error = reference_error();
   history_.push_back(entry);
   if (!std::isfinite(residual)) {

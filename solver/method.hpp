@@ -21,17 +21,20 @@
 
 namespace fetic::solver {
 
-enum class MethodKind { SteepestDescent, ConjugateGradient, ActiveSet, Feti, FetiC };
+enum class MethodKind { SteepestDescent, ConjugateGradient, ActiveSet, Feti, FetiC, Mprgp };
 enum class Preconditioner { None, Lumped, Dirichlet };
 enum class Status { Running, Converged, Failed };
 
-// Command-line names: "sd", "cg", "active-set", "feti", "feti-c"; "none", "lumped", "dirichlet".
+// Command-line names: "sd", "cg", "active-set", "feti", "feti-c", "mprgp"; "none", "lumped",
+// "dirichlet".
 const char* to_string(MethodKind method);
 const char* to_string(Preconditioner preconditioner);
 const char* to_string(Status status);
 std::optional<MethodKind> parse_method(const std::string& name);
 std::optional<Preconditioner> parse_preconditioner(const std::string& name);
 bool handles_contact(MethodKind method);
+// The dual (FETI) methods, which take a preconditioner and count applications of F.
+bool is_dual(MethodKind method);
 
 struct SolveOptions {
   double tolerance = 1e-10;  // relative, see each method
@@ -51,6 +54,9 @@ struct HistoryEntry {
   double residual = 0.0;                                    // relative, as the method defines it
   int active_set = 0;                                       // contact pairs in the working set
   double error = std::numeric_limits<double>::quiet_NaN();  // vs a reference, when set
+  // Applications of the FETI operator F since the start (the dual methods' measure of
+  // cost, as PERMON and ESPRESO report it); -1 for the primal methods.
+  long long f_applications = -1;
 };
 
 // Displacements of one piece of a strut: one FETI subdomain, or a whole strut for the
@@ -102,6 +108,9 @@ class Method {
   int iteration() const { return iteration_; }
   int max_iterations() const { return max_iterations_; }
   const std::vector<HistoryEntry>& history() const { return history_; }
+  // Per contact pair: in the working set now (snapshot().in_working_set, cheaper where a
+  // method overrides it; the same on every process of a distributed solve).
+  virtual std::vector<char> working_set() const { return snapshot().in_working_set; }
   // Records, per iteration from now on, the relative displacement error against it.
   void set_reference(std::vector<std::vector<Vec2>> reference) {
     reference_ = std::move(reference);
@@ -119,6 +128,8 @@ class Method {
   virtual double reference_error() const;
   const std::vector<std::vector<Vec2>>& reference() const { return reference_; }
   void converge() { status_ = Status::Converged; }
+  // Applications of F since the method was made (-1: the method does not apply F).
+  virtual long long f_applications() const { return -1; }
   void fail(std::string why);
 
   const Model& model_;
@@ -132,6 +143,7 @@ class Method {
   std::string message_;
   std::vector<HistoryEntry> history_;
   std::vector<std::vector<Vec2>> reference_;
+  long long f_applications_at_start_ = 0;
 };
 
 // `communicator`: the processes a dual method (feti, feti-c) is distributed over; the

@@ -21,17 +21,20 @@
 #include <filesystem>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <thread>
 #include <vector>
 
 #include "app/gui/bench.hpp"
 #include "app/gui/options.hpp"
+#include "app/gui/pick_index.hpp"
 #include "app/gui/recording.hpp"
 #include "app/gui/requests.hpp"
 #include "app/gui/script.hpp"
 #include "app/gui/solver_worker.hpp"
 #include "app/gui/state_log.hpp"
+#include "app/view_file.hpp"
 #include "app/vtu_export.hpp"
 #include "render/draw_list.hpp"
 #include "render/frame_sequence.hpp"
@@ -115,6 +118,26 @@ class App {
   // state_reports.cpp
   void report_frame();
 
+  // views.cpp
+  SavedView current_view() const;
+  void save_view(const std::string& path);  // "": the next fetic_view_NNNN.json
+  void load_view(const std::string& path);
+  void use_view(const SavedView& saved);
+  void place_pending_center();  // a loaded view's centre, into pan_ (framing_ is fitted)
+  void view_buttons();          // in the panel: save and load views
+  std::string next_view_name();
+  std::string in_screenshot_dir(const std::string& path) const;
+
+  // picking.cpp
+  void index_picture(const solver::Snapshot& snapshot, const render::SceneFraming& framing);
+  nlohmann::json pick_values(const Pickable& item) const;
+  std::string pick_text(const Pickable& item) const;
+  void picking(float view_x, float view_width, float view_height);  // tooltip, pins
+  void toggle_pin(const Pickable& item);
+  void pinned_window(float view_x, float view_width);
+  void locate(const std::string& what);
+  // window_shot.cpp
+  void capture_window(int width, int height);
   // paraview_export.cpp
   void export_paraview(const std::string& directory);
 
@@ -206,6 +229,25 @@ class App {
 
   BenchMeasurement bench_;
 
+  // Saved views (views.cpp).
+  render::SceneFraming placed_;              // the framing of the last picture
+  render::RunExtent drawn_extent_;           // and the scales it was drawn with
+  std::optional<render::RunExtent> scales_;  // a loaded view's scales
+  bool center_pending_ = false;              // place pending_center_ at the next picture
+  solver::Vec2 pending_center_{0, 0};
+  int views_saved_ = 0;
+  // Save view and Locate read the picture: they wait for the next one to be drawn.
+  std::vector<Request> after_picture_;
+
+  // Picking (picking.cpp).
+  PickIndex picks_;
+  std::optional<Pickable> hovered_;
+  std::vector<Pickable> pinned_;
+  double pick_query_ms_ = 0.0;
+  bool window_shot_requested_ = false;
+  std::string pending_window_shot_;
+  int window_shots_ = 0;
+  std::string view_path_;  // the view file the panel loads: --view, or the last saved
   // ParaView export: one series per directory and model.
   std::unique_ptr<VtuSeries> vtu_;
   std::shared_ptr<const solver::Model> vtu_model_;

@@ -21,6 +21,7 @@
 #include "app/out_of_memory.hpp"
 #include "app/render_output.hpp"
 #include "app/scene_input.hpp"
+#include "app/view_file.hpp"
 #include "render/glfw_window.hpp"
 #include "scenes/load_scene.hpp"
 #include "scenes/scene_text.hpp"
@@ -52,6 +53,18 @@ int run_gui(const gui::Options& args) {
                 << '\n';
     if (!errors.empty()) return kExitUsage;
   }
+  ImageSize size = *parse_image_size(args.size);
+  if (!args.view.empty()) try {
+      // The window is the view's picture and the panel beside it (unless --size is given).
+      const SavedView view = read_view_file(args.view);
+      if (view.width && view.height && !args.size_given) {
+        size.width = *view.width + static_cast<int>(gui::kPanelWidth);
+        size.height = *view.height;
+      }
+    } catch (const ViewFileError& error) {
+      std::cerr << error.what() << '\n';
+      return kExitUsage;
+    }
   int status = kExitOk;
   const auto scene = load_scene_or_report(args.scene, status);
   if (!scene) return status;
@@ -64,14 +77,15 @@ int run_gui(const gui::Options& args) {
     }
   // The window may switch to any method and keeps the iterates of a solve for scrubbing.
   if (!memory_suffices(*scene, args.scene,
-                       {{solver::MethodKind::FetiC, solver::MethodKind::ActiveSet}, false, 100},
+                       {{solver::MethodKind::FetiC, solver::MethodKind::Mprgp,
+                         solver::MethodKind::ActiveSet},
+                        false, 100},
                        status))
     return status;
   Activity running("running the window");
   auto model = std::make_shared<const solver::Model>(solver::build_model(*scene));
   const std::string title =
       model->title.empty() ? fs::path(args.scene).filename().string() : model->title;
-  const ImageSize size = *parse_image_size(args.size);
   std::unique_ptr<render::GlfwWindow> window;
   try {
     window = std::make_unique<render::GlfwWindow>(size.width, size.height, "fetic - " + title);
@@ -112,9 +126,11 @@ void register_gui(CLI::App& app, int& exit_code) {
       ->check(number_in(0.0, 0.0, Bound::Closed, Bound::None));
   command->add_option("--magnification", args->magnification, "Lock the magnification (0: auto)")
       ->check(number_in(0.0, 0.0, Bound::Closed, Bound::None));
-  command->add_option("--size", args->size, "Window size in pixels")
-      ->check(image_size_check())
-      ->capture_default_str();
+  CLI::Option* size = command->add_option("--size", args->size, "Window size in pixels")
+                          ->check(image_size_check())
+                          ->capture_default_str();
+  command->add_option("--view", args->view,
+                      "Start with a saved view (JSON; the window's Save view, docs/WINDOW.md)");
   command->add_option("--state-file", args->state_file,
                       "Write what the app does as JSON lines to this file (- for stdout)");
   command->add_option("--script", args->script,
@@ -133,7 +149,10 @@ void register_gui(CLI::App& app, int& exit_code) {
                    "Benchmark: drag the slider over N load changes, then time 30 isolated "
                    "changes; print latency and frame rate, quit")
       ->check(CLI::Range(2, 100000));
-  command->callback([args, &exit_code] { exit_code = run_gui(*args); });
+  command->callback([args, size, &exit_code] {
+    args->size_given = size->count() > 0;
+    exit_code = run_gui(*args);
+  });
 }
 
 }  // namespace fetic::app

@@ -48,6 +48,12 @@ void App::key_event(GLFWwindow* window, int key, int /*scancode*/, int action, i
     case GLFW_KEY_F1:
       if (!repeat) app->push({RequestKind::Toggle, 0.0, "help"});
       break;
+    case GLFW_KEY_W:
+      if (!repeat) app->push({RequestKind::ScreenshotWindow, 0.0, {}});
+      break;
+    case GLFW_KEY_V:
+      if (!repeat) app->push({RequestKind::SaveView, 0.0, {}});
+      break;
     case GLFW_KEY_HOME:
       app->push({RequestKind::ResetView, 0.0, {}});
       break;

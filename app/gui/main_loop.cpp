@@ -84,6 +84,8 @@ int App::run(render::GlfwWindow& window, std::vector<ScriptAction> script) {
     const int view_height = std::max(16, fb_height);
     mouse(static_cast<float>(view_x), static_cast<float>(view_width),
           static_cast<float>(view_height));
+    picking(static_cast<float>(view_x), static_cast<float>(view_width),
+            static_cast<float>(view_height));
     if (scripted) run_script(script, next_action, now, script_failed);
     if (args_.bench > 0) bench_step(now);
     panels(static_cast<float>(fb_height));
@@ -112,7 +114,7 @@ int App::run(render::GlfwWindow& window, std::vector<ScriptAction> script) {
     // software renderer) is redrawn at most every other such period, so the panels and
     // the slider keep answering between pictures.
     const bool picture_due =
-        last_picture_ms_ < 16.0 || screenshot_requested_ || recording_ ||
+        last_picture_ms_ < 16.0 || screenshot_requested_ || recording_ || !after_picture_.empty() ||
         std::chrono::duration<double, std::milli>(Clock::now() - last_picture_end_).count() >=
             last_picture_ms_;
     if (redraw_ && picture_due) {
@@ -130,6 +132,9 @@ int App::run(render::GlfwWindow& window, std::vector<ScriptAction> script) {
       redraw_ = false;
       if (args_.bench > 0 && bench_.phase == 3 && bench_.pan_solving) ++bench_.pan_pictures;
     }
+    for (const Request& r : after_picture_)  // the picture they read is drawn now
+      r.kind == RequestKind::SaveView ? save_view(r.text) : locate(r.text);
+    after_picture_.clear();
     if (screenshot_requested_) {
       screenshot(pending_screenshot_);
       screenshot_requested_ = false;
@@ -142,6 +147,7 @@ int App::run(render::GlfwWindow& window, std::vector<ScriptAction> script) {
     glClear(GL_COLOR_BUFFER_BIT);
     renderer.blit_to_default(view_x, 0, fb_height);
     ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+    capture_window(fb_width, fb_height);
     const auto swap_start = Clock::now();
     glfwSwapBuffers(window.handle());
     if (args_.bench > 0 && bench_.phase == 0)

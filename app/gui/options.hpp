@@ -13,9 +13,11 @@ struct Options {
   double max_load = 0.0;  // 0: chosen from the scene (solver::automatic_max_load)
   double magnification = 0.0;
   std::string size = "1280x800";
+  bool size_given = false;  // --size on the command line (it wins over a view's size)
   std::string state_file;
   std::string script;
   std::string screenshot_dir = ".";
+  std::string view;  // a saved view to start with (app/view_file.hpp)
   std::string record_dir = "fetic-recordings";
   std::string vtu_dir = "fetic-paraview";  // where "ParaView export" writes
   bool no_overlay = false;

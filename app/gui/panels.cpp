@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <string>
 
 #include <imgui.h>
@@ -44,6 +45,9 @@ void App::load_controls() {
   ImGui::SetNextItemWidth(-1);
   if (ImGui::SliderScalar("##load", ImGuiDataType_Double, &load, &zero, &slider_max_, "%.4f"))
     push({RequestKind::SetLoad, load, {}});
+  // Double-click: back to the scene's loads as written (load factor 1).
+  if (ImGui::IsItemHovered() && ImGui::IsMouseDoubleClicked(ImGuiMouseButton_Left))
+    push({RequestKind::SetLoad, 1.0, {}});
   if (ImGui::IsItemActive() != dragging_slider_) {
     dragging_slider_ = ImGui::IsItemActive();
     log_.write({{"event", "slider"}, {"held", dragging_slider_}, {"load_factor", load}});
@@ -61,21 +65,21 @@ void App::load_controls() {
 
 // Method, preconditioner and magnification (automatic or locked).
 void App::solver_controls() {
-  static const char* methods[] = {"feti-c", "active-set", "feti", "cg", "sd"};
+  static const char* methods[] = {"feti-c", "mprgp", "active-set", "feti", "cg", "sd"};
+  constexpr int method_count = static_cast<int>(std::size(methods));
   static const char* preconditioners[] = {"dirichlet", "lumped", "none"};
   int method = 0;
-  for (int i = 0; i < 5; ++i)
+  for (int i = 0; i < method_count; ++i)
     if (solver::to_string(target_.method) == std::string(methods[i])) method = i;
   ImGui::SetNextItemWidth(140);
-  if (ImGui::Combo("method", &method, methods, 5))
+  if (ImGui::Combo("method", &method, methods, method_count))
     push({RequestKind::SetMethod, 0.0, methods[method]});
   int pre =
       static_cast<int>(target_.options.preconditioner == solver::Preconditioner::Dirichlet ? 0
                        : target_.options.preconditioner == solver::Preconditioner::Lumped  ? 1
                                                                                            : 2);
   // Only the FETI methods have a preconditioner: the box is greyed out for the others.
-  const bool has_preconditioner =
-      target_.method == solver::MethodKind::Feti || target_.method == solver::MethodKind::FetiC;
+  const bool has_preconditioner = solver::is_dual(target_.method);
   ImGui::BeginDisabled(!has_preconditioner);
   ImGui::SetNextItemWidth(140);
   if (ImGui::Combo("preconditioner", &pre, preconditioners, 3))
@@ -146,6 +150,7 @@ void App::output_buttons() {
   if (ImGui::Button("Screenshot (S)")) push({RequestKind::Screenshot, 0.0, {}});
   ImGui::SameLine();
   if (ImGui::Button("Reload (F5)")) push({RequestKind::Reload, 0.0, {}});
+  view_buttons();
   if (ImGui::Button("Record iterations")) push({RequestKind::RecordIterations, 0.0, {}});
   if (ImGui::Button("Record load sweep"))
     push({RequestKind::RecordSweep, static_cast<double>(sweep_steps_), {}});

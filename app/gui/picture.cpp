@@ -65,12 +65,17 @@ void App::draw_picture(int width, int height) {
   // view size: computed again only when one of them changes, not for every picture.
   const PictureKey key{shown_->model, shown_->extent, width, height, magnification_, show_overlay_};
   if (!(key == framing_key_)) {
-    framing_ = render::frame_scene(*shown_->model, v, *shown_->extent, render::scene_region(v));
+    // The run's scales: the survey's, or those of a loaded view (views.cpp).
+    render::RunExtent extent = *shown_->extent;
+    apply_scales(scales_, extent);
+    framing_ = render::frame_scene(*shown_->model, v, extent, render::scene_region(v));
     framing_key_ = key;
   }
   base_center_ = framing_.pixel_center;
+  place_pending_center();
   const render::SceneFraming framing =
       render::zoomed(framing_, zoom_, {base_center_.x + pan_.x, base_center_.y + pan_.y});
+  placed_ = framing;
   shown_magnification_ = framing.magnification;
   // The struts: a mesh on the GPU, built when the scene, its pieces or the colouring change.
   if (!mesh_ || mesh_model_ != shown_->model || mesh_->color_by != v.color_by ||
@@ -80,15 +85,21 @@ void App::draw_picture(int width, int height) {
     mesh_model_ = shown_->model;
   }
   render::fill_mesh_values(*mesh_, *shown_->model, snapshot, framing, mesh_values_);
+  index_picture(snapshot, framing);
   render::OverlayInfo info;
   info.title = title_;
   info.method = solver::to_string(shown_->method);
-  if (shown_->method == solver::MethodKind::Feti || shown_->method == solver::MethodKind::FetiC)
+  if (solver::is_dual(shown_->method))
     info.method += std::string(" (") + solver::to_string(shown_->preconditioner) + ")";
   info.status = shown_status();
   const render::DrawList glyphs =
       render::draw_glyphs(*shown_->model, snapshot, v, framing, {info.method, {}});
   render::DrawList overlay;
+  render::RunExtent plots = plot_extent();
+  apply_scales(scales_, plots);
+  drawn_extent_ = *shown_->extent;
+  apply_scales(scales_, drawn_extent_);
+  drawn_extent_.largest_iteration = plots.largest_iteration;
   if (v.show_overlay) {
     if (recording_ && recording_->sweep && !recording_->steps.empty()) {
       // A load sweep being recorded: plots against the load factor.
@@ -98,10 +109,9 @@ void App::draw_picture(int width, int height) {
       series.all.resize(recording_->loads.size());
       for (std::size_t i = 0; i < recording_->loads.size(); ++i)
         series.all[i].load_factor = recording_->loads[i];
-      overlay =
-          render::draw_overlay(info, *shown_->model, snapshot, history, plot_extent(), v, &series);
+      overlay = render::draw_overlay(info, *shown_->model, snapshot, history, plots, v, &series);
     } else {
-      overlay = render::draw_overlay(info, *shown_->model, snapshot, history, plot_extent(), v);
+      overlay = render::draw_overlay(info, *shown_->model, snapshot, history, plots, v);
     }
   }
   if (args_.bench > 0 && bench_.phase == 0)

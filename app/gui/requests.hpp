@@ -28,6 +28,10 @@ enum class RequestKind {
   RecordSweep,       // value: steps; a load sweep 0 .. maximum as frames
   Reload,            // reload the scene file, keeping the view
   ResetView,         // undo pan and zoom
+  SaveView,          // text: file (empty: the next fetic_view_NNNN.json in --screenshot-dir)
+  LoadView,          // text: a view file (app/view_file.hpp)
+  ScreenshotWindow,  // text: file; the whole window, panels included
+  Locate,            // text: "pair:K" | "node:STRUT:N": report where it is drawn
   ExportParaView,    // text: directory (empty: --vtu-dir); the shown iterate as a .vtu frame
   Quit,
 };

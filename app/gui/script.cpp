@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <algorithm>
 #include <sstream>
 
 #include "solver/method.hpp"
@@ -98,7 +99,7 @@ std::vector<ScriptAction> parse_script(const std::string& text, std::vector<Scri
         errors.push_back({line, "'" + verb + "' needs a name"});
       else if (!known)
         errors.push_back({line, "unknown " + verb + " '" + argument + "' (" +
-                                    (method ? "feti-c, active-set, feti, cg or sd"
+                                    (method ? "feti-c, mprgp, active-set, feti, cg or sd"
                                             : "dirichlet, lumped or none") +
                                     ")"});
       r.kind = method ? RequestKind::SetMethod : RequestKind::SetPreconditioner;
@@ -141,6 +142,34 @@ std::vector<ScriptAction> parse_script(const std::string& text, std::vector<Scri
       r.text = argument;
     } else if (verb == "screenshot") {
       r.kind = RequestKind::Screenshot;
+      r.text = argument;
+      ok = true;
+    } else if (verb == "view") {
+      ok = !argument.empty();
+      if (!ok) errors.push_back({line, "'view' needs a view file"});
+      r.kind = RequestKind::LoadView;
+      r.text = argument;
+    } else if (verb == "locate") {
+      // "locate pair:K" or "locate node:STRUT:N" (indices): reported in the state file.
+      std::string spaced = argument;
+      std::replace(spaced.begin(), spaced.end(), ':', ' ');
+      std::istringstream parts(spaced);
+      std::string kind;
+      long a = -1, b = -1;
+      parts >> kind >> a;
+      if (kind == "node") parts >> b;
+      std::string rest;
+      ok = ((kind == "pair" && a >= 0) || (kind == "node" && a >= 0 && b >= 0)) &&
+           !(parts >> rest);
+      if (!ok) errors.push_back({line, "'locate' needs pair:K or node:STRUT:N"});
+      r.kind = RequestKind::Locate;
+      r.text = argument;
+    } else if (verb == "screenshot-window") {
+      r.kind = RequestKind::ScreenshotWindow;
+      r.text = argument;
+      ok = true;
+    } else if (verb == "save-view") {
+      r.kind = RequestKind::SaveView;
       r.text = argument;
       ok = true;
     } else if (verb == "record-iterations") {

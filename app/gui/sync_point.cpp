@@ -34,6 +34,7 @@ App::App(const Options& args, std::shared_ptr<const solver::Model> model, std::s
   target_.load_factor = args.max_load > 0.0 ? std::min(args.load, args.max_load) : args.load;
   magnification_ = args.magnification;
   show_overlay_ = !args.no_overlay;
+  if (!args.view.empty()) load_view(args.view);  // checked by cmd_gui before the window opened
   std::error_code ignored;
   scene_time_ = fs::last_write_time(args.scene, ignored);
 }
@@ -190,6 +191,21 @@ void App::apply(const Request& r) {
     case RequestKind::ResetView:
       zoom_ = 1.0f;
       pan_ = {0.0f, 0.0f};
+      redraw_ = true;
+      break;
+    case RequestKind::SaveView:
+      after_picture_.push_back(r);
+      redraw_ = true;
+      break;
+    case RequestKind::LoadView:
+      load_view(r.text);
+      break;
+    case RequestKind::ScreenshotWindow:
+      window_shot_requested_ = true;
+      pending_window_shot_ = r.text;
+      break;
+    case RequestKind::Locate:
+      after_picture_.push_back(r);
       redraw_ = true;
       break;
     case RequestKind::Quit:

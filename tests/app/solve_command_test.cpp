@@ -175,7 +175,7 @@ TEST_CASE("fetic solve rejects bad command lines with status 1") {
   const Run preconditioned =
       run("solve " + scene("two_bars.toml") + " --method active-set --preconditioner lumped");
   CHECK(preconditioned.status == 1);
-  CHECK(preconditioned.output.find("only feti and feti-c have a preconditioner") !=
+  CHECK(preconditioned.output.find("only feti, feti-c and mprgp have a preconditioner") !=
         std::string::npos);
   CHECK(run("solve " + scene("two_bars.toml") + " --method feti-c --preconditioner lumped --quiet")
             .status == 0);
@@ -196,6 +196,25 @@ TEST_CASE("fetic solve --method feti-c --reference records the error of every it
   CHECK(history[0]["error"].get<double>() > 1e-3);
   CHECK(history.back()["error"].get<double>() < 1e-8);
   CHECK(history[0]["active_set"] == 50);  // FETI-C starts with every contact in W
+}
+
+TEST_CASE("fetic solve --method mprgp: errors and applications of F in the history") {
+  const std::string json_path = temporary("fetic_mprgp.json");
+  const Run r =
+      run("solve " + scene("plane_pair.toml") + " --method mprgp --reference --json " + json_path);
+  INFO(r.output);
+  REQUIRE(r.status == 0);
+  CHECK_THAT(r.output, Catch::Contains("mprgp (preconditioner dirichlet)"));
+  std::ifstream in(json_path);
+  const nlohmann::json result = nlohmann::json::parse(in);
+  CHECK(result["method"] == "mprgp");
+  CHECK(result["preconditioner"] == "dirichlet");
+  const auto& history = result["history"];
+  REQUIRE(history.size() >= 2);
+  CHECK(history.back()["error"].get<double>() < 1e-8);
+  // Every iteration applies F at least once.
+  for (size_t k = 1; k < history.size(); ++k)
+    CHECK(history[k]["f_applications"].get<int>() > history[k - 1]["f_applications"].get<int>());
 }
 
 TEST_CASE("fetic solve --load-steps sweeps with warm starts and reports every step") {

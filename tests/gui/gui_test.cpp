@@ -481,6 +481,152 @@ TEST_CASE("without a display fetic gui says so and points to fetic render", "[no
   CHECK(output.find("fetic render") != std::string::npos);
 }
 
+TEST_CASE("a view saved in the window is drawn again by fetic render --view", "[script]") {
+  REQUIRE(have_display());
+  const fs::path dir = fresh_directory("fetic_gui_view");
+  const fs::path state = dir / "state.jsonl", script = dir / "script.txt";
+  // A view written by hand: zoomed onto the contacts, coloured by stress, no panel.
+  const fs::path hand = dir / "hand.json";
+  std::ofstream(hand) << R"({"center": [1.0, 1.2], "zoom": 2.5, "color": "stress",
+                            "show": {"overlay": false, "gaps": false}})";
+  std::ofstream(script) << "wait\nload 1\nwait\nview " << hand.string() << "\nsave-view "
+                        << (dir / "saved.json").string() << "\nscreenshot "
+                        << (dir / "window.png").string() << "\nquit\n";
+  App app({scene("thesis.toml"), "--load", "0", "--size", "1000x600", "--state-file",
+           state.string(), "--script", script.string()});
+  const auto status = app.wait(90.0);
+  INFO("reported state:\n" << read_text(state));
+  REQUIRE(status);
+  REQUIRE(*status == 0);
+  const json saved = json::parse(read_text(dir / "saved.json"));
+  INFO(saved.dump());
+  // The window kept the hand-written entries and filled in the rest.
+  CHECK(saved["size"] == json::array({1000 - 330, 600}));
+  CHECK(saved["zoom"].get<double>() == 2.5);
+  CHECK(std::abs(saved["center"][0].get<double>() - 1.0) < 1e-3);
+  CHECK(std::abs(saved["center"][1].get<double>() - 1.2) < 1e-3);
+  CHECK(saved["color"] == "stress");
+  CHECK(saved["show"]["overlay"] == false);
+  CHECK(saved["show"]["gaps"] == false);
+  CHECK(saved["show"]["forces"] == true);
+  CHECK(saved["magnification"].get<double>() == 0.0);  // automatic, from the scales
+  CHECK(saved["scales"]["stress"].get<double>() > 0.0);
+
+  const auto [render_status, output] =
+      shell(std::string(FETIC_EXECUTABLE) + " render " + scene("thesis.toml") +
+            " --final --load-factor 1 --view " + (dir / "saved.json").string() + " --out " +
+            (dir / "render").string());
+  INFO(output);
+  REQUIRE(render_status == 0);
+  const auto window = fetic::testing::read_png((dir / "window.png").string());
+  const auto headless = fetic::testing::read_png((dir / "render" / "frame_0000.png").string());
+  REQUIRE(window.width == 670);
+  const auto comparison = fetic::testing::compare(headless, window);
+  INFO(comparison.differing << " pixels differ, largest channel difference "
+                            << comparison.largest);
+  CHECK(comparison.matches());
+  // Not trivially: the zoomed view differs from the plain one by far more.
+  const auto [plain_status, plain_output] =
+      shell(std::string(FETIC_EXECUTABLE) + " render " + scene("thesis.toml") +
+            " --final --load-factor 1 --size 670x600 --no-overlay --color stress --out " +
+            (dir / "plain").string());
+  REQUIRE(plain_status == 0);
+  const auto plain = fetic::testing::read_png((dir / "plain" / "frame_0000.png").string());
+  CHECK(fetic::testing::compare(plain, window).fraction > 0.01);
+}
+
+// Picking: the app says where a contact pair or a node is drawn ("locate" in a script),
+// xdotool moves the pointer there and clicks; the pinned item's values ("picked" in the
+// state file) must be those of `fetic solve` at the same load.
+namespace {
+
+json picked_by_click(const std::string& scene_file, const std::string& what, double load,
+                     const fs::path& dir) {
+  const fs::path state = dir / "state.jsonl", script = dir / "script.txt";
+  std::ofstream(script) << "wait\nlocate " << what << "\n";
+  App app({scene_file, "--load", std::to_string(load), "--state-file", state.string(),
+           "--script", script.string(), "--screenshot-dir", dir.string()});
+  const auto located = wait_for(state, [](const json& e) { return is(e, "located"); });
+  INFO("reported state:\n" << read_text(state));
+  REQUIRE(located);
+  REQUIRE((*located)["found"].get<bool>());
+  const std::string window = xdotool("search --sync --onlyvisible --name 'fetic - '");
+  const std::string wid = window.substr(0, window.find('\n'));
+  const int x = static_cast<int>(std::lround((*located)["x"].get<double>()));
+  const int y = static_cast<int>(std::lround((*located)["y"].get<double>()));
+  xdotool("mousemove --window " + wid + " " + std::to_string(x) + " " + std::to_string(y));
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));  // the hover frame
+  xdotool("click 1");
+  const auto picked = wait_for(state, [](const json& e) { return is(e, "picked"); }, 30.0);
+  REQUIRE(picked);
+  xdotool("key q");
+  const auto status = app.wait(30.0);
+  REQUIRE(status);
+  CHECK(*status == 0);
+  return *picked;
+}
+
+json solve_json(const std::string& scene_file, double load, const fs::path& dir) {
+  const fs::path out = dir / "result.json";
+  const auto [status, output] =
+      shell(std::string(FETIC_EXECUTABLE) + " solve " + scene_file + " --load-factor " +
+            std::to_string(load) + " --json " + out.string() + " --quiet");
+  INFO(output);
+  REQUIRE(status == 0);
+  return json::parse(read_text(out));
+}
+
+}  // namespace
+
+TEST_CASE("clicking a contact pair of the thesis scene pins its values", "[e2e]") {
+  REQUIRE(have_display());
+  const fs::path dir = fresh_directory("fetic_gui_pick_pair");
+  const double load = 1.0;
+  const json result = solve_json(scene("thesis.toml"), load, dir);
+  // An active pair: the 20th contact's only pair.
+  const std::vector<int> active = solve_active(scene("thesis.toml"), load);
+  REQUIRE(!active.empty());
+  const int k = active[active.size() / 2];
+  const json picked =
+      picked_by_click(scene("thesis.toml"), "pair:" + std::to_string(k), load, dir);
+  INFO(picked.dump());
+  REQUIRE(picked["kind"] == "pair");
+  CHECK(picked["pair_index"] == k);
+  CHECK(picked["load_factor"].get<double>() == load);
+  const json& expected = result["contacts"][static_cast<std::size_t>(k)]["pairs"][0];
+  CHECK(picked["contact"] == result["contacts"][static_cast<std::size_t>(k)]["a"].get<std::string>() +
+                                 " - " +
+                                 result["contacts"][static_cast<std::size_t>(k)]["b"].get<std::string>());
+  CHECK(picked["active"] == expected["active"]);
+  CHECK(picked["gap"].get<double>() == expected["gap"].get<double>());
+  const double force = expected["force"].get<double>();
+  CHECK(std::abs(picked["force"].get<double>() - force) <= 1e-6 * std::abs(force));
+  // Active: the gap is closed.
+  CHECK(std::abs(picked["current_gap"].get<double>()) <= 1e-6 * expected["gap"].get<double>());
+}
+
+TEST_CASE("clicking a node of a plane scene pins its values", "[e2e]") {
+  REQUIRE(have_display());
+  const fs::path dir = fresh_directory("fetic_gui_pick_node");
+  const double load = 1.0;
+  const json result = solve_json(scene("plane_pair.toml"), load, dir);
+  // Strut 0, the node at the middle of its top row.
+  const int node = 8 * 5 + 4;
+  const json picked =
+      picked_by_click(scene("plane_pair.toml"), "node:0:" + std::to_string(node), load, dir);
+  INFO(picked.dump());
+  REQUIRE(picked["kind"] == "node");
+  CHECK(picked["strut"] == result["struts"][0]["name"]);
+  CHECK(picked["node"] == node);
+  CHECK(picked["position"] == result["struts"][0]["nodes"][static_cast<std::size_t>(node)]);
+  const json& u = result["struts"][0]["displacements"][static_cast<std::size_t>(node)];
+  const double size = std::hypot(u[0].get<double>(), u[1].get<double>());
+  REQUIRE(size > 0.0);
+  for (int c = 0; c < 2; ++c)
+    CHECK(std::abs(picked["displacement"][c].get<double>() - u[c].get<double>()) <= 1e-6 * size);
+  CHECK(picked["subdomains"].size() >= 1);
+}
+
 TEST_CASE("the ParaView export writes the shown iterate as the next frame of a series",
           "[script]") {
   REQUIRE(have_display());

@@ -87,3 +87,26 @@ TEST_CASE("9.3 and 9.4 plot the histories they are given") {
   CHECK_THAT(texts, Catch::Contains("FETI-C (6 iterations)"));
   CHECK_THAT(texts, Catch::Contains("Figure 9.4"));
 }
+
+TEST_CASE("S.1 runs the three contact methods on the same generated scenes") {
+  const std::vector<ScalabilityCurve> curves = scalability_runs(2, 4);
+  REQUIRE(curves.size() == 3);
+  for (const ScalabilityCurve& curve : curves) {
+    INFO(curve.method);
+    CHECK(curve.converged);
+    REQUIRE(curve.subdomains.size() == 2);  // 2x1 and 4x2 subdomains per strut, 2 pairs
+    CHECK(curve.subdomains[0] == 8.0);
+    CHECK(curve.subdomains[1] == 32.0);
+    for (size_t k = 0; k < curve.iterations.size(); ++k)
+      if (curve.method == "active-set")
+        CHECK(curve.f_applications[k] == -1.0);  // the primal method does not apply F
+      else
+        CHECK(curve.f_applications[k] >= curve.iterations[k]);
+  }
+  const DrawList figure = figure_iterations_by_subdomains(curves, 2, 600, 400);
+  std::string texts;
+  for (const TextItem& text : figure.texts())
+    texts += text.text + "|";
+  CHECK_THAT(texts, Catch::Contains("mprgp iterations") &&
+                        Catch::Contains("feti-c applications of F") && Catch::Contains("H/h = 2"));
+}

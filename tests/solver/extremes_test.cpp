@@ -74,7 +74,7 @@ TEST_CASE("two bars at extreme magnitudes: every contact method matches the clos
     const double gap = model.pairs[0].gap;
     const double compliance = c.length / (c.E * c.area);
     const double expected = std::max(0.0, (c.push * compliance - gap) / (2 * compliance));
-    for (MethodKind kind : {MethodKind::ActiveSet, MethodKind::FetiC}) {
+    for (MethodKind kind : {MethodKind::ActiveSet, MethodKind::FetiC, MethodKind::Mprgp}) {
       for (Preconditioner p :
            {Preconditioner::Dirichlet, Preconditioner::Lumped, Preconditioner::None}) {
         if (kind == MethodKind::ActiveSet && p != Preconditioner::Dirichlet) continue;

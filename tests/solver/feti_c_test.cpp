@@ -1,6 +1,7 @@
-// FETI-C against the independent QP solver and the active-set method, and the behaviour
-// the thesis reports: few iterations on its test problem, far fewer than the active-set
-// method; floating struts; unboundedness; warm starts.
+// FETI-C (and MPRGP on the same random scenes) against the independent QP solver and the
+// active-set method, and the behaviour the thesis reports: few iterations on its test
+// problem, far fewer than the active-set method; floating struts; unboundedness; warm
+// starts.
 
 #include <catch2/catch.hpp>
 
@@ -25,8 +26,10 @@ solver::SolveOptions with(Preconditioner preconditioner, bool scaling = true) {
 
 }  // namespace
 
+// MPRGP is checked on the same scenes, so that the reference solves are made once.
 TEST_CASE(
-    "FETI-C agrees with CGAL's exact QP solver and the active-set method on 250 random scenes") {
+    "FETI-C and MPRGP agree with CGAL's exact QP solver and the active-set method on 250 random "
+    "scenes") {
   std::mt19937 rng(97);
   int checked = 0, active = 0, floating = 0;
   for (int trial = 0; trial < 250; ++trial) {
@@ -52,6 +55,15 @@ TEST_CASE(
     const auto v = solver::strut_displacements(active_set->model, active_set->state);
     CHECK(solver::relative_error(u, v) <= 1e-8);
     CHECK(feti_c->state.in_working_set == active_set->state.in_working_set);
+
+    const auto mprgp = testing::solve(scene, MethodKind::Mprgp, load_factor, with(preconditioner));
+    INFO("MPRGP: " << mprgp->state.message);
+    REQUIRE(mprgp->state.status == solver::Status::Converged);
+    CHECK(testing::displacement_error(*mprgp, reference) <= 1e-8);
+    CHECK(testing::force_error(*mprgp, reference, force_scale) <= 1e-8);
+    CHECK(solver::relative_error(solver::strut_displacements(mprgp->model, mprgp->state), v) <=
+          1e-8);
+    CHECK(mprgp->state.in_working_set == active_set->state.in_working_set);
     active += feti_c->state.active_set_size();
     for (size_t s = 0; s < feti_c->model.struts.size(); ++s)
       floating += feti_c->model.floating(s);

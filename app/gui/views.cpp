@@ -1,0 +1,127 @@
+// Saved views in the window (docs/WINDOW.md, "Views"): the picture's size, the world
+// point at the centre of the scene region and the zoom, the magnification as shown, the
+// colouring, toggles and the scales the picture is drawn with, written as the JSON of
+// app/view_file.hpp and read back. `fetic render --view` draws the same picture headless.
+
+#include <iostream>
+#include <string>
+
+#include <imgui.h>
+
+#include "app/gui/app.hpp"
+#include "app/output_file.hpp"
+#include "render/scene_framing.hpp"
+
+namespace fetic::app::gui {
+
+SavedView App::current_view() const {
+  SavedView saved;
+  saved.width = view_width_;
+  saved.height = view_height_;
+  if (placed_.pixels_per_unit > 0.0) {
+    // The world point drawn at the centre of the scene region.
+    const render::Point middle{0.5f * (placed_.region.x0 + placed_.region.x1),
+                               0.5f * (placed_.region.y0 + placed_.region.y1)};
+    saved.center_x =
+        placed_.world_center.x() +
+        (static_cast<double>(middle.x) - placed_.pixel_center.x) / placed_.pixels_per_unit;
+    saved.center_y =
+        placed_.world_center.y() -
+        (static_cast<double>(middle.y) - placed_.pixel_center.y) / placed_.pixels_per_unit;
+  }
+  saved.zoom = zoom_;
+  // 0: automatic, chosen again from the scales (as the window does, with its caption note).
+  saved.magnification = magnification_;
+  const render::View v = view(view_width_, view_height_);
+  saved.color_by = v.color_by;
+  saved.forces = forces_;
+  saved.gaps = gaps_;
+  saved.overlay = show_overlay_;
+  saved.labels = labels_;
+  if (shown_ && shown_->extent) saved.scales = drawn_extent_;
+  return saved;
+}
+
+void App::view_buttons() {
+  if (ImGui::Button("Save view (V)")) push({RequestKind::SaveView, 0.0, {}});
+  ImGui::SameLine();
+  ImGui::BeginDisabled(view_path_.empty());
+  if (ImGui::Button("Load view")) push({RequestKind::LoadView, 0.0, view_path_});
+  ImGui::EndDisabled();
+  if (!view_path_.empty() && ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
+    ImGui::SetTooltip("%s", view_path_.c_str());
+}
+
+void App::save_view(const std::string& path) {
+  const std::string file = path.empty() ? next_view_name() : in_screenshot_dir(path);
+  try {
+    write_view_file(file, current_view());
+    view_path_ = file;
+    log_.write({{"event", "view saved"}, {"path", file}});
+    say("view saved as " + file);
+  } catch (const OutputError& error) {
+    say(error.what(), true);
+    log_.output_lost(error.what());
+  }
+}
+
+void App::load_view(const std::string& path) {
+  try {
+    use_view(read_view_file(path));
+    view_path_ = path;
+    log_.write({{"event", "view loaded"}, {"path", path}});
+    say("view " + path);
+  } catch (const ViewFileError& error) {
+    say(error.what(), true);
+    log_.write({{"event", "error"}, {"message", error.what()}});
+  }
+}
+
+void App::use_view(const SavedView& saved) {
+  if (saved.magnification) magnification_ = *saved.magnification;
+  if (saved.color_by) {
+    stress_ = *saved.color_by == render::ColorBy::Stress;
+    if (!stress_) subdomains_ = *saved.color_by == render::ColorBy::Subdomain;
+  }
+  if (saved.forces) forces_ = *saved.forces;
+  if (saved.gaps) gaps_ = *saved.gaps;
+  if (saved.overlay) show_overlay_ = *saved.overlay;
+  if (saved.labels) labels_ = *saved.labels;
+  if (saved.zoom) zoom_ = static_cast<float>(*saved.zoom);
+  if (saved.center_x && saved.center_y) {
+    // Placed when the picture is next framed (the fit depends on the frame's size).
+    center_pending_ = true;
+    pending_center_ = {*saved.center_x, *saved.center_y};
+  }
+  scales_ = saved.scales;
+  framing_key_ = {};  // fitted again, with the view's scales
+  redraw_ = true;
+}
+
+void App::place_pending_center() {
+  if (!center_pending_) return;
+  center_pending_ = false;
+  render::View v;
+  v.zoom = zoom_;
+  v.centered = true;
+  v.center_x = pending_center_.x();
+  v.center_y = pending_center_.y();
+  const render::Point center = render::placed(framing_, v).pixel_center;
+  pan_ = {center.x - base_center_.x, center.y - base_center_.y};
+}
+
+std::string App::next_view_name() {
+  for (;;) {
+    char name[64];
+    std::snprintf(name, sizeof name, "fetic_view_%04d.json", ++views_saved_);
+    const std::string path = (std::filesystem::path(args_.screenshot_dir) / name).string();
+    if (!std::filesystem::exists(path)) return path;
+  }
+}
+
+std::string App::in_screenshot_dir(const std::string& path) const {
+  const std::filesystem::path p(path);
+  return p.is_absolute() ? path : (std::filesystem::path(args_.screenshot_dir) / p).string();
+}
+
+}  // namespace fetic::app::gui

@@ -1,0 +1,87 @@
+#include "app/solve_monitor.hpp"
+
+#include <cmath>
+
+#include <nlohmann/json.hpp>
+
+namespace fetic::app {
+
+SolveMonitor::SolveMonitor(const solver::Model& model, int full_every, bool writes)
+    : model_(model), full_every_(full_every), writes_(writes) {}
+
+void SolveMonitor::open(const std::string& path) {
+  if (writes_) out_.open(path);
+  start_ = std::chrono::steady_clock::now();
+}
+
+void SolveMonitor::begin_load(double load_factor) {
+  load_factor_ = load_factor;
+  written_ = 0;
+}
+
+void SolveMonitor::observe(const solver::Method& method) {
+  const std::vector<solver::HistoryEntry>& history = method.history();
+  if (written_ >= history.size()) return;
+  const bool full = full_every_ > 0 && method.iteration() % full_every_ == 0;
+  // The whole state (collective under MPI: every process gathers, rank 0 writes). The
+  // working set is the same on every process.
+  solver::Snapshot state;
+  if (full) state = method.gathered_snapshot();
+  std::vector<char> working_set;
+  if (full)
+    working_set = state.in_working_set;
+  else if (!model_.pairs.empty())
+    working_set = method.working_set();
+  if (!writes_) {
+    written_ = history.size();
+    return;
+  }
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  working_set.resize(model_.pairs.size(), 0);
+  if (working_set_.size() != working_set.size()) working_set_.assign(working_set.size(), 0);
+
+  std::string lines;
+  for (; written_ < history.size(); ++written_) {
+    const solver::HistoryEntry& entry = history[written_];
+    nlohmann::ordered_json line;
+    line["load_factor"] = load_factor_;
+    line["iteration"] = entry.iteration;
+    line["residual"] = entry.residual;
+    line["active_set"] = entry.active_set;
+    if (!std::isnan(entry.error)) line["error"] = entry.error;
+    // Only the newest entry has the state at hand; the working set changes are its.
+    const bool newest = written_ + 1 == history.size();
+    nlohmann::ordered_json entered = nlohmann::ordered_json::array(),
+                           left = nlohmann::ordered_json::array();
+    if (newest)
+      for (size_t k = 0; k < working_set.size(); ++k) {
+        if (working_set[k] && !working_set_[k]) entered.push_back(k);
+        if (!working_set[k] && working_set_[k]) left.push_back(k);
+      }
+    line["entered"] = entered;
+    line["left"] = left;
+    line["time"] = seconds;
+    if (newest && full) {
+      const auto displacements = solver::strut_displacements(model_, state);
+      nlohmann::ordered_json struts = nlohmann::ordered_json::array();
+      for (const auto& strut : displacements) {
+        nlohmann::ordered_json nodes = nlohmann::ordered_json::array();
+        for (const solver::Vec2& u : strut)
+          nodes.push_back({u.x(), u.y()});
+        struts.push_back(nodes);
+      }
+      line["displacements"] = struts;
+      line["multipliers"] = state.force;
+    }
+    lines += line.dump() + '\n';
+  }
+  working_set_ = working_set;
+  out_.write(lines);
+}
+
+std::string SolveMonitor::close() {
+  return writes_ ? out_.close() : std::string();
+}
+
+}  // namespace fetic::app

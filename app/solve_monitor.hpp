@@ -1,0 +1,45 @@
+#pragma once
+// The monitor stream of `fetic solve --monitor FILE` (docs/COMMANDS.md, "Monitor stream"):
+// one JSON object per line and per iteration, written as the iteration ends (each line is
+// one write, so a reader following a FIFO, a pipe or a growing file sees whole lines at
+// once) - load factor, iteration, residual, working-set size, the contact pairs that
+// entered and left the working set since the previous line, seconds since the solve
+// began, and with --monitor-full N the state (displacements, contact multipliers) every
+// N-th iteration. The entries equal the result file's `history` entry for entry.
+
+#include <chrono>
+#include <string>
+#include <vector>
+
+#include "app/output_file.hpp"
+#include "solver/method.hpp"
+
+namespace fetic::app {
+
+class SolveMonitor {
+ public:
+  // `full_every` > 0 adds the state every that many iterations. `writes`: false on the
+  // processes of a distributed solve that are not rank 0 (they still take part in the
+  // collective gathers of the state, which every process must call alike).
+  SolveMonitor(const solver::Model& model, int full_every, bool writes);
+  // Opens the target (throws OutputError, see output_file.hpp).
+  void open(const std::string& path);
+  // Before each load factor of a sweep.
+  void begin_load(double load_factor);
+  // After the start (history entry 0) and after each iteration: writes the new entries.
+  void observe(const solver::Method& method);
+  // Closes the target; returns the first write failure ("" when every line arrived).
+  std::string close();
+
+ private:
+  const solver::Model& model_;
+  int full_every_;
+  bool writes_;
+  OutputStream out_;
+  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
+  double load_factor_ = 0.0;
+  size_t written_ = 0;             // history entries of this load factor written
+  std::vector<char> working_set_;  // per contact pair, as of the last line
+};
+
+}  // namespace fetic::app

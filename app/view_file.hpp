@@ -1,0 +1,47 @@
+#pragma once
+// A saved view (docs/WINDOW.md, "Views"): what the window shows and how - the picture
+// size, the world point at the centre of the scene region and the zoom, magnification,
+// colouring, the toggles and the scales of the run (displacement, force and stress ends,
+// the plots' axes) - as a small JSON file. The window saves and loads it; `fetic render
+// --view` and `fetic gui --view` start from it, so a picture framed by hand is rendered
+// again headless. Every entry is optional: what a file leaves out stays as the command
+// would have it.
+
+#include <optional>
+#include <stdexcept>
+#include <string>
+
+#include "render/frame_sequence.hpp"
+#include "render/view.hpp"
+
+namespace fetic::app {
+
+struct SavedView {
+  std::optional<int> width, height;          // the picture (the window: without its panel)
+  std::optional<double> center_x, center_y;  // world point at the centre of the scene region
+  std::optional<double> zoom;                // 1: the scene fits the region
+  std::optional<double> magnification;       // 0: automatic
+  std::optional<render::ColorBy> color_by;
+  std::optional<bool> forces, gaps, overlay, labels;
+  // The run's scales the picture was drawn with (colour map and glyph ends, axes).
+  std::optional<render::RunExtent> scales;
+};
+
+// A view file that cannot be read or has a bad entry: the message names the file (and the
+// line for a JSON syntax error) and the problem.
+class ViewFileError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+SavedView read_view_file(const std::string& path);
+std::string view_json(const SavedView& view);  // the file's text
+// Writes atomically through the output targets (throws OutputError).
+void write_view_file(const std::string& path, const SavedView& view);
+
+// Applies the entries a view has to a render::View (size, magnification, colouring,
+// toggles, zoom and centre) and to the scales of a run.
+void apply_view(const SavedView& saved, render::View& view);
+void apply_scales(const std::optional<render::RunExtent>& scales, render::RunExtent& extent);
+
+}  // namespace fetic::app
