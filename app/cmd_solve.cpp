@@ -290,24 +290,24 @@ int run_solve(const SolveArgs& args) {
   // output rank 0 cannot write must not leave the sweep early there (the others would
   // wait in the next exchange): it is kept and agreed at the next keep_going.
   std::vector<solver::Snapshot> whole_states;
+  const auto on_root_keeping_failure = [&](const auto& write) {
+    if (!processes.root() || output_error) return;
+    try {
+      write();
+    } catch (const OutputError& error) {
+      output_error = error;
+    }
+  };
   if (processes.distributed()) {
     hooks.on_step = [&, on_step = hooks.on_step](const solver::SweepStep& step) {
       whole_states.push_back(method->gathered_snapshot());
-      if (!processes.root() || output_error) return;
-      try {
+      on_root_keeping_failure([&] {
         on_step({step.load_factor, whole_states.back(), step.history});
-      } catch (const OutputError& error) {
-        output_error = error;
-      }
+      });
     };
     hooks.on_iteration = [&, on_iteration = hooks.on_iteration](double t,
                                                                 const solver::Method& running) {
-      if (!processes.root() || output_error) return;
-      try {
-        on_iteration(t, running);
-      } catch (const OutputError& error) {
-        output_error = error;
-      }
+      on_root_keeping_failure([&] { on_iteration(t, running); });
     };
   }
   // The monitor hook runs on every process, outside the rank-0 wrapping above: a full

@@ -20,9 +20,9 @@ namespace fetic::solver {
 // readings for a phase). For the benchmark of the distributed solve.
 struct ProcessProfile {
   int subdomains = 0;
-  long long unknowns = 0;     // DOFs of the own subdomains
-  int rows = 0;               // local rows of B
-  int shared_rows = 0;        // of which also held by another process
+  long long unknowns = 0;  // DOFs of the own subdomains
+  int rows = 0;            // local rows of B
+  int shared_rows = 0;     // of which also held by another process
   long long f_applications = 0;
   double local_seconds = 0.0;      // local solves (F, d, residual, preconditioner)
   double coarse_seconds = 0.0;     // coarse factorizations and solves
@@ -33,8 +33,8 @@ struct ProcessProfile {
   int coarse_size = 0;
   long long coarse_nonzeros = 0;
   int coarse_factorizations = 0;
-  std::size_t coarse_memory = 0;   // CHOLMOD's peak for the replicated coarse factor
-  std::size_t factor_memory = 0;   // own subdomain and preconditioner factors
+  std::size_t coarse_memory = 0;  // CHOLMOD's peak for the replicated coarse factor
+  std::size_t factor_memory = 0;  // own subdomain and preconditioner factors
 };
 
 class FetiMethod : public Method {

@@ -8,8 +8,7 @@
 namespace fetic::solver {
 
 std::unique_ptr<Method> make_method(MethodKind kind, const Model& model,
-                                    const SolveOptions& options,
-                                    const Communicator& communicator) {
+                                    const SolveOptions& options, const Communicator& communicator) {
   if (communicator.distributed() && !distributable(kind))
     throw SolverError(std::string("--method ") + to_string(kind) +
                       " runs in one process; under mpirun use feti or feti-c");

@@ -12,27 +12,14 @@
 
 #include <nlohmann/json.hpp>
 
+#include "tests/support/shell_run.hpp"
+
 namespace {
 
-struct Run {
-  int status = -1;
-  std::string output;
-};
+using Run = fetic::test::ShellRun;
 
 Run run(const std::string& arguments) {
-  // One log per process: ctest runs the test cases in parallel.
-  const std::string log = (std::filesystem::temp_directory_path() /
-                           ("fetic_test_output_" + std::to_string(::getpid()) + ".txt"))
-                              .string();
-  const std::string command =
-      std::string(FETIC_EXECUTABLE) + " " + arguments + " > " + log + " 2>&1";
-  const int raw = std::system(command.c_str());
-  Run result;
-  result.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-  std::ifstream in(log);
-  result.output.assign(std::istreambuf_iterator<char>(in), {});
-  std::filesystem::remove(log);
-  return result;
+  return fetic::test::run_shell(std::string(FETIC_EXECUTABLE) + " " + arguments);
 }
 
 std::string scene(const std::string& name) {
@@ -40,8 +27,7 @@ std::string scene(const std::string& name) {
 }
 
 std::string temporary(const std::string& name) {
-  return (std::filesystem::temp_directory_path() / (std::to_string(::getpid()) + "_" + name))
-      .string();
+  return fetic::test::temporary_path(name);
 }
 
 }  // namespace

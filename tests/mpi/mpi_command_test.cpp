@@ -23,34 +23,26 @@
 
 #include <nlohmann/json.hpp>
 
+#include "tests/support/shell_run.hpp"
+
 namespace {
 
 namespace fs = std::filesystem;
 
-struct Run {
-  int status = -1;
-  std::string output;
-};
+using Run = fetic::test::ShellRun;
 
 const std::string kMpirun = std::string(FETIC_MPIEXEC) + " --allow-run-as-root --oversubscribe";
 
 std::string temporary(const std::string& name) {
-  return (fs::temp_directory_path() / ("fetic_mpi_" + std::to_string(::getpid()) + "_" + name))
-      .string();
+  return fetic::test::temporary_path("fetic_mpi_" + name);
 }
 
+// A hung job fails the test instead of the whole ctest run.
 Run run(const std::string& command) {
-  const std::string log = temporary("log.txt");
-  const int raw = std::system(("timeout 120 " + command + " > " + log + " 2>&1").c_str());
-  Run result;
-  result.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-  std::ifstream in(log);
-  result.output.assign(std::istreambuf_iterator<char>(in), {});
-  fs::remove(log);
-  return result;
+  return fetic::test::run_shell("timeout 120 " + command);
 }
 
-Run fetic(const std::string& arguments, int processes = 0) {
+Run run_fetic(const std::string& arguments, int processes = 0) {
   const std::string launcher =
       processes > 0 ? kMpirun + " -np " + std::to_string(processes) + " " : std::string();
   return run(launcher + FETIC_EXECUTABLE + " " + arguments);
@@ -122,9 +114,9 @@ std::string write_singular_scene() {
 
 TEST_CASE("mpirun -np 3 fetic solve writes the serial result, with ranks and subdomains per rank") {
   const std::string serial_json = temporary("serial.json"), mpi_json = temporary("mpi.json");
-  const Run serial = fetic("solve " + scene("thesis.toml") + " --json " + serial_json);
+  const Run serial = run_fetic("solve " + scene("thesis.toml") + " --json " + serial_json);
   REQUIRE(serial.status == 0);
-  const Run distributed = fetic("solve " + scene("thesis.toml") + " --json " + mpi_json, 3);
+  const Run distributed = run_fetic("solve " + scene("thesis.toml") + " --json " + mpi_json, 3);
   INFO(distributed.output);
   REQUIRE(distributed.status == 0);
   CHECK(occurrences(distributed.output, "converged    yes") == 1);  // rank 0 alone reports
@@ -147,8 +139,8 @@ TEST_CASE("mpirun -np 2 fetic solve: a plane scene and a load sweep as in one pr
   for (const std::string& arguments : {scene("plane_pair.toml") + " --preconditioner lumped",
                                        scene("chain.toml") + " --load-steps 0:2:5"}) {
     const std::string serial_json = temporary("serial.json"), mpi_json = temporary("mpi.json");
-    REQUIRE(fetic("solve " + arguments + " --json " + serial_json).status == 0);
-    const Run distributed = fetic("solve " + arguments + " --json " + mpi_json, 2);
+    REQUIRE(run_fetic("solve " + arguments + " --json " + serial_json).status == 0);
+    const Run distributed = run_fetic("solve " + arguments + " --json " + mpi_json, 2);
     INFO(arguments << "\n" << distributed.output);
     REQUIRE(distributed.status == 0);
     require_same_result(read_json(serial_json), read_json(mpi_json));
@@ -159,17 +151,17 @@ TEST_CASE("mpirun -np 2 fetic solve: a plane scene and a load sweep as in one pr
 
 TEST_CASE("under mpirun every failure gives one message and the same status on every process") {
   SECTION("an invalid scene: 2") {
-    const Run r = fetic("solve " + std::string(FETIC_BUNDLED_SCENES_DIR) +
-                            "/../tests/scenes/invalid/strut_negative_E.toml",
-                        3);
+    const Run r = run_fetic("solve " + std::string(FETIC_BUNDLED_SCENES_DIR) +
+                                "/../tests/scenes/invalid/strut_negative_E.toml",
+                            3);
     INFO(r.output);
     CHECK(r.status == 2);
     CHECK(occurrences(r.output, "'E' must be greater than 0") == 1);
   }
   SECTION("a singular subdomain on rank 1: 3") {
     const std::string path = write_singular_scene();
-    const Run serial = fetic("solve " + path);
-    const Run r = fetic("solve " + path, 2);
+    const Run serial = run_fetic("solve " + path);
+    const Run r = run_fetic("solve " + path, 2);
     INFO(serial.output << "\n---\n" << r.output);
     CHECK(serial.status == 3);
     CHECK(r.status == 3);
@@ -179,7 +171,7 @@ TEST_CASE("under mpirun every failure gives one message and the same status on e
   SECTION("no convergence: 4, and the result file says so") {
     const std::string json = temporary("capped.json");
     const Run r =
-        fetic("solve " + scene("plane_pair.toml") + " --max-iterations 3 --json " + json, 3);
+        run_fetic("solve " + scene("plane_pair.toml") + " --max-iterations 3 --json " + json, 3);
     INFO(r.output);
     CHECK(r.status == 4);
     CHECK(occurrences(r.output, "did not converge") == 1);
@@ -187,23 +179,23 @@ TEST_CASE("under mpirun every failure gives one message and the same status on e
     fs::remove(json);
   }
   SECTION("a method that does not run distributed: 1") {
-    const Run r = fetic("solve " + scene("thesis.toml") + " --method active-set", 2);
+    const Run r = run_fetic("solve " + scene("thesis.toml") + " --method active-set", 2);
     CHECK(r.status == 1);
     CHECK(occurrences(r.output, "runs in one process") == 1);
     // MPRGP is a dual method but not distributed yet (issue 13).
-    const Run m = fetic("solve " + scene("thesis.toml") + " --method mprgp", 2);
+    const Run m = run_fetic("solve " + scene("thesis.toml") + " --method mprgp", 2);
     CHECK(m.status == 1);
     CHECK(occurrences(m.output, "runs in one process") == 1);
   }
   SECTION("a frame scene (its free motions are not distributed): 1, and serially it solves") {
-    const Run r = fetic("solve " + scene("frame_portal_sway.toml") + " --method feti-c", 2);
+    const Run r = run_fetic("solve " + scene("frame_portal_sway.toml") + " --method feti-c", 2);
     INFO(r.output);
     CHECK(r.status == 1);
     CHECK(occurrences(r.output, "a frame scene runs in one process") == 1);
-    CHECK(fetic("solve " + scene("frame_portal_sway.toml") + " --method feti-c").status == 0);
+    CHECK(run_fetic("solve " + scene("frame_portal_sway.toml") + " --method feti-c").status == 0);
   }
   SECTION("a command that does not run distributed: 1") {
-    const Run r = fetic("render " + scene("thesis.toml") + " --out " + temporary("frames"), 2);
+    const Run r = run_fetic("render " + scene("thesis.toml") + " --out " + temporary("frames"), 2);
     CHECK(r.status == 1);
     CHECK(occurrences(r.output, "runs in one process") == 1);
     CHECK_FALSE(fs::exists(temporary("frames")));
@@ -366,8 +358,8 @@ TEST_CASE("mpirun -np 2 fetic solve --monitor writes the serial stream, the full
   const std::string serial = temporary("serial.jsonl"), distributed = temporary("mpi.jsonl");
   const std::string arguments = "solve " + scene("plane_pair.toml") +
                                 " --method feti-c --load-steps 0.5:1:2 --monitor-full 2 --monitor ";
-  REQUIRE(fetic(arguments + serial).status == 0);
-  const Run r = fetic(arguments + distributed, 2);
+  REQUIRE(run_fetic(arguments + serial).status == 0);
+  const Run r = run_fetic(arguments + distributed, 2);
   INFO(r.output);
   REQUIRE(r.status == 0);
   const auto a = monitor_lines(serial), b = monitor_lines(distributed);
@@ -406,7 +398,7 @@ TEST_CASE("mpirun -np 2 fetic solve --monitor writes the serial stream, the full
 TEST_CASE("under mpirun a monitor target rank 0 cannot open ends every process with status 5") {
   const std::string folder = temporary("monitor_dir");
   fs::create_directories(folder);
-  const Run r = fetic("solve " + scene("chain.toml") + " --monitor " + folder, 2);
+  const Run r = run_fetic("solve " + scene("chain.toml") + " --monitor " + folder, 2);
   INFO(r.output);
   CHECK(r.status == 5);
   CHECK(occurrences(r.output, folder) >= 1);
