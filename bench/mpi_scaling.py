@@ -5,7 +5,8 @@ process, and the solve under a competing load. Every figure is read from
 reductions, gathers and the coarse problem; messages, bytes; coarse size; peak memory)
 and reported as ratios against a reference measured in the same run.
 
-    bench/mpi_scaling.py [--build build] [--preset quick|full] [--out DIR]
+    bench/mpi_scaling.py [--build build] [--preset quick|full] [--method feti-c|feti|mprgp]
+                         [--out DIR] [--only startup strong weak memory load]
 
 quick: ~100,000 unknowns for the strong scaling, weak scaling to 4 processes (a few
 minutes). full: the ~1,000,000-unknown scene of fetic-bench-scale (25 pairs of
@@ -23,6 +24,7 @@ import tempfile
 import time
 
 MPIRUN = ["mpirun", "--allow-run-as-root", "--oversubscribe"]
+METHOD = "feti-c"  # --method
 
 
 def run(command, env=None, check=True):
@@ -44,8 +46,8 @@ def generate(fetic, path, pairs, elements, subdomains, seed=1):
 
 def solve_profile(fetic, scene, ranks, out_dir, extra=(), env=None):
     """One solve on `ranks` processes (1: without mpirun); returns its profile."""
-    profile = os.path.join(out_dir, f"profile_{os.path.basename(scene)}_{ranks}.json")
-    command = [fetic, "solve", scene, "--method", "feti-c", "--quiet", "--profile", profile,
+    profile = os.path.join(out_dir, f"profile_{METHOD}_{os.path.basename(scene)}_{ranks}.json")
+    command = [fetic, "solve", scene, "--method", METHOD, "--quiet", "--profile", profile,
                *extra]
     if ranks > 1:
         command = MPIRUN + ["-np", str(ranks)] + command
@@ -166,17 +168,20 @@ def main():
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--build", default="build")
     parser.add_argument("--preset", choices=["quick", "full"], default="quick")
+    parser.add_argument("--method", choices=["feti-c", "feti", "mprgp"], default="feti-c")
     parser.add_argument("--out", default=None, help="keep scenes and profiles here")
     parser.add_argument("--only", nargs="*", default=None,
                         help="startup strong weak memory load (default: all)")
     args = parser.parse_args()
+    global METHOD
+    METHOD = args.method
     fetic = os.path.abspath(os.path.join(args.build, "fetic"))
     scenes_dir = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "scenes")
     out_dir = args.out or tempfile.mkdtemp(prefix="fetic_mpi_bench_")
     os.makedirs(out_dir, exist_ok=True)
     full = args.preset == "full"
     wanted = set(args.only or ["startup", "strong", "weak", "memory", "load"])
-    print(f"machine: {os.cpu_count()} cores, {os.uname().machine}; "
+    print(f"method: {METHOD}; machine: {os.cpu_count()} cores, {os.uname().machine}; "
           f"load average before: {os.getloadavg()[0]:.2f}\n")
     big = (generate(fetic, os.path.join(out_dir, "big.toml"), 25, "200,48", "10,2") if full
            else generate(fetic, os.path.join(out_dir, "medium.toml"), 10, "100,24", "5,1"))

@@ -16,7 +16,12 @@
 // one coarse solve and two dense products. For bar groups the equality rows leave free
 // to translate, CoarseProblem regularizes X along their translation z; the result then
 // keeps a part of those directions, which is what SMALBE needs to balance the groups.
+//
+// Distributed: every process holds the columns g_k of all contact rows (a few numbers
+// each) and forms the same S in global row order, so S, the correction and every
+// projection are the same bits for any number of processes.
 
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -32,7 +37,8 @@ class FaceProjector {
   // `equality` must hold the coarse problem of exactly the equality rows.
   FaceProjector(const FetiSystem& system, const CoarseProblem& equality);
 
-  // The face: per row, nonzero for the equality rows and the free contact rows.
+  // The face: per local row, nonzero for the equality rows and the free contact rows.
+  // Collective (one reduction; one gather when the face changed on any process).
   void set_face(const std::vector<char>& face);
   // v <- P_F v; v must vanish outside the face (so must the result).
   void project(Eigen::VectorXd& v) const;
@@ -40,11 +46,19 @@ class FaceProjector {
   int correction_size() const { return static_cast<int>(XU_.cols()); }
 
  private:
+  struct Column {
+    int row = 0;                                  // global contact row
+    std::vector<std::pair<int, double>> entries;  // (mode, value)
+  };
+
   const FetiSystem& system_;
   const CoarseProblem& equality_;
+  std::vector<Column> columns_;     // of every contact row, in global row order
+  std::vector<int> column_of_row_;  // per global row: its column, or -1
   std::vector<int> contact_modes_;  // C
   std::vector<int> position_;       // per mode: its index in C, or -1
   Eigen::MatrixXd XU_, UXU_;
+  bool has_face_ = false;
   std::vector<char> face_;
   Eigen::MatrixXd S_;
   Eigen::FullPivLU<Eigen::MatrixXd> correction_;  // I + S U'X U

@@ -153,7 +153,9 @@ Snapshot FetiMethod::gathered_snapshot() const {
   Snapshot s = snapshot();
   const Communicator& comm = system_.communicator();
   if (!comm.distributed()) return s;
-  // Pieces as numbers: subdomain, then per node (ux, uy); forces of owned pair rows.
+  // Pieces as numbers: subdomain, then per node (ux, uy); per owned pair row the pair,
+  // its force and its working-set flag (FETI-C knows every pair's flag, MPRGP only its
+  // own rows').
   const Decomposition& d = system_.decomposition();
   const DualSpace& space = system_.space();
   std::vector<double> pieces, forces;
@@ -171,6 +173,7 @@ Snapshot FetiMethod::gathered_snapshot() const {
     if (local >= 0 && space.owned(local)) {
       forces.push_back(static_cast<double>(k));
       forces.push_back(s.force[k]);
+      forces.push_back(s.in_working_set[k]);
     }
   }
   const std::vector<double> all_pieces = comm.gather_to_root(pieces);
@@ -191,8 +194,11 @@ Snapshot FetiMethod::gathered_snapshot() const {
     }
   }
   s.pieces = std::move(ordered);
-  for (size_t at = 0; at + 1 < all_forces.size(); at += 2)
-    s.force[static_cast<size_t>(all_forces[at])] = all_forces[at + 1];
+  for (size_t at = 0; at + 2 < all_forces.size(); at += 3) {
+    const auto k = static_cast<size_t>(all_forces[at]);
+    s.force[k] = all_forces[at + 1];
+    s.in_working_set[k] = all_forces[at + 2] != 0.0 ? 1 : 0;
+  }
   return s;
 }
 
@@ -200,7 +206,8 @@ double FetiMethod::reference_error() const {
   // Rank 0 compares the whole state; every process records the same number.
   const Snapshot whole = gathered_snapshot();
   double error = 0.0;
-  if (system_.communicator().root()) error = relative_error(strut_displacements(model_, whole), reference());
+  if (system_.communicator().root())
+    error = relative_error(strut_displacements(model_, whole), reference());
   system_.communicator().broadcast(error);
   return error;
 }

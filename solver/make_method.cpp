@@ -11,7 +11,7 @@ std::unique_ptr<Method> make_method(MethodKind kind, const Model& model,
                                     const SolveOptions& options, const Communicator& communicator) {
   if (communicator.distributed() && !distributable(kind))
     throw SolverError(std::string("--method ") + to_string(kind) +
-                      " runs in one process; under mpirun use feti or feti-c");
+                      " runs in one process; under mpirun use feti, feti-c or mprgp");
   switch (kind) {
     case MethodKind::SteepestDescent:
       return std::make_unique<SteepestDescent>(model, options);

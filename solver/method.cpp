@@ -62,7 +62,7 @@ std::optional<Preconditioner> parse_preconditioner(const std::string& name) {
 }
 
 bool distributable(MethodKind method) {
-  return method == MethodKind::Feti || method == MethodKind::FetiC;
+  return method == MethodKind::Feti || method == MethodKind::FetiC || method == MethodKind::Mprgp;
 }
 
 bool handles_contact(MethodKind method) {

@@ -146,7 +146,7 @@ class Method {
   long long f_applications_at_start_ = 0;
 };
 
-// `communicator`: the processes a dual method (feti, feti-c) is distributed over; the
+// `communicator`: the processes a dual method (feti, feti-c, mprgp) is distributed over; the
 // primal methods run in one process.
 std::unique_ptr<Method> make_method(MethodKind kind, const Model& model,
                                     const SolveOptions& options,

@@ -23,7 +23,7 @@ constexpr int kMprgpStagnationWindow = 200;
 Mprgp::Mprgp(const Model& model, const SolveOptions& options, const Communicator& communicator,
              MprgpParameters parameters)
     : FetiMethod(model, options, 0, communicator), parameters_(parameters) {
-  if (options.max_iterations <= 0) max_iterations_ = 10 * system_.rows() + 1000;
+  if (options.max_iterations <= 0) max_iterations_ = 10 * space().global_rows() + 1000;
   std::vector<char> equality_rows(space().rows(), 0);
   for (int k = 0; k < space().rows(); ++k)
     equality_rows[k] = !space().is_contact(k);
@@ -68,15 +68,17 @@ Eigen::VectorXd Mprgp::group_part(const Eigen::VectorXd& x) const {
 
 // ||H|| by the power method on the feasible subspace (PERMON: relative change 1e-4, at
 // most 50 steps), from a fixed pseudo-random start so that no symmetry of the scene
-// hides the largest eigenvalue. The estimate approaches ||H|| from below.
+// hides the largest eigenvalue. A row's start is drawn from its global index (splitmix64),
+// so that every process count starts alike. The estimate approaches ||H|| from below.
 void Mprgp::estimate_operator_norm() {
   const int rows = space().rows();
   Eigen::VectorXd v(rows), w, ftv, qv;
-  std::uint64_t state = 0x9E3779B97F4A7C15ull;
   for (int k = 0; k < rows; ++k) {
-    state ^= state << 13;
-    state ^= state >> 7;
-    state ^= state << 17;
+    std::uint64_t state =
+        0x9E3779B97F4A7C15ull * (static_cast<std::uint64_t>(space().global_row(k)) + 1);
+    state = (state ^ (state >> 30)) * 0xBF58476D1CE4E5B9ull;
+    state = (state ^ (state >> 27)) * 0x94D049BB133111EBull;
+    state ^= state >> 31;
     v(k) = static_cast<double>(state % 2001) / 1000.0 - 1.0;
   }
   system_.project_onto_range_of_B(v);
@@ -224,7 +226,7 @@ void Mprgp::begin(const Snapshot* warm) {
   // Start: lambda0 with negative contact multipliers clipped; warm, the previous
   // multipliers with the equality rows' part projected onto ker G_E.
   x_.setZero(rows);
-  if (warm && warm->dual.size() == rows) {
+  if (!space().any(!(warm && warm->dual.size() == rows))) {
     x_ = warm->dual - lambda0_;
     coarse_.project(x_);
   }
@@ -342,8 +344,8 @@ double Mprgp::lagrangian() const {
 int Mprgp::free_contact_rows() const {
   int count = 0;
   for (int k = 0; k < space().rows(); ++k)
-    count += space().is_contact(k) && free_[k];
-  return static_cast<int>(space().sum(count));
+    count += space().is_contact(k) && space().owned(k) && free_[k];
+  return static_cast<int>(space().sum(static_cast<long long>(count)));
 }
 
 void Mprgp::finish_iteration() {
@@ -440,17 +442,35 @@ Snapshot Mprgp::snapshot() const {
   const int pairs = static_cast<int>(model_.pairs.size());
   s.force.assign(pairs, 0.0);
   s.in_working_set.assign(pairs, 0);
-  if (x_.size() != system_.rows() || lambda0_.size() != x_.size()) return s;
+  // (Alike on every process: the same set-up and iterations.)
+  if (history().empty()) return s;
   const Eigen::VectorXd lambda = lambda0_ + to_multipliers(x_);
   s.pieces = system_.pieces(lambda, solution_amplitudes(), load_factor_);
   s.dual = lambda;
+  // Forces of the pairs whose rows this process holds (gathered_snapshot() collects the
+  // others); the working set of all pairs, as FETI-C's, so that every process takes the
+  // same warm-start decisions (predict_warm_start).
   for (int k = 0; k < pairs; ++k) {
-    const int row = d.pair_row[k];
-    if (row < 0) continue;
-    s.force[k] = std::max(0.0, lambda(row));
-    s.in_working_set[k] = x_(row) > lower_(row) ? 1 : 0;
+    const int row = d.pair_row[k] < 0 ? -1 : space().local_row(d.pair_row[k]);
+    if (row >= 0) s.force[k] = std::max(0.0, lambda(row));
   }
+  s.in_working_set = working_set();
   return s;
+}
+
+std::vector<char> Mprgp::working_set() const {
+  const Decomposition& d = system_.decomposition();
+  std::vector<char> set(model_.pairs.size(), 0);
+  if (history().empty()) return set;
+  std::vector<int> mine;
+  for (std::size_t k = 0; k < set.size(); ++k) {
+    const int row = d.pair_row[k] < 0 ? -1 : space().local_row(d.pair_row[k]);
+    if (row >= 0 && space().owned(row) && x_(row) > lower_(row))
+      mine.push_back(static_cast<int>(k));
+  }
+  for (int k : space().communicator().all_gather(mine))
+    set[static_cast<std::size_t>(k)] = 1;
+  return set;
 }
 
 }  // namespace fetic::solver

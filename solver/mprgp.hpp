@@ -61,6 +61,8 @@ class Mprgp final : public FetiMethod {
         const Communicator& communicator = Communicator::self(), MprgpParameters parameters = {});
   MethodKind kind() const override { return MethodKind::Mprgp; }
   Snapshot snapshot() const override;
+  // The contact rows off their bound (collective: gathers the flags of all processes).
+  std::vector<char> working_set() const override;
 
   // ||H|| as estimated at set-up, and the applications of F that took.
   double operator_norm() const { return norm_H_; }

@@ -3,8 +3,8 @@
 // distributed over all of them (Communicator::world()) - and rank 0 compares the two:
 // displacements and contact forces to a relative 1e-10, the same working set, the same
 // status and the same iteration count (the scalar products are summed exactly, so no
-// decision depends on how the rows are split among the processes). Scenes: the bundled ones, random bar scenes
-// (opposing pairs and chains with floating struts held only by contacts), random plane
+// decision depends on how the rows are split among the processes). Scenes: the bundled ones, random
+// bar scenes (opposing pairs and chains with floating struts held only by contacts), random plane
 // scenes, random contact-free scenes for FETI-1, and warm-started load sweeps.
 //
 // A plain program rather than Catch2: a failed assertion on one process must not leave
@@ -112,7 +112,8 @@ std::string compare(const Case& c, const fetic::solver::Model& model, const Outc
       why << "iterations " << serial.iterations[step] << " vs " << distributed.iterations[step]
           << at << "; ";
     if (a.in_working_set != b.in_working_set) why << "different active sets" << at << "; ";
-    const double du = relative_difference(flat_displacements(model, a), flat_displacements(model, b));
+    const double du =
+        relative_difference(flat_displacements(model, a), flat_displacements(model, b));
     if (!(du <= 1e-10)) why << "displacements differ by " << du << at << "; ";
     const double df = relative_difference(a.force, b.force);
     if (!(df <= 1e-10)) why << "contact forces differ by " << df << at << "; ";
@@ -127,8 +128,8 @@ std::vector<Case> cases(const std::string& scenes_dir) {
     list.push_back({std::string(name) + " (lumped)", read_file(scenes_dir + "/" + name),
                     MethodKind::FetiC, fetic::solver::Preconditioner::Lumped});
   }
-  list.push_back({"cantilevers.toml (feti)", read_file(scenes_dir + "/cantilevers.toml"),
-                  MethodKind::Feti});
+  list.push_back(
+      {"cantilevers.toml (feti)", read_file(scenes_dir + "/cantilevers.toml"), MethodKind::Feti});
   list.push_back({"thesis.toml, load sweep 0.5:1.5:6", read_file(scenes_dir + "/thesis.toml"),
                   MethodKind::FetiC, fetic::solver::Preconditioner::Dirichlet,
                   fetic::solver::load_steps(0.5, 1.5, 6)});
@@ -149,6 +150,24 @@ std::vector<Case> cases(const std::string& scenes_dir) {
   for (int i = 0; i < 12; ++i)
     list.push_back({"random contact-free scene " + std::to_string(i),
                     fetic::testing::random_contact_free_scene(rng), MethodKind::Feti});
+  // MPRGP: its face projector, power method, SMALBE groups (random bar scenes hold some
+  // struts only by contacts) and warm starts.
+  for (const char* name : {"thesis.toml", "two_bars.toml", "chain.toml", "plane_pair.toml"})
+    list.push_back(
+        {std::string(name) + " (mprgp)", read_file(scenes_dir + "/" + name), MethodKind::Mprgp});
+  list.push_back({"thesis.toml (mprgp, lumped)", read_file(scenes_dir + "/thesis.toml"),
+                  MethodKind::Mprgp, fetic::solver::Preconditioner::Lumped});
+  list.push_back({"chain.toml (mprgp), load sweep 0:2:5", read_file(scenes_dir + "/chain.toml"),
+                  MethodKind::Mprgp, fetic::solver::Preconditioner::Dirichlet,
+                  fetic::solver::load_steps(0.0, 2.0, 5)});
+  for (int i = 0; i < 16; ++i)
+    list.push_back({"random bar scene (mprgp) " + std::to_string(i),
+                    fetic::testing::random_bar_scene(rng), MethodKind::Mprgp,
+                    i % 4 == 0 ? fetic::solver::Preconditioner::None
+                               : fetic::solver::Preconditioner::Dirichlet});
+  for (int i = 0; i < 8; ++i)
+    list.push_back({"random plane scene (mprgp) " + std::to_string(i),
+                    fetic::testing::random_plane_pairs(rng, 1 + i % 3), MethodKind::Mprgp});
   return list;
 }
 

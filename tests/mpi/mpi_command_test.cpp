@@ -135,9 +135,11 @@ TEST_CASE("mpirun -np 3 fetic solve writes the serial result, with ranks and sub
   fs::remove(mpi_json);
 }
 
-TEST_CASE("mpirun -np 2 fetic solve: a plane scene and a load sweep as in one process") {
-  for (const std::string& arguments : {scene("plane_pair.toml") + " --preconditioner lumped",
-                                       scene("chain.toml") + " --load-steps 0:2:5"}) {
+TEST_CASE("mpirun -np 2 fetic solve: a plane scene, a load sweep and MPRGP as in one process") {
+  for (const std::string& arguments :
+       {scene("plane_pair.toml") + " --preconditioner lumped",
+        scene("chain.toml") + " --load-steps 0:2:5",
+        scene("thesis.toml") + " --method mprgp --load-steps 0.5:1:3"}) {
     const std::string serial_json = temporary("serial.json"), mpi_json = temporary("mpi.json");
     REQUIRE(run_fetic("solve " + arguments + " --json " + serial_json).status == 0);
     const Run distributed = run_fetic("solve " + arguments + " --json " + mpi_json, 2);
@@ -182,10 +184,7 @@ TEST_CASE("under mpirun every failure gives one message and the same status on e
     const Run r = run_fetic("solve " + scene("thesis.toml") + " --method active-set", 2);
     CHECK(r.status == 1);
     CHECK(occurrences(r.output, "runs in one process") == 1);
-    // MPRGP is a dual method but not distributed yet (issue 13).
-    const Run m = run_fetic("solve " + scene("thesis.toml") + " --method mprgp", 2);
-    CHECK(m.status == 1);
-    CHECK(occurrences(m.output, "runs in one process") == 1);
+    CHECK(occurrences(r.output, "feti, feti-c or mprgp") == 1);
   }
   SECTION("a frame scene (its free motions are not distributed): 1, and serially it solves") {
     const Run r = run_fetic("solve " + scene("frame_portal_sway.toml") + " --method feti-c", 2);
@@ -355,9 +354,11 @@ std::vector<nlohmann::json> monitor_lines(const std::string& path) {
 // set is replicated; a full line gathers the state from every process at the same
 // iterations, a collective that would hang if any process skipped it).
 TEST_CASE("mpirun -np 2 fetic solve --monitor writes the serial stream, the full state gathered") {
+  const std::string method = GENERATE(as<std::string>{}, "feti-c", "mprgp");
+  INFO("--method " << method);
   const std::string serial = temporary("serial.jsonl"), distributed = temporary("mpi.jsonl");
-  const std::string arguments = "solve " + scene("plane_pair.toml") +
-                                " --method feti-c --load-steps 0.5:1:2 --monitor-full 2 --monitor ";
+  const std::string arguments = "solve " + scene("plane_pair.toml") + " --method " + method +
+                                " --load-steps 0.5:1:2 --monitor-full 2 --monitor ";
   REQUIRE(run_fetic(arguments + serial).status == 0);
   const Run r = run_fetic(arguments + distributed, 2);
   INFO(r.output);
