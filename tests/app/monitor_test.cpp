@@ -121,7 +121,7 @@ TEST_CASE("solve --monitor lines equal the history of a plane scene") {
   check_against_result(lines_of(read_text(monitor)), json::parse(read_text(result)));
 }
 
-TEST_CASE("solve --monitor-full adds the state; the last one equals the result") {
+TEST_CASE("solve --monitor-full adds the state, the last one equals the result") {
   Folder folder;
   const std::string result = folder / "result.json";
   // --monitor - : the lines on stdout, the summary on stderr.

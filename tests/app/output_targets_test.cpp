@@ -117,7 +117,7 @@ TEST_CASE("a closed stdout loses the output: status 5, and no file takes its pla
   CHECK(nlohmann::json::parse(read_text(json))["converged"] == true);
 }
 
-TEST_CASE("'-' is stdout for every output option; the report then goes to stderr", "[output]") {
+TEST_CASE("'-' is stdout for every output option, the report then goes to stderr", "[output]") {
   const Result solved = run_fetic({"solve", kScene, "--json", "-"});
   INFO(solved.err);
   REQUIRE(solved.status == 0);
@@ -227,7 +227,7 @@ TEST_CASE("outputs that cannot be written are refused with status 5 and the reas
   }
 }
 
-TEST_CASE("a regular file is replaced whole; no temporary file remains", "[output]") {
+TEST_CASE("a regular file is replaced whole, no temporary file remains", "[output]") {
   TempDir dir;
   const std::string csv = dir / "bench.csv";
   { std::ofstream(csv) << "old contents that are longer than nothing\n"; }

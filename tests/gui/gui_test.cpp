@@ -329,7 +329,7 @@ TEST_CASE("a script drives the same requests: load, wait, step, screenshot, quit
 }
 
 TEST_CASE(
-    "stepping live advances the solver itself; a bare screenshot name goes to the "
+    "stepping live advances the solver itself, a bare screenshot name goes to the "
     "screenshot directory",
     "[script]") {
   REQUIRE(have_display());
@@ -367,7 +367,7 @@ TEST_CASE(
         solve_active(scene("thesis.toml"), 1.5));
 }
 
-TEST_CASE("a load sweep is recorded as frames; a method that cannot solve is reported",
+TEST_CASE("a load sweep is recorded as frames, a method that cannot solve is reported",
           "[script]") {
   REQUIRE(have_display());
   const fs::path dir = fresh_directory("fetic_gui_record");
@@ -522,8 +522,7 @@ TEST_CASE("a view saved in the window is drawn again by fetic render --view", "[
   const auto headless = fetic::testing::read_png((dir / "render" / "frame_0000.png").string());
   REQUIRE(window.width == 670);
   const auto comparison = fetic::testing::compare(headless, window);
-  INFO(comparison.differing << " pixels differ, largest channel difference "
-                            << comparison.largest);
+  INFO(comparison.differing << " pixels differ, largest channel difference " << comparison.largest);
   CHECK(comparison.matches());
   // Not trivially: the zoomed view differs from the plain one by far more.
   const auto [plain_status, plain_output] =
@@ -544,8 +543,8 @@ json picked_by_click(const std::string& scene_file, const std::string& what, dou
                      const fs::path& dir) {
   const fs::path state = dir / "state.jsonl", script = dir / "script.txt";
   std::ofstream(script) << "wait\nlocate " << what << "\n";
-  App app({scene_file, "--load", std::to_string(load), "--state-file", state.string(),
-           "--script", script.string(), "--screenshot-dir", dir.string()});
+  App app({scene_file, "--load", std::to_string(load), "--state-file", state.string(), "--script",
+           script.string(), "--screenshot-dir", dir.string()});
   const auto located = wait_for(state, [](const json& e) { return is(e, "located"); });
   INFO("reported state:\n" << read_text(state));
   REQUIRE(located);
@@ -557,7 +556,8 @@ json picked_by_click(const std::string& scene_file, const std::string& what, dou
   xdotool("mousemove --window " + wid + " " + std::to_string(x) + " " + std::to_string(y));
   std::this_thread::sleep_for(std::chrono::milliseconds(300));  // the hover frame
   xdotool("click 1");
-  const auto picked = wait_for(state, [](const json& e) { return is(e, "picked"); }, 30.0);
+  const auto picked = wait_for(
+      state, [](const json& e) { return is(e, "picked"); }, 30.0);
   REQUIRE(picked);
   xdotool("key q");
   const auto status = app.wait(30.0);
@@ -587,16 +587,15 @@ TEST_CASE("clicking a contact pair of the thesis scene pins its values", "[e2e]"
   const std::vector<int> active = solve_active(scene("thesis.toml"), load);
   REQUIRE(!active.empty());
   const int k = active[active.size() / 2];
-  const json picked =
-      picked_by_click(scene("thesis.toml"), "pair:" + std::to_string(k), load, dir);
+  const json picked = picked_by_click(scene("thesis.toml"), "pair:" + std::to_string(k), load, dir);
   INFO(picked.dump());
   REQUIRE(picked["kind"] == "pair");
   CHECK(picked["pair_index"] == k);
   CHECK(picked["load_factor"].get<double>() == load);
   const json& expected = result["contacts"][static_cast<std::size_t>(k)]["pairs"][0];
-  CHECK(picked["contact"] == result["contacts"][static_cast<std::size_t>(k)]["a"].get<std::string>() +
-                                 " - " +
-                                 result["contacts"][static_cast<std::size_t>(k)]["b"].get<std::string>());
+  CHECK(picked["contact"] ==
+        result["contacts"][static_cast<std::size_t>(k)]["a"].get<std::string>() + " - " +
+            result["contacts"][static_cast<std::size_t>(k)]["b"].get<std::string>());
   CHECK(picked["active"] == expected["active"]);
   CHECK(picked["gap"].get<double>() == expected["gap"].get<double>());
   const double force = expected["force"].get<double>();

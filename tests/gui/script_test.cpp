@@ -60,7 +60,7 @@ TEST_CASE("script errors name the line and the problem", "[script]") {
   CHECK(errors[6].message == "'step' takes no argument");
 }
 
-TEST_CASE("method and preconditioner names are checked; live stepping and cancel", "[script]") {
+TEST_CASE("method and preconditioner names are checked, live stepping and cancel", "[script]") {
   std::vector<ScriptError> errors;
   const auto actions = parse_script(
       "method fetic\nmethod active-set\npreconditioner diriclet\npreconditioner lumped\n"

@@ -86,7 +86,7 @@ TEST_CASE("text helpers: powers of ten, magnification, SI units, wrapping") {
     CHECK(estimated_text_width(line, 14.0f) <= 150.0f);
 }
 
-TEST_CASE("colour maps: compression blue, tension red, zero neutral; subdomains differ") {
+TEST_CASE("colour maps: compression blue, tension red, zero neutral, subdomains differ") {
   CHECK(diverging(-1.0).b > diverging(-1.0).r);
   CHECK(diverging(1.0).r > diverging(1.0).b);
   const Color zero = diverging(0.0);

@@ -45,7 +45,7 @@ TEST_CASE("a missing TTF falls back to ImGui's built-in font and says which file
   CHECK(glyphs.size() == 3 * 6);  // two triangles per glyph
 }
 
-TEST_CASE("text is aligned at its anchor; vertical labels read bottom to top") {
+TEST_CASE("text is aligned at its anchor, vertical labels read bottom to top") {
   const FontAtlas font;
   CHECK(font.note().empty());  // fonts-dejavu-core is a dependency
   std::vector<TexturedVertex> left, right, centred, vertical;

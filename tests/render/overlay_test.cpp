@@ -55,7 +55,7 @@ TEST_CASE("plots hold iteration 0 of a final-state frame (the active set starts 
   }
 }
 
-TEST_CASE("a residual below the run's floor widens the axis; an exact zero sits on the floor") {
+TEST_CASE("a residual below the run's floor widens the axis, an exact zero sits on the floor") {
   const solver::Model model = thesis();
   const auto method = solver::make_method(solver::MethodKind::FetiC, model, {});
   RunExtent extent = survey(model, *method, FramePlan{});

@@ -205,7 +205,7 @@ TEST_CASE("a scene stays inside its region and its layers follow the view") {
         list.triangle_count());
 }
 
-TEST_CASE("frames: the initial state and one per iteration; load steps one per step") {
+TEST_CASE("frames: the initial state and one per iteration, load steps one per step") {
   const solver::Model model = solver::build_model(
       scenes::load_scene_file(std::string(FETIC_BUNDLED_SCENES_DIR) + "/thesis.toml"));
   const auto method = solver::make_method(solver::MethodKind::ActiveSet, model, {});

@@ -171,7 +171,7 @@ fixed = ["from"]
   CHECK_THAT(scene.warnings[0].message, Catch::Contains("aspect ratio 100000"));
 }
 
-TEST_CASE("a scene may declare its units; SI when it does not") {
+TEST_CASE("a scene may declare its units, SI when it does not") {
   const char* base = R"(
 model = "bar"
 [[strut]]

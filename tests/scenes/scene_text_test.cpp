@@ -80,7 +80,7 @@ TEST_CASE("a scene nested 100,000 deep is an error with file and line, not a cra
   }
 }
 
-TEST_CASE("strings and comments do not count as nesting; valid scenes pass") {
+TEST_CASE("strings and comments do not count as nesting, valid scenes pass") {
   const std::string text = kHead + "title = \"[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[a.b.c\"\n" +
                            "# " + repeat("[{a.", 100) + "\n" + "x = '''\n" + repeat("[", 100) +
                            "\n'''\n" + "y = \"\"\"" + repeat("{\\\"", 50) + "\"\"\"\n";
