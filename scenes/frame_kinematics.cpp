@@ -8,14 +8,12 @@
 
 #include <Eigen/Dense>
 
+#include "scenes/null_space.hpp"
+
 #include "scenes/scene_geometry.hpp"
 
 namespace fetic::scenes {
 namespace {
-
-// Singular values below this fraction of the largest (or of 1: every column is a unit
-// motion) count as zero.
-constexpr double kRankTolerance = 1e-9;
 
 class UnionFind {
  public:
@@ -30,19 +28,6 @@ class UnionFind {
  private:
   std::vector<int> parent_;
 };
-
-// Null space of C (columns of V whose singular values are negligible); all of R^n when
-// C has no rows.
-Eigen::MatrixXd null_space(const Eigen::MatrixXd& C, int n) {
-  if (C.rows() == 0) return Eigen::MatrixXd::Identity(n, n);
-  Eigen::BDCSVD<Eigen::MatrixXd> svd(C, Eigen::ComputeFullV);
-  const Eigen::VectorXd& sigma = svd.singularValues();
-  const double threshold = kRankTolerance * std::max(1.0, sigma.size() ? sigma(0) : 0.0);
-  int rank = 0;
-  while (rank < sigma.size() && sigma(rank) > threshold)
-    ++rank;
-  return svd.matrixV().rightCols(n - rank);
-}
 
 std::string number_text(double value) {
   char buffer[32];

@@ -11,5 +11,6 @@ set(FETIC_SCENE_LOADER_SOURCES
   validate_scene.cpp
   validate_frame.cpp
   frame_kinematics.cpp
+  null_space.cpp
   magnitudes.cpp
   write_scene.cpp)

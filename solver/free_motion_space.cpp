@@ -7,6 +7,7 @@
 
 #include <Eigen/Dense>
 
+#include "scenes/null_space.hpp"
 #include "solver/rigid_modes.hpp"
 
 namespace fetic::solver {
@@ -14,18 +15,6 @@ namespace {
 
 // Entries below this (relative to a unit motion) are rounding.
 constexpr double kNegligible = 1e-12;
-
-Eigen::MatrixXd null_space(const Eigen::MatrixXd& M) {
-  const int n = static_cast<int>(M.cols());
-  if (M.rows() == 0) return Eigen::MatrixXd::Identity(n, n);
-  Eigen::BDCSVD<Eigen::MatrixXd> svd(M, Eigen::ComputeFullV);
-  const Eigen::VectorXd& sigma = svd.singularValues();
-  const double threshold = 1e-9 * std::max(1.0, sigma.size() ? sigma(0) : 0.0);
-  int rank = 0;
-  while (rank < sigma.size() && sigma(rank) > threshold)
-    ++rank;
-  return svd.matrixV().rightCols(n - rank);
-}
 
 }  // namespace
 
@@ -111,7 +100,7 @@ std::vector<UnheldGroup> FreeMotionSpace::unheld(const std::vector<char>& active
     for (size_t i = 0; i < rows.size(); ++i)
       for (int j = 0; j < k; ++j)
         M(static_cast<int>(i), j) = GZ_.coeff(rows[i], cluster.motions[j]);
-    const Eigen::MatrixXd N = null_space(M);
+    const Eigen::MatrixXd N = scenes::null_space(M, static_cast<int>(M.cols()));
     if (N.cols() == 0) continue;
     // The free directions over the cluster's modes, orthonormalized.
     const int n = static_cast<int>(cluster.modes.size());

@@ -1,0 +1,21 @@
+#include "scenes/null_space.hpp"
+
+#include <algorithm>
+
+#include <Eigen/SVD>
+
+namespace fetic::scenes {
+
+Eigen::MatrixXd null_space(const Eigen::MatrixXd& C, int columns) {
+  if (C.rows() == 0) return Eigen::MatrixXd::Identity(columns, columns);
+  constexpr double kRankTolerance = 1e-9;
+  Eigen::BDCSVD<Eigen::MatrixXd> svd(C, Eigen::ComputeFullV);
+  const Eigen::VectorXd& sigma = svd.singularValues();
+  const double threshold = kRankTolerance * std::max(1.0, sigma.size() ? sigma(0) : 0.0);
+  int rank = 0;
+  while (rank < sigma.size() && sigma(rank) > threshold)
+    ++rank;
+  return svd.matrixV().rightCols(columns - rank);
+}
+
+}  // namespace fetic::scenes
