@@ -8,6 +8,7 @@
 //   sync_point.cpp     applying requests, taking the newest solve
 //   main_loop.cpp      the frame loop: input, panels, sync, picture, swap
 //   picture.cpp        the scene and information panel drawn for the shown iterate
+//   comparison.cpp     two methods side by side: two pictures, one residual plot
 //   panels.cpp         the ImGui controls and the help window
 //   input.cpp          keys, mouse pan and zoom, the script runner
 //   recording.cpp      screenshots and recordings
@@ -85,6 +86,11 @@ class App {
   void draw_picture(int width, int height);
   render::RunExtent plot_extent();  // the survey's scales, the iteration axis widened
 
+  // comparison.cpp
+  bool comparing() const;     // a second method is on and has something to show
+  int compare_index() const;  // its iterate shown beside the first's (the same iteration)
+  void draw_comparison(int width, int height);
+
   // panels.cpp
   void panels(float height);  // the panel on the left, the help window when asked for
   void load_controls();
@@ -148,6 +154,9 @@ class App {
   const Options& args_;
   std::string title_;
   SolverWorker worker_;
+  SolverWorker compare_worker_;  // the second method of the comparison
+  std::optional<solver::MethodKind> compare_;
+  std::shared_ptr<const SolveState> compare_shown_;
   SolverTarget target_;
   RequestQueue queue_;
   StateLog log_;

@@ -76,11 +76,12 @@ int run_gui(const gui::Options& args) {
       return kExitUsage;
     }
   // The window may switch to any method and keeps the iterates of a solve for scrubbing.
-  if (!memory_suffices(*scene, args.scene,
-                       {{solver::MethodKind::FetiC, solver::MethodKind::Mprgp,
-                         solver::MethodKind::ActiveSet},
-                        false, 100},
-                       status))
+  if (!memory_suffices(
+          *scene, args.scene,
+          {{solver::MethodKind::FetiC, solver::MethodKind::Mprgp, solver::MethodKind::ActiveSet},
+           false,
+           100},
+          status))
     return status;
   Activity running("running the window");
   auto model = std::make_shared<const solver::Model>(solver::build_model(*scene));
@@ -114,6 +115,11 @@ void register_gui(CLI::App& app, int& exit_code) {
   command->add_option("--method", args->method, "Method to start with")
       ->check(method_name())
       ->capture_default_str();
+  command
+      ->add_option("--compare", args->compare,
+                   "A second method solving the same scene at the same load beside the first: "
+                   "two pictures, one residual plot with both curves")
+      ->check(method_name());
   command->add_option("--preconditioner", args->preconditioner, "FETI preconditioner")
       ->check(preconditioner_name())
       ->capture_default_str();

@@ -9,6 +9,7 @@ struct Options {
   std::string scene;
   std::string method = "feti-c";
   std::string preconditioner = "dirichlet";
+  std::string compare;  // a second method solving beside the first; empty: none
   double load = 1.0;
   double max_load = 0.0;  // 0: chosen from the scene (solver::automatic_max_load)
   double magnification = 0.0;

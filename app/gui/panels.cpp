@@ -74,6 +74,15 @@ void App::solver_controls() {
   ImGui::SetNextItemWidth(140);
   if (ImGui::Combo("method", &method, methods, method_count))
     push({RequestKind::SetMethod, 0.0, methods[method]});
+  // A second method solving the same scene at the same load, drawn beside the first.
+  static const char* compared[] = {"none", "feti-c", "mprgp", "active-set", "feti", "cg", "sd"};
+  constexpr int compared_count = static_cast<int>(std::size(compared));
+  int second = 0;
+  for (int i = 1; i < compared_count; ++i)
+    if (compare_ && solver::to_string(*compare_) == std::string(compared[i])) second = i;
+  ImGui::SetNextItemWidth(140);
+  if (ImGui::Combo("compare with", &second, compared, compared_count))
+    push({RequestKind::SetCompare, 0.0, compared[second]});
   int pre =
       static_cast<int>(target_.options.preconditioner == solver::Preconditioner::Dirichlet ? 0
                        : target_.options.preconditioner == solver::Preconditioner::Lumped  ? 1

@@ -170,7 +170,9 @@ void App::picking(float view_x, float view_width, float view_height) {
   const bool over_picture =
       !io.WantCaptureMouse && at.x >= 0 && at.y >= 0 && at.x < view_width && at.y < view_height;
   hovered_.reset();
-  if (over_picture && shown_ && !ImGui::IsMouseDragging(ImGuiMouseButton_Left)) {
+  // Two methods side by side: the pick index knows the single picture only (its framing),
+  // so the comparison has no hover; pinned items stay listed.
+  if (over_picture && shown_ && !comparing() && !ImGui::IsMouseDragging(ImGuiMouseButton_Left)) {
     const auto start = Clock::now();
     hovered_ = picks_.nearest(at, kPickRadius);
     pick_query_ms_ = std::chrono::duration<double, std::milli>(Clock::now() - start).count();

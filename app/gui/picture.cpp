@@ -53,6 +53,10 @@ void App::draw_picture(int width, int height) {
     renderer_->draw(width, height, {&empty}, render::palette::background);
     return;
   }
+  if (comparing()) {
+    draw_comparison(width, height);
+    return;
+  }
   const auto lists_start = Clock::now();
   const int index = shown_index();
   const solver::Snapshot& snapshot = *shown_->iterates[static_cast<std::size_t>(index)];

@@ -12,6 +12,7 @@ enum class RequestKind {
   SetLoad,            // value: load factor (clamped to 0 .. the slider's maximum)
   SetMethod,          // text: "feti-c", "active-set", ...
   SetPreconditioner,  // text: "dirichlet", "lumped", "none"
+  SetCompare,         // text: a second method solving beside the first, or "none"
   SetMagnification,   // value: factor; 0 = automatic
   TogglePlay,
   Play,

@@ -1,9 +1,9 @@
 #include "app/gui/script.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <algorithm>
 #include <sstream>
 
 #include "solver/method.hpp"
@@ -104,6 +104,12 @@ std::vector<ScriptAction> parse_script(const std::string& text, std::vector<Scri
                                     ")"});
       r.kind = method ? RequestKind::SetMethod : RequestKind::SetPreconditioner;
       r.text = argument;
+    } else if (verb == "compare") {
+      ok = argument == "none" || solver::parse_method(argument).has_value();
+      if (!ok)
+        errors.push_back({line, "'compare' needs a method or 'none', got '" + argument + "'"});
+      r.kind = RequestKind::SetCompare;
+      r.text = argument;
     } else if (verb == "magnification") {
       if (argument == "auto") {
         r.kind = RequestKind::SetMagnification;
@@ -159,8 +165,7 @@ std::vector<ScriptAction> parse_script(const std::string& text, std::vector<Scri
       parts >> kind >> a;
       if (kind == "node") parts >> b;
       std::string rest;
-      ok = ((kind == "pair" && a >= 0) || (kind == "node" && a >= 0 && b >= 0)) &&
-           !(parts >> rest);
+      ok = ((kind == "pair" && a >= 0) || (kind == "node" && a >= 0 && b >= 0)) && !(parts >> rest);
       if (!ok) errors.push_back({line, "'locate' needs pair:K or node:STRUT:N"});
       r.kind = RequestKind::Locate;
       r.text = argument;

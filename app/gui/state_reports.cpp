@@ -46,9 +46,15 @@ void App::report_frame() {
       bench_.first_latency_ms.push_back(
           std::chrono::duration<double, std::milli>(now - it->second).count());
   }
-  solved_on_screen_ = (shown_->finished && shown_->request == requests_sent_ && follow_) ||
-                      (error_ && error_->request == requests_sent_);
-  if (!shown_->finished || shown_->request <= reported_request_ || shown_->iterates.empty()) return;
+  // Comparing, a solve counts as on screen once the second method has answered it too.
+  const bool second_done = !compare_ || (compare_shown_ && compare_shown_->finished &&
+                                         compare_shown_->request >= shown_->request);
+  solved_on_screen_ =
+      (shown_->finished && second_done && shown_->request == requests_sent_ && follow_) ||
+      (error_ && error_->request == requests_sent_);
+  if (!shown_->finished || !second_done || shown_->request <= reported_request_ ||
+      shown_->iterates.empty())
+    return;
   reported_request_ = shown_->request;
   const solver::Snapshot& final_state = *shown_->iterates.back();
   double latency = 0.0;
@@ -62,20 +68,32 @@ void App::report_frame() {
     bench_.iterations.push_back(static_cast<int>(shown_->iterates.size()) - 1);
   }
   const std::vector<int> active = active_contacts(final_state);
-  log_.write({{"event", "solved"},
-              {"request", shown_->request},
-              {"load_factor", shown_->load_factor},
-              {"method", solver::to_string(shown_->method)},
-              {"preconditioner", solver::to_string(shown_->preconditioner)},
-              {"iterations", static_cast<int>(shown_->iterates.size()) - 1},
-              {"converged", shown_->status == solver::Status::Converged},
-              {"status", shown_->cancelled ? "cancelled" : solver::to_string(shown_->status)},
-              {"cancelled", shown_->cancelled},
-              {"message", shown_->message},
-              {"active", static_cast<int>(active.size())},
-              {"active_contacts", active},
-              {"solve_ms", shown_->solve_seconds * 1e3},
-              {"latency_ms", latency}});
+  nlohmann::json second;
+  if (compare_ && compare_shown_ && !compare_shown_->iterates.empty()) {
+    const auto& history = compare_shown_->history;
+    second = {{"method", solver::to_string(compare_shown_->method)},
+              {"iterations", static_cast<int>(compare_shown_->iterates.size()) - 1},
+              {"f_applications", history.empty() ? -1LL : history.back().f_applications},
+              {"converged", compare_shown_->status == solver::Status::Converged},
+              {"active_contacts", active_contacts(*compare_shown_->iterates.back())}};
+  }
+  log_.write(
+      {{"event", "solved"},
+       {"request", shown_->request},
+       {"load_factor", shown_->load_factor},
+       {"method", solver::to_string(shown_->method)},
+       {"preconditioner", solver::to_string(shown_->preconditioner)},
+       {"iterations", static_cast<int>(shown_->iterates.size()) - 1},
+       {"f_applications", shown_->history.empty() ? -1LL : shown_->history.back().f_applications},
+       {"converged", shown_->status == solver::Status::Converged},
+       {"status", shown_->cancelled ? "cancelled" : solver::to_string(shown_->status)},
+       {"cancelled", shown_->cancelled},
+       {"message", shown_->message},
+       {"active", static_cast<int>(active.size())},
+       {"active_contacts", active},
+       {"solve_ms", shown_->solve_seconds * 1e3},
+       {"latency_ms", latency},
+       {"compare", second}});
 }
 
 }  // namespace fetic::app::gui

@@ -24,7 +24,10 @@ constexpr std::chrono::microseconds kQuickSolve{5000};
 }  // namespace
 
 App::App(const Options& args, std::shared_ptr<const solver::Model> model, std::string title)
-    : args_(args), title_(std::move(title)), worker_([] { glfwPostEmptyEvent(); }) {
+    : args_(args),
+      title_(std::move(title)),
+      worker_([] { glfwPostEmptyEvent(); }),
+      compare_worker_([] { glfwPostEmptyEvent(); }) {
   target_.model = std::move(model);
   target_.model_generation = 1;
   target_.method = *solver::parse_method(args.method);
@@ -32,6 +35,7 @@ App::App(const Options& args, std::shared_ptr<const solver::Model> model, std::s
   target_.max_load = args.max_load;  // 0: the worker chooses from the scene
   slider_max_ = args.max_load > 0.0 ? args.max_load : 2.0;
   target_.load_factor = args.max_load > 0.0 ? std::min(args.load, args.max_load) : args.load;
+  if (!args.compare.empty()) compare_ = solver::parse_method(args.compare);
   magnification_ = args.magnification;
   show_overlay_ = !args.no_overlay;
   if (!args.view.empty()) load_view(args.view);  // checked by cmd_gui before the window opened
@@ -43,6 +47,11 @@ void App::send_to_worker() {
   target_.request = ++requests_sent_;
   requested_at_[target_.request] = Clock::now();
   worker_.request(target_);
+  if (compare_) {
+    SolverTarget second = target_;
+    second.method = *compare_;
+    compare_worker_.request(second);
+  }
 }
 
 int App::last_index() const {
@@ -60,6 +69,7 @@ bool App::advance_live() {
       shown_index() < last_index())
     return false;
   worker_.allow(last_index() + 1);
+  if (compare_) compare_worker_.allow(last_index() + 1);  // both take the next iteration
   follow_ = true;
   return true;
 }
@@ -106,6 +116,23 @@ void App::apply(const Request& r) {
         say("unknown preconditioner " + r.text, true);
       }
       break;
+    case RequestKind::SetCompare: {
+      const std::optional<solver::MethodKind> kind =
+          r.text == "none" ? std::nullopt : solver::parse_method(r.text);
+      if (r.text != "none" && !kind) {
+        say("unknown method " + r.text, true);
+        break;
+      }
+      compare_ = kind;
+      compare_shown_.reset();
+      // Both methods solve the shown load from the start (a method set up afresh starts
+      // cold), so that their iterations compare.
+      ++target_.model_generation;
+      follow_ = true;
+      send_to_worker();
+      redraw_ = true;
+      break;
+    }
     case RequestKind::SetMagnification:
       magnification_ = r.value;
       redraw_ = true;
@@ -152,10 +179,12 @@ void App::apply(const Request& r) {
       target_.live = live_;
       // On: the running solve stops after the iteration it is in; off: it runs to the end.
       worker_.allow(live_ ? 0 : -1);
+      compare_worker_.allow(live_ ? 0 : -1);
       redraw_ = true;
       break;
     case RequestKind::Cancel:
       worker_.cancel();
+      if (compare_) compare_worker_.cancel();
       playing_ = false;
       break;
     case RequestKind::Scrub:
@@ -237,6 +266,13 @@ void App::sync() {
     if (shown_ && shown_->max_load > 0.0) slider_max_ = shown_->max_load;
     if (shown_ && error_ && shown_->request > error_->request) error_.reset();
     redraw_ = true;
+  }
+  if (compare_) {
+    std::shared_ptr<const SolveState> second = compare_worker_.latest();
+    if (second != compare_shown_) {
+      compare_shown_ = std::move(second);
+      redraw_ = true;
+    }
   }
   // Playback of the iterations of the current solve.
   if (playing_ && shown_) {

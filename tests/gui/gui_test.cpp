@@ -367,6 +367,42 @@ TEST_CASE(
         solve_active(scene("thesis.toml"), 1.5));
 }
 
+TEST_CASE("two methods side by side: --compare solves every load with both", "[script]") {
+  REQUIRE(have_display());
+  const fs::path dir = fresh_directory("fetic_gui_compare");
+  const fs::path state = dir / "state.jsonl";
+  const fs::path script = dir / "script.txt";
+  std::ofstream(script) << "wait\nscreenshot " << (dir / "both.png").string()
+                        << "\nload 1.5\nwait\ncompare none\nwait\ncompare active-set\nwait\n"
+                           "0.2 quit\n";
+  App app({scene("plane_pair.toml"), "--compare", "mprgp", "--state-file", state.string(),
+           "--script", script.string()});
+  const auto status = app.wait(90.0);
+  INFO("reported state:\n" << read_text(state));
+  REQUIRE(status);
+  CHECK(*status == 0);
+  std::vector<json> solved;
+  for (const json& e : events(state))
+    if (is(e, "solved")) solved.push_back(e);
+  REQUIRE(solved.size() == 4);  // load 1 and 1.5 with MPRGP beside, alone, active set beside
+  const auto expected = solve_active(scene("plane_pair.toml"), 1.0);
+  CHECK(solved[0]["method"] == "feti-c");
+  CHECK(solved[0]["active_contacts"].get<std::vector<int>>() == expected);
+  const json& second = solved[0]["compare"];
+  REQUIRE(second.is_object());
+  CHECK(second["method"] == "mprgp");
+  CHECK(second["converged"] == true);
+  CHECK(second["active_contacts"].get<std::vector<int>>() == expected);
+  CHECK(second["iterations"].get<int>() > 0);
+  CHECK(second["f_applications"].get<int>() >= second["iterations"].get<int>());
+  CHECK(solved[1]["load_factor"].get<double>() == 1.5);
+  CHECK(solved[1]["compare"]["active_contacts"] == solved[1]["active_contacts"]);
+  CHECK(solved[2]["compare"].is_null());
+  CHECK(solved[3]["compare"]["method"] == "active-set");
+  CHECK(solved[3]["compare"]["active_contacts"] == solved[3]["active_contacts"]);
+  CHECK(fs::file_size(dir / "both.png") > 10000);
+}
+
 TEST_CASE("a load sweep is recorded as frames, a method that cannot solve is reported",
           "[script]") {
   REQUIRE(have_display());

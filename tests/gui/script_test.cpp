@@ -91,3 +91,17 @@ TEST_CASE("script numbers name their range", "[script]") {
   CHECK(errors[1].message == "unknown method 'bogus' (feti-c, mprgp, active-set, feti, cg or sd)");
   CHECK(errors[2].message == "the time must be from 0 to 3600 seconds, not '1e308'");
 }
+
+TEST_CASE("compare takes a method or none", "[script]") {
+  std::vector<ScriptError> errors;
+  const auto actions =
+      parse_script("compare mprgp\ncompare none\ncompare fetic\ncompare\n", errors);
+  REQUIRE(errors.size() == 2);
+  CHECK(errors[0].line == 3);
+  CHECK(errors[0].message == "'compare' needs a method or 'none', got 'fetic'");
+  CHECK(errors[1].line == 4);
+  REQUIRE(actions.size() == 2);
+  CHECK(actions[0].request.kind == RequestKind::SetCompare);
+  CHECK(actions[0].request.text == "mprgp");
+  CHECK(actions[1].request.text == "none");
+}
