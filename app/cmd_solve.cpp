@@ -340,6 +340,8 @@ int run_solve(const SolveArgs& args) {
     profile.setup_seconds = info.setup_seconds;
     profile.solve_seconds = info.solve_seconds;
     profile.iterations = steps.empty() ? 0 : steps.back().state.iteration;
+    if (const auto* mprgp = dynamic_cast<const solver::Mprgp*>(dual))
+      profile.mprgp_steps = mprgp->counts();
     try {
       write_solve_profile(args.profile, processes, profile);
     } catch (const OutputError& error) {

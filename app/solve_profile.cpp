@@ -42,14 +42,28 @@ std::vector<double> flatten(const ProfileRun& run) {
           b.coarse_seconds};
 }
 
-const char* const kFields[] = {"subdomains",       "unknowns",          "rows",
-                               "shared_rows",      "f_applications",    "local_seconds",
-                               "coarse_seconds",   "exchange_seconds",  "reduction_seconds",
-                               "gather_seconds",   "exchanges",         "messages",
-                               "bytes",            "reductions",        "gathers",
-                               "gathered_bytes",   "coarse_size",       "coarse_nonzeros",
-                               "coarse_factorizations", "coarse_memory_bytes",
-                               "factor_memory_bytes",   "peak_resident_bytes",
+const char* const kFields[] = {"subdomains",
+                               "unknowns",
+                               "rows",
+                               "shared_rows",
+                               "f_applications",
+                               "local_seconds",
+                               "coarse_seconds",
+                               "exchange_seconds",
+                               "reduction_seconds",
+                               "gather_seconds",
+                               "exchanges",
+                               "messages",
+                               "bytes",
+                               "reductions",
+                               "gathers",
+                               "gathered_bytes",
+                               "coarse_size",
+                               "coarse_nonzeros",
+                               "coarse_factorizations",
+                               "coarse_memory_bytes",
+                               "factor_memory_bytes",
+                               "peak_resident_bytes",
                                "coarse_seconds_with_setup"};
 
 }  // namespace
@@ -64,6 +78,11 @@ void write_solve_profile(const std::string& path, const solver::Communicator& pr
   profile["iterations"] = run.iterations;
   profile["setup_seconds"] = run.setup_seconds;
   profile["solve_seconds"] = run.solve_seconds;
+  if (run.mprgp_steps)
+    profile["mprgp_steps"] = {{"conjugate_gradient", run.mprgp_steps->cg},
+                              {"expansion", run.mprgp_steps->expansion},
+                              {"proportioning", run.mprgp_steps->proportioning},
+                              {"outer", run.mprgp_steps->outer}};
   nlohmann::json list = nlohmann::json::array();
   const size_t fields = mine.size();
   for (int q = 0; q < processes.size(); ++q) {

@@ -2,12 +2,15 @@
 // `fetic solve --profile FILE`: what each process did during the solve phase (after
 // set-up) - time in local solves, neighbour exchanges, reductions, gathers and the coarse
 // problem; messages, bytes and reductions; the coarse problem's size; factor memory and
-// peak resident memory - gathered on rank 0 and written as JSON. The distributed
-// benchmark (bench/mpi_scaling.py) reads it.
+// peak resident memory - gathered on rank 0 and written as JSON; for MPRGP also how its
+// iterations split into step kinds. The distributed benchmark (bench/mpi_scaling.py)
+// reads it.
 
+#include <optional>
 #include <string>
 
 #include "solver/feti_method.hpp"
+#include "solver/mprgp.hpp"
 
 namespace fetic::app {
 
@@ -17,6 +20,8 @@ struct ProfileRun {
   double setup_seconds = 0.0;
   double solve_seconds = 0.0;
   int iterations = 0;
+  // MPRGP's steps in the last solve (the same on every process).
+  std::optional<solver::Mprgp::Counts> mprgp_steps;
 };
 
 // Collective. Rank 0 writes `path` (throws OutputError when it cannot).

@@ -236,3 +236,38 @@ TEST_CASE("fetic bench prints a table with ratios to the active-set method") {
   std::getline(in, header);
   CHECK(header.rfind("scene,method,unknowns,iterations", 0) == 0);
 }
+
+TEST_CASE("solve --profile: per process counts, and MPRGP's iterations by step kind") {
+  for (const std::string method : {"feti-c", "mprgp"}) {
+    const std::string profile_path = temporary("fetic_profile_" + method + ".json");
+    const std::string json_path = temporary("fetic_profile_result_" + method + ".json");
+    const Run r = run("solve " + scene("plane_pair.toml") + " --method " + method +
+                      " --quiet --profile " + profile_path + " --json " + json_path);
+    INFO(method << "\n" << r.output);
+    REQUIRE(r.status == 0);
+    std::ifstream in(profile_path);
+    const nlohmann::json profile = nlohmann::json::parse(in);
+    std::ifstream result_in(json_path);
+    const nlohmann::json result = nlohmann::json::parse(result_in);
+    CHECK(profile["ranks"] == 1);
+    CHECK(profile["iterations"] == result["iterations"]);
+    REQUIRE(profile["processes"].size() == 1);
+    const nlohmann::json& process = profile["processes"][0];
+    // The subdomains' DOFs: the scene's 340 plus a copy of every interface node's.
+    CHECK(process["unknowns"].get<double>() > 340.0);
+    CHECK(process["f_applications"].get<double>() >= profile["iterations"].get<double>());
+    if (method == "feti-c") {
+      CHECK(!profile.contains("mprgp_steps"));
+    } else {
+      // Every MPRGP iteration is one conjugate gradient, expansion or proportioning step.
+      const nlohmann::json& steps = profile["mprgp_steps"];
+      CHECK(steps["conjugate_gradient"].get<int>() + steps["expansion"].get<int>() +
+                steps["proportioning"].get<int>() ==
+            profile["iterations"].get<int>());
+      CHECK(steps["conjugate_gradient"].get<int>() > 0);
+      CHECK(steps["outer"].get<int>() == 0);  // plane struts are clamped: no SMALBE groups
+    }
+    std::filesystem::remove(profile_path);
+    std::filesystem::remove(json_path);
+  }
+}
