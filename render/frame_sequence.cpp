@@ -54,6 +54,12 @@ std::vector<std::vector<double>> piece_stresses(const solver::Model& model,
       const solver::Vec2& u = piece.displacement[static_cast<std::size_t>(n)];
       if (dofs == 1) {
         box_dofs[n] = u.dot(mesh.e1);
+      } else if (dofs == 3) {  // frame: ux, uy, rotation
+        box_dofs[3 * n] = u.x();
+        box_dofs[3 * n + 1] = u.y();
+        box_dofs[3 * n + 2] = static_cast<std::size_t>(n) < piece.rotation.size()
+                                  ? piece.rotation[static_cast<std::size_t>(n)]
+                                  : 0.0;
       } else {
         box_dofs[2 * n] = u.x();
         box_dofs[2 * n + 1] = u.y();

@@ -65,13 +65,29 @@ vec2 world(int row) {
   return r.xy + widening * r.zw + magnification * v.xy;
 }
 vec2 screen(vec2 w) { return pixel_center + (w - center) * vec2(pixels_per_unit, -pixels_per_unit); }
+// The Hermite shape of a beam element between the rows (world, magnified) minus the
+// straight line: zero at t = 0 and 1, so bars and planes are unchanged.
+vec2 bending(int row_a, int row_b) {
+  vec4 ra = texelFetch(reference, row_a), rb = texelFetch(reference, row_b);
+  vec4 va = texelFetch(node_values, row_a), vb = texelFetch(node_values, row_b);
+  vec2 e = rb.xy - ra.xy;
+  float h = length(e);
+  if (!(h > 0.0)) return vec2(0.0);
+  vec2 n = vec2(-e.y, e.x) / h;
+  float wa = dot(va.xy, n), wb = dot(vb.xy, n);
+  float c = (1.0 - 3.0 * t * t + 2.0 * t * t * t - (1.0 - t)) * wa +
+            (3.0 * t * t - 2.0 * t * t * t - t) * wb +
+            h * ((t - 2.0 * t * t + t * t * t) * va.z + (t * t * t - t * t) * vb.z);
+  return magnification * c * n;
+}
 void main() {
   vec2 a = screen(world(nodes.x)), b = screen(world(nodes.y));
   vec2 d = b - a;
   float l = length(d);
   d = l > 0.0 ? d / l : vec2(1.0, 0.0);
   vec2 across = vec2(-d.y, d.x);
-  vec2 p = a + t * (b - a) +
+  vec2 bend = bending(nodes.x, nodes.y) * vec2(pixels_per_unit, -pixels_per_unit);
+  vec2 p = a + t * (b - a) + bend +
            (offset.x * half_bar_width + offset.y * rim + offset.w * line_width) * across +
            offset.z * rim * d;
   fragment_color = element >= 0 && stress

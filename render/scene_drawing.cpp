@@ -61,7 +61,7 @@ Point upper_side(const SceneFraming& framing, const solver::StrutMesh& mesh) {
 
 // Half the drawn width of a strut across its axis, in pixels.
 float half_width_px(const SceneFraming& framing, const solver::StrutMesh& mesh) {
-  return mesh.dofs_per_node == 1 ? 0.5f * framing.bar_width
+  return mesh.dofs_per_node != 2 ? 0.5f * framing.bar_width  // bars and beams
                                  : static_cast<float>(0.5 * mesh.height * framing.pixels_per_unit);
 }
 
@@ -71,7 +71,7 @@ float free_px(const SceneFraming& framing, const solver::Model& model, int strut
   if (s >= framing.clearance.size() || !std::isfinite(framing.clearance[s])) return 1e6f;
   const float free = static_cast<float>(framing.clearance[s] * framing.pixels_per_unit);
   // Bars are drawn wider than their (zero) height.
-  return model.struts[s].dofs_per_node == 1 ? free - framing.bar_width : free;
+  return model.struts[s].dofs_per_node != 2 ? free - framing.bar_width : free;
 }
 
 float length_px(const SceneFraming& framing, const solver::StrutMesh& mesh) {
@@ -111,8 +111,47 @@ void draw_wall(DrawList& list, const Wall& wall, const SceneFraming& framing) {
 
 // One wall per clamped end, merged where the ends of several struts line up (a column of
 // clamped bars gets one straight wall, not a stack of short ones).
+// Frame model: a pinned support as a triangle on a hatched base, its tip on the node; a
+// joint as a small filled square (rigid) or an open circle (pinned: the ends turn).
+void draw_pins_and_joints(DrawList& list, const solver::Model& model, const SceneFraming& framing,
+                          const NodeLookup& nodes, GlyphTally& tally) {
+  const float lw = framing.line_width;
+  const float size = std::max(8.0f * lw, 1.1f * framing.text_size);
+  for (std::size_t s = 0; s < model.end_supports.size(); ++s) {
+    const solver::StrutMesh& mesh = model.struts[s];
+    for (int end = 0; end < 2; ++end) {
+      if (model.end_supports[s][static_cast<std::size_t>(end)] != solver::Support::Pinned) continue;
+      const int node = mesh.node(end == 0 ? 0 : mesh.nx, 0);
+      const Point at = framing.node(model, static_cast<int>(s), node, Vec2::Zero());
+      const float half = 0.55f * size;
+      const Point left{at.x - half, at.y + size}, right{at.x + half, at.y + size};
+      list.triangle(at, left, right, palette::background);
+      list.polyline({at, left, right}, 1.6f * lw, palette::wall, true);
+      const float base = at.y + size + 1.5f * lw;
+      list.line({at.x - 1.3f * half, base}, {at.x + 1.3f * half, base}, 2.0f * lw, palette::wall);
+      const float hatch = std::max(4.0f, 0.35f * size), spacing = std::max(3.5f, 0.3f * size);
+      for (float x = at.x - 1.3f * half + spacing; x <= at.x + 1.3f * half + 0.01f; x += spacing)
+        list.line({x, base + lw}, {x - hatch, base + lw + hatch}, 1.2f * lw, palette::wall);
+      tally.walls = true;
+    }
+  }
+  const float joint = std::max(6.0f * lw, framing.bar_width + 4.0f * lw);
+  for (const solver::JointLink& link : model.joints) {
+    if (link.ends.empty()) continue;
+    const auto [strut, node] = link.ends.front();
+    const Point at = framing.node(model, strut, node, nodes.displacement(strut, node));
+    const float half = 0.5f * joint;
+    if (link.shared == 3) {
+      list.rect({at.x - half, at.y - half, at.x + half, at.y + half}, palette::wall);
+    } else {
+      list.disc(at, half, palette::background);
+      list.ring(at, half, std::max(1.5f * lw, 0.25f * half), palette::wall);
+    }
+  }
+}
+
 void draw_supports(DrawList& list, const solver::Model& model, const SceneFraming& framing,
-                   GlyphTally& tally) {
+                   const NodeLookup& nodes, GlyphTally& tally) {
   std::map<std::tuple<int, int, long>, std::vector<std::pair<float, float>>> groups;
   std::map<std::tuple<int, int, long>, std::pair<Point, Point>> directions;
   for (std::size_t s = 0; s < model.struts.size(); ++s) {
@@ -136,6 +175,7 @@ void draw_supports(DrawList& list, const solver::Model& model, const SceneFramin
       directions[key] = {outward, along};
     }
   }
+  draw_pins_and_joints(list, model, framing, nodes, tally);
   for (auto& [key, intervals] : groups) {
     std::sort(intervals.begin(), intervals.end());
     const auto [outward, along] = directions[key];
@@ -188,7 +228,8 @@ void draw_point_load(DrawList& list, const solver::Model& model, const SceneFram
   const double magnitude = force.norm();
   if (!(magnitude > 0.0)) return;
   tally.largest_load = std::max(tally.largest_load, magnitude);
-  const auto face = mesh.end_face(load.at);
+  // A frame load may sit at any node of its strut.
+  const auto face = load.node >= 0 ? std::vector<int>{load.node} : mesh.end_face(load.at);
   Vec2 center = Vec2::Zero();
   for (int node : face)
     center += framing.drawn(model, load.strut, node, nodes.displacement(load.strut, node));
@@ -654,7 +695,7 @@ DrawList draw_glyphs(const solver::Model& model, const solver::Snapshot& snapsho
   DrawList list;
   GlyphTally tally;
   const NodeLookup nodes(model, snapshot);
-  if (view.show_supports) draw_supports(list, model, framing, tally);
+  if (view.show_supports) draw_supports(list, model, framing, nodes, tally);
   draw_gaps_and_contacts(list, model, snapshot, view, framing, tally);
   if (view.show_loads)
     for (const scenes::Load& load : model.scene_loads) {

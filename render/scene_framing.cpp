@@ -114,6 +114,26 @@ std::vector<std::vector<Vec2>> gap_widening(const solver::Model& model) {
       row({{from, 1.0 - xi}, {to, xi}}, 0.0, kHard);
     }
   }
+  // Frame model: pinned ends stay like clamped ones, and the ends of a joint move together
+  // (a joint is never drawn torn).
+  for (std::size_t s = 0; s < model.end_supports.size() && s < n; ++s)
+    for (int end = 0; end < 2; ++end)
+      if (model.end_supports[s][static_cast<std::size_t>(end)] == solver::Support::Pinned)
+        row({{static_cast<int>(2 * s) + end, 1.0}}, 0.0, kHard);
+  for (const solver::JointLink& link : model.joints)
+    for (std::size_t e = 1; e < link.ends.size(); ++e) {
+      const auto [sa, na] = link.ends.front();
+      const auto [sb, nb] = link.ends[e];
+      const solver::StrutMesh& a = model.struts[static_cast<std::size_t>(sa)];
+      const solver::StrutMesh& b = model.struts[static_cast<std::size_t>(sb)];
+      const double xa = axial_position(a, na), xb = axial_position(b, nb);
+      for (int c = 0; c < 2; ++c)
+        row({{2 * sa, (1.0 - xa) * a.e1[c]},
+             {2 * sa + 1, xa * a.e1[c]},
+             {2 * sb, -(1.0 - xb) * b.e1[c]},
+             {2 * sb + 1, -xb * b.e1[c]}},
+            0.0, kHard);
+    }
   for (std::size_t c = 0; c + 1 < model.contact_first_pair.size(); ++c) {
     const int first = model.contact_first_pair[c], last = model.contact_first_pair[c + 1];
     if (first >= last) continue;

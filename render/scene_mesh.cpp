@@ -17,6 +17,8 @@ using solver::Vec2;
 
 constexpr Color kOutline{55, 55, 62, 255};
 constexpr Color kMeshLine{55, 55, 62, 110};
+// Straight pieces per beam element (frame model) along its Hermite curve.
+constexpr int kBeamSamples = 8;
 
 // Position of each piece among the pieces of its strut, ordered along the strut.
 std::vector<int> piece_ranks(const solver::Snapshot& snapshot) {
@@ -52,7 +54,7 @@ void quad(std::vector<MeshVertex>& out, const MeshVertex& a, const MeshVertex& b
 // A band along the segment from node row a to node row b: `half` across (x: half bar
 // widths, y: rim units, w: line widths), `inset_start` / `inset_end` along (rim units).
 void band(std::vector<MeshVertex>& out, int a, int b, std::array<float, 3> half, float inset_start,
-          float inset_end, int element, Color color) {
+          float inset_end, int element, Color color, float t0 = 0.0f, float t1 = 1.0f) {
   const auto vertex = [&](float t, float side, float along) {
     MeshVertex v;
     v.node_a = a;
@@ -63,8 +65,8 @@ void band(std::vector<MeshVertex>& out, int a, int b, std::array<float, 3> half,
     v.color = color;
     return v;
   };
-  quad(out, vertex(0, 1, inset_start), vertex(1, 1, -inset_end), vertex(1, -1, -inset_end),
-       vertex(0, -1, inset_start));
+  quad(out, vertex(t0, 1, inset_start), vertex(t1, 1, -inset_end), vertex(t1, -1, -inset_end),
+       vertex(t0, -1, inset_start));
 }
 
 MeshVertex at_node(int row, int element, Color color) {
@@ -134,6 +136,25 @@ SceneMesh build_scene_mesh(const solver::Model& model, const solver::Snapshot& s
       mesh.element_count += elements;
       continue;
     }
+    if (strut.dofs_per_node == 3) {
+      // A beam: each element a band along its Hermite curve, kBeamSamples straight pieces
+      // (the shader bends them with the node rotations), rims first, fills over them.
+      const int elements = box.i1 - box.i0;
+      if (elements <= 0) continue;
+      for (int e = 0; e < elements; ++e)
+        for (int j = 0; j < kBeamSamples; ++j) {
+          const float t0 = static_cast<float>(j) / kBeamSamples;
+          const float t1 = static_cast<float>(j + 1) / kBeamSamples;
+          const bool first_piece = e == 0 && j == 0,
+                     last_piece = e + 1 == elements && j + 1 == kBeamSamples;
+          const int a = row(box.i0 + e, 0), b = row(box.i0 + e + 1, 0);
+          band(rims, a, b, {1, 0, 0}, 0, 0, -1, kOutline, t0, t1);
+          band(bar_fills, a, b, {1, -1, 0}, first_piece ? 1.0f : 0.0f, last_piece ? 1.0f : 0.0f,
+               mesh.element_count + e, fill, t0, t1);
+        }
+      mesh.element_count += elements;
+      continue;
+    }
     mesh.smallest_element =
         std::min({mesh.smallest_element, strut.length / strut.nx,
                   strut.ny > 0 ? strut.height / strut.ny : strut.length / strut.nx});
@@ -182,9 +203,11 @@ void fill_mesh_values(const SceneMesh& mesh, const solver::Model& model,
     auto* out = values.nodes.data() + mesh.first_node[p];
     for (std::size_t l = 0; l < piece.displacement.size(); ++l) {
       const Vec2& u = piece.displacement[l];
-      out[l] = u.allFinite() ? std::array<float, 4>{static_cast<float>(u.x()),
-                                                    static_cast<float>(u.y()), 0.0f, 0.0f}
-                             : std::array<float, 4>{0, 0, 0, 0};
+      const double rotation = l < piece.rotation.size() ? piece.rotation[l] : 0.0;
+      out[l] = u.allFinite() && std::isfinite(rotation)
+                   ? std::array<float, 4>{static_cast<float>(u.x()), static_cast<float>(u.y()),
+                                          static_cast<float>(rotation), 0.0f}
+                   : std::array<float, 4>{0, 0, 0, 0};
     }
   }
   values.elements.assign(static_cast<std::size_t>(mesh.element_count), 0.0f);
@@ -227,6 +250,24 @@ void expand_mesh(const SceneMesh& mesh, const MeshValues& values, const MeshUnif
     return Point{u.pixel_center[0] + (w[0] - u.center[0]) * u.pixels_per_unit,
                  u.pixel_center[1] - (w[1] - u.center[1]) * u.pixels_per_unit};
   };
+  // What the Hermite shape of a beam element adds to the straight line between its nodes
+  // at t (world, magnified); zero at t = 0 and 1, so bars and planes are unchanged.
+  const auto bending = [&](const MeshVertex& v) {
+    const auto& ra = mesh.nodes[static_cast<std::size_t>(v.node_a)];
+    const auto& rb = mesh.nodes[static_cast<std::size_t>(v.node_b)];
+    const auto& va = values.nodes[static_cast<std::size_t>(v.node_a)];
+    const auto& vb = values.nodes[static_cast<std::size_t>(v.node_b)];
+    const float ex = rb[0] - ra[0], ey = rb[1] - ra[1];
+    const float h = std::sqrt(ex * ex + ey * ey);
+    if (!(h > 0.0f)) return std::array<float, 2>{0, 0};
+    const float nx = -ey / h, ny = ex / h;  // e2
+    const float t = v.t;
+    const float wa = va[0] * nx + va[1] * ny, wb = vb[0] * nx + vb[1] * ny;
+    const float c = (1 - 3 * t * t + 2 * t * t * t - (1 - t)) * wa +
+                    (3 * t * t - 2 * t * t * t - t) * wb +
+                    h * ((t - 2 * t * t + t * t * t) * va[2] + (t * t * t - t * t) * vb[2]);
+    return std::array<float, 2>{u.magnification * c * nx, u.magnification * c * ny};
+  };
   const auto place = [&](const MeshVertex& v) {
     const Point a = screen(world(v.node_a)), b = screen(world(v.node_b));
     Point d = normalized(b - a);
@@ -238,7 +279,9 @@ void expand_mesh(const SceneMesh& mesh, const MeshValues& values, const MeshUnif
     const Color color = v.element >= 0 && u.stress
                             ? diverging(values.elements[static_cast<std::size_t>(v.element)])
                             : v.color;
-    return Vertex{a + v.t * (b - a) + across * n + along * d, color};
+    const auto bend = bending(v);
+    const Point curve{bend[0] * u.pixels_per_unit, -bend[1] * u.pixels_per_unit};
+    return Vertex{a + v.t * (b - a) + curve + across * n + along * d, color};
   };
   const auto draw = [&](const MeshRange& range) {
     for (std::int32_t i = range.first; i + 2 < range.first + range.count; i += 3)

@@ -216,3 +216,14 @@ TEST_CASE("rendering is deterministic: the same state gives the same PNG bytes")
     opaque = opaque && first.rgba[i] == 255;
   CHECK(opaque);
 }
+
+TEST_CASE("golden: the bundled frame scenes, beams along their Hermite curves") {
+  for (const std::string name :
+       {"frame_post_on_beam", "frame_apex_stop", "frame_portal_sway", "frame_beam_on_contacts",
+        "frame_truss_bridge", "frame_scaffold"}) {
+    Shot shot{bundled(name + ".toml"), solver::MethodKind::ActiveSet, 1.0, view_of(400, 300)};
+    const std::string problem = check_golden(name + "_400x300", render_final(shot));
+    INFO(name << ": " << problem);
+    CHECK(problem.empty());
+  }
+}
