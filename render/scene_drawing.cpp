@@ -82,6 +82,7 @@ float length_px(const SceneFraming& framing, const solver::StrutMesh& mesh) {
 struct GlyphTally {
   bool walls = false, loads = false, distributed = false, rings = false, faces = false,
        forces = false, gaps = false;
+  bool pins = false, rigid_joints = false, pinned_joints = false;  // frame model
   int loads_left_out = 0, contacts_left_out = 0, labels_left_out = 0;
   double largest_load = 0.0;         // point loads drawn, at this load factor
   double largest_distributed = 0.0;  // per length
@@ -132,7 +133,7 @@ void draw_pins_and_joints(DrawList& list, const solver::Model& model, const Scen
       const float hatch = std::max(4.0f, 0.35f * size), spacing = std::max(3.5f, 0.3f * size);
       for (float x = at.x - 1.3f * half + spacing; x <= at.x + 1.3f * half + 0.01f; x += spacing)
         list.line({x, base + lw}, {x - hatch, base + lw + hatch}, 1.2f * lw, palette::wall);
-      tally.walls = true;
+      tally.pins = true;
     }
   }
   const float joint = std::max(6.0f * lw, framing.bar_width + 4.0f * lw);
@@ -143,9 +144,11 @@ void draw_pins_and_joints(DrawList& list, const solver::Model& model, const Scen
     const float half = 0.5f * joint;
     if (link.shared == 3) {
       list.rect({at.x - half, at.y - half, at.x + half, at.y + half}, palette::wall);
+      tally.rigid_joints = true;
     } else {
       list.disc(at, half, palette::background);
       list.ring(at, half, std::max(1.5f * lw, 0.25f * half), palette::wall);
+      tally.pinned_joints = true;
     }
   }
 }
@@ -537,6 +540,22 @@ void draw_glyph_legend(DrawList& list, const SceneFraming& framing, const GlyphT
       list.line(top, bottom, 2.0f * lw, palette::wall);
       for (float s = 0.15f * t; s < 0.9f * t; s += 0.3f * t)
         list.line(top + Point{0, s}, top + Point{0.3f * t, s - 0.3f * t}, 1.2f * lw, palette::wall);
+    });
+  if (tally.pins)
+    items.emplace_back("pinned support", [&](Point p, float t) {
+      const Point tip = p + Point{0.8f * t, -0.45f * t};
+      const Point left = p + Point{0.35f * t, 0.35f * t}, right = p + Point{1.25f * t, 0.35f * t};
+      list.polyline({tip, left, right}, 1.6f * lw, palette::wall, true);
+      list.line(p + Point{0.15f * t, 0.5f * t}, p + Point{1.45f * t, 0.5f * t}, 2.0f * lw,
+                palette::wall);
+    });
+  if (tally.rigid_joints)
+    items.emplace_back("rigid joint", [&](Point p, float t) {
+      list.rect({p.x + 0.5f * t, p.y - 0.3f * t, p.x + 1.1f * t, p.y + 0.3f * t}, palette::wall);
+    });
+  if (tally.pinned_joints)
+    items.emplace_back("pinned joint", [&](Point p, float t) {
+      list.ring(p + Point{0.8f * t, 0}, 0.3f * t, std::max(1.5f * lw, t / 12.0f), palette::wall);
     });
   if (tally.loads)
     items.emplace_back(

@@ -356,7 +356,8 @@ SceneFraming placed(const SceneFraming& framing, const View& view) {
         zoomed(framing, zoom, framing.pixel_center).to_pixel(Vec2(view.center_x, view.center_y));
     const Point middle{0.5f * (framing.region.x0 + framing.region.x1),
                        0.5f * (framing.region.y0 + framing.region.y1)};
-    center = {framing.pixel_center.x + (middle.x - at.x), framing.pixel_center.y + (middle.y - at.y)};
+    center = {framing.pixel_center.x + (middle.x - at.x),
+              framing.pixel_center.y + (middle.y - at.y)};
   }
   return zoomed(framing, zoom, center);
 }
