@@ -1,10 +1,9 @@
 #include "app/solve_outputs.hpp"
 
-#include <chrono>
-
 #include "app/json_layout.hpp"
 #include "app/output_file.hpp"
 #include "app/state_json.hpp"
+#include "solver/stopwatch.hpp"
 
 namespace fetic::app {
 
@@ -68,33 +67,15 @@ std::string SolveOutputs::written_list() const {
   return list;
 }
 
-namespace {
-
-class Stopwatch {
- public:
-  explicit Stopwatch(double& total) : total_(total) {}
-  ~Stopwatch() {
-    total_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
-  }
-  Stopwatch(const Stopwatch&) = delete;
-  Stopwatch& operator=(const Stopwatch&) = delete;
-
- private:
-  double& total_;
-  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
-};
-
-}  // namespace
-
 void SolveOutputs::iteration(const solver::Method& method) {
   if (!vtu_ || !args_.vtu_every_iteration) return;
-  const Stopwatch watch(writing_seconds_);
+  const solver::Stopwatch watch(writing_seconds_);
   vtu_->write(method.snapshot(), vtu_->frames());
 }
 
 void SolveOutputs::step(const solver::SweepStep& step) {
   if (!vtu_ || args_.vtu_every_iteration) return;
-  const Stopwatch watch(writing_seconds_);
+  const solver::Stopwatch watch(writing_seconds_);
   vtu_->write(step.state, time_is_load_factor_ ? step.load_factor : vtu_->frames());
 }
 

@@ -1,32 +1,15 @@
 #include "solver/coarse_problem.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <map>
 #include <queue>
 #include <stdexcept>
 
 #include "solver/free_motion_space.hpp"
+#include "solver/stopwatch.hpp"
 
 namespace fetic::solver {
-namespace {
-
-class Stopwatch {
- public:
-  explicit Stopwatch(double& total) : total_(total), start_(std::chrono::steady_clock::now()) {}
-  ~Stopwatch() {
-    total_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
-  }
-  Stopwatch(const Stopwatch&) = delete;
-  Stopwatch& operator=(const Stopwatch&) = delete;
-
- private:
-  double& total_;
-  std::chrono::steady_clock::time_point start_;
-};
-
-}  // namespace
 
 CoarseProblem::CoarseProblem(const FetiSystem& system) : system_(system) {
   const Decomposition& d = system.decomposition();
@@ -109,7 +92,8 @@ void CoarseProblem::build_pattern() {
     // Position of (a, b) in column b of the compressed lower triangle.
     const int* begin = matrix_.innerIndexPtr() + matrix_.outerIndexPtr()[b];
     const int* end = matrix_.innerIndexPtr() + matrix_.outerIndexPtr()[b + 1];
-    value_slot_[k / 2] = static_cast<int>(std::lower_bound(begin, end, a) - matrix_.innerIndexPtr());
+    value_slot_[k / 2] =
+        static_cast<int>(std::lower_bound(begin, end, a) - matrix_.innerIndexPtr());
   }
 }
 

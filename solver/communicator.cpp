@@ -1,7 +1,6 @@
 #include "solver/communicator.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <cstdlib>
 #include <limits>
 #include <numeric>
@@ -9,24 +8,12 @@
 
 #include <mpi.h>
 
+#include "solver/stopwatch.hpp"
+
 namespace fetic::solver {
 namespace {
 
 bool mpi_running = false;
-
-class Timer {
- public:
-  explicit Timer(double& total) : total_(total), start_(std::chrono::steady_clock::now()) {}
-  ~Timer() {
-    total_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
-  }
-  Timer(const Timer&) = delete;
-  Timer& operator=(const Timer&) = delete;
-
- private:
-  double& total_;
-  std::chrono::steady_clock::time_point start_;
-};
 
 template <class T>
 MPI_Datatype mpi_type();
@@ -55,7 +42,7 @@ std::vector<int> offsets_of(const std::vector<int>& counts) {
 
 template <class T>
 std::vector<T> all_gather_impl(const std::vector<T>& local, int size, CommunicationStats& stats) {
-  Timer timer(stats.gather_seconds);
+  Stopwatch timer(stats.gather_seconds);
   ++stats.gathers;
   stats.gathered_bytes += static_cast<std::int64_t>(local.size() * sizeof(T));
   const std::vector<int> counts = gather_counts(static_cast<int>(local.size()), size);
@@ -69,7 +56,7 @@ std::vector<T> all_gather_impl(const std::vector<T>& local, int size, Communicat
 template <class T>
 std::vector<T> gather_to_root_impl(const std::vector<T>& local, int rank, int size,
                                    CommunicationStats& stats) {
-  Timer timer(stats.gather_seconds);
+  Stopwatch timer(stats.gather_seconds);
   ++stats.gathers;
   stats.gathered_bytes += static_cast<std::int64_t>(local.size() * sizeof(T));
   const int count = static_cast<int>(local.size());
@@ -106,7 +93,7 @@ const Communicator& Communicator::world() {
 
 void Communicator::sum(double* values, int count) const {
   if (size_ == 1) return;
-  Timer timer(stats_.reduction_seconds);
+  Stopwatch timer(stats_.reduction_seconds);
   ++stats_.reductions;
   // Gather every process' partials and add them in rank order: the same bits everywhere
   // (MPI_Allreduce may combine in an order that differs between processes).
@@ -122,7 +109,7 @@ void Communicator::sum(double* values, int count) const {
 
 void Communicator::sum(ExactSum* sums, int count) const {
   if (size_ == 1) return;
-  Timer timer(stats_.reduction_seconds);
+  Stopwatch timer(stats_.reduction_seconds);
   ++stats_.reductions;
   std::vector<std::int64_t> words(static_cast<size_t>(count) * ExactSum::kWords);
   for (int i = 0; i < count; ++i)
@@ -141,7 +128,7 @@ double Communicator::sum(double value) const {
 
 double Communicator::max(double value) const {
   if (size_ == 1) return value;
-  Timer timer(stats_.reduction_seconds);
+  Stopwatch timer(stats_.reduction_seconds);
   ++stats_.reductions;
   double result = value;
   MPI_Allreduce(&value, &result, 1, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);  // exact: max
@@ -150,7 +137,7 @@ double Communicator::max(double value) const {
 
 long long Communicator::sum(long long value) const {
   if (size_ == 1) return value;
-  Timer timer(stats_.reduction_seconds);
+  Stopwatch timer(stats_.reduction_seconds);
   ++stats_.reductions;
   long long result = value;
   MPI_Allreduce(&value, &result, 1, MPI_LONG_LONG, MPI_SUM, MPI_COMM_WORLD);  // exact: integers
@@ -159,7 +146,7 @@ long long Communicator::sum(long long value) const {
 
 bool Communicator::any(bool value) const {
   if (size_ == 1) return value;
-  Timer timer(stats_.reduction_seconds);
+  Stopwatch timer(stats_.reduction_seconds);
   ++stats_.reductions;
   int local = value ? 1 : 0, result = 0;
   MPI_Allreduce(&local, &result, 1, MPI_INT, MPI_LOR, MPI_COMM_WORLD);
@@ -191,8 +178,7 @@ void Communicator::broadcast(std::string& text, int root) const {
   unsigned long long length = text.size();
   MPI_Bcast(&length, 1, MPI_UNSIGNED_LONG_LONG, root, MPI_COMM_WORLD);
   text.resize(length);
-  if (length > 0)
-    MPI_Bcast(text.data(), static_cast<int>(length), MPI_CHAR, root, MPI_COMM_WORLD);
+  if (length > 0) MPI_Bcast(text.data(), static_cast<int>(length), MPI_CHAR, root, MPI_COMM_WORLD);
 }
 
 void Communicator::broadcast(double& value, int root) const {
@@ -217,16 +203,16 @@ void Communicator::barrier() const {
   if (size_ > 1) MPI_Barrier(MPI_COMM_WORLD);
 }
 
-void Communicator::exchange(const std::vector<ExchangePeer>& peers,
-                            const std::vector<double>& send, std::vector<double>& receive) const {
+void Communicator::exchange(const std::vector<ExchangePeer>& peers, const std::vector<double>& send,
+                            std::vector<double>& receive) const {
   if (peers.empty()) return;
-  Timer timer(stats_.exchange_seconds);
+  Stopwatch timer(stats_.exchange_seconds);
   ++stats_.exchanges;
   std::vector<MPI_Request> requests(2 * peers.size());
   int offset = 0;
   for (size_t p = 0; p < peers.size(); ++p) {
-    MPI_Irecv(receive.data() + offset, peers[p].count, MPI_DOUBLE, peers[p].rank, 0,
-              MPI_COMM_WORLD, &requests[2 * p]);
+    MPI_Irecv(receive.data() + offset, peers[p].count, MPI_DOUBLE, peers[p].rank, 0, MPI_COMM_WORLD,
+              &requests[2 * p]);
     MPI_Isend(send.data() + offset, peers[p].count, MPI_DOUBLE, peers[p].rank, 0, MPI_COMM_WORLD,
               &requests[2 * p + 1]);
     offset += peers[p].count;

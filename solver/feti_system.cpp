@@ -1,33 +1,19 @@
 #include "solver/feti_system.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <limits>
 #include <map>
 #include <string>
 
 #include "solver/primal_problem.hpp"
 #include "solver/rigid_modes.hpp"
+#include "solver/stopwatch.hpp"
 #include "solver/threads.hpp"
 
 namespace fetic::solver {
 namespace {
 
 constexpr double kSingularRcond = 1e-15;
-
-class Stopwatch {
- public:
-  explicit Stopwatch(double& total) : total_(total), start_(std::chrono::steady_clock::now()) {}
-  ~Stopwatch() {
-    total_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
-  }
-  Stopwatch(const Stopwatch&) = delete;
-  Stopwatch& operator=(const Stopwatch&) = delete;
-
- private:
-  double& total_;
-  std::chrono::steady_clock::time_point start_;
-};
 
 }  // namespace
 
@@ -186,9 +172,13 @@ void FetiSystem::solve_subdomains(const Eigen::VectorXd* lambda, double s,
   }
 }
 
-void FetiSystem::gather_rows(Eigen::VectorXd& out) const { sum_rows(y_, out); }
+void FetiSystem::gather_rows(Eigen::VectorXd& out) const {
+  sum_rows(y_, out);
+}
 
-void FetiSystem::apply_B(const Eigen::VectorXd& u, Eigen::VectorXd& out) const { sum_rows(u, out); }
+void FetiSystem::apply_B(const Eigen::VectorXd& u, Eigen::VectorXd& out) const {
+  sum_rows(u, out);
+}
 
 void FetiSystem::sum_rows(const Eigen::VectorXd& values, Eigen::VectorXd& out) const {
   const int rows = space_.rows();
