@@ -97,15 +97,15 @@ void FetiMethod::reset_watch() {
   best_iteration_ = 0;
 }
 
-void FetiMethod::watch_stagnation(double residual) {
+void FetiMethod::watch_stagnation(double residual, int window) {
   if (residual < best_residual_) {
     best_residual_ = residual;
     best_iteration_ = iteration_;
-  } else if (iteration_ - best_iteration_ >= kStagnationWindow) {
+  } else if (iteration_ - best_iteration_ >= window) {
     fail("stagnated: the relative residual has not gone below " + format_number(best_residual_) +
-         " (iteration " + std::to_string(best_iteration_) + ") in " +
-         std::to_string(kStagnationWindow) + " iterations; the tolerance " +
-         format_number(options_.tolerance) + " is probably below what rounding allows here");
+         " (iteration " + std::to_string(best_iteration_) + ") in " + std::to_string(window) +
+         " iterations; the tolerance " + format_number(options_.tolerance) +
+         " is probably below what rounding allows here");
   }
 }
 

@@ -76,8 +76,8 @@ class FetiMethod : public Method {
   // recomputed as d - F lambda instead, so that rounding in the recursion cannot pile up.
   void update_residual(double a, const Eigen::VectorXd& q);
   // Call before recording a residual: fails the solve when it has not reached a new low
-  // for kStagnationWindow iterations (the tolerance is below what rounding allows).
-  void watch_stagnation(double residual);
+  // for `window` iterations (the tolerance is below what rounding allows).
+  void watch_stagnation(double residual, int window = kStagnationWindow);
   // Fails for a vanishing or negative curvature p'F p, explaining the likely cause.
   void fail_breakdown(double yw, double pq);
   void reset_watch();

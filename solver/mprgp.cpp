@@ -373,17 +373,7 @@ void Mprgp::finish_iteration() {
     gradient = space().norm(g_free_ + g_chopped_);
   }
   const double residual = relative(std::max(gradient, norm_H_ * imbalance));
-  if (status() == Status::Running) {
-    if (residual < best_residual_) {
-      best_residual_ = residual;
-      best_iteration_ = iteration_;
-    } else if (iteration_ - best_iteration_ >= kMprgpStagnationWindow) {
-      fail("stagnated: the relative residual has not gone below " + format_number(best_residual_) +
-           " (iteration " + std::to_string(best_iteration_) + ") in " +
-           std::to_string(kMprgpStagnationWindow) + " iterations; the tolerance " +
-           format_number(options_.tolerance) + " is probably below what rounding allows here");
-    }
-  }
+  if (status() == Status::Running) watch_stagnation(residual, kMprgpStagnationWindow);
   record(residual, free_contact_rows());
 }
 
