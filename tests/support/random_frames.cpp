@@ -5,28 +5,10 @@
 #include <cstdio>
 #include <vector>
 
+#include "tests/support/random_draws.hpp"
+
 namespace fetic::testing {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
-
-double uniform(std::mt19937& rng, double low, double high) {
-  return std::uniform_real_distribution<double>(low, high)(rng);
-}
-int integer(std::mt19937& rng, int low, int high) {
-  return std::uniform_int_distribution<int>(low, high)(rng);
-}
-bool chance(std::mt19937& rng, double p) {
-  return uniform(rng, 0.0, 1.0) < p;
-}
-
-std::string number(double value) {
-  char buffer[40];
-  std::snprintf(buffer, sizeof buffer, "%.17g", value);
-  std::string text = buffer;
-  if (text.find_first_of(".eEn") == std::string::npos) text += ".0";
-  return text;
-}
 
 struct V {
   double x = 0.0, y = 0.0;
@@ -65,8 +47,8 @@ class FrameWriter {
     const std::string& s_from = reversed ? support_b : support_a;
     const std::string& s_to = reversed ? support_a : support_b;
     text_ += "\n[[strut]]\nname = \"" + name + "\"\nfrom = " + point(from) + "\nto = " + point(to) +
-             "\nE = " + number(E) + "\narea = " + number(area) + "\ninertia = " + number(inertia) +
-             "\nelements = " + std::to_string(elements) +
+             "\nE = " + toml_number(E) + "\narea = " + toml_number(area) +
+             "\ninertia = " + toml_number(inertia) + "\nelements = " + std::to_string(elements) +
              "\nsubdomains = " + std::to_string(integer(rng_, 1, std::min(3, elements))) + "\n";
     for (const char* kind : {"fixed", "pinned"}) {
       std::string list;
@@ -105,7 +87,7 @@ class FrameWriter {
 
   void force(const std::string& strut, const std::string& at, V f, double moment = 0.0) {
     text_ += "\n[[load]]\nstrut = \"" + strut + "\"\nat = " + at + "\nforce = " + vector(f) + "\n";
-    if (moment != 0.0) text_ += "moment = " + number(moment) + "\n";
+    if (moment != 0.0) text_ += "moment = " + toml_number(moment) + "\n";
   }
   // 'at' as TOML for node k counted from the strut's local point a (-1: its point b):
   // "\"from\"", "\"to\"" or the node index.
@@ -140,11 +122,11 @@ class FrameWriter {
   }
   std::string point(V p) const {
     const V q = turn(p) + origin_;
-    return "[" + number(q.x) + ", " + number(q.y) + "]";
+    return "[" + toml_number(q.x) + ", " + toml_number(q.y) + "]";
   }
   std::string vector(V v) const {
     const V q = turn(v);
-    return "[" + number(q.x) + ", " + number(q.y) + "]";
+    return "[" + toml_number(q.x) + ", " + toml_number(q.y) + "]";
   }
 
   std::mt19937& rng_;

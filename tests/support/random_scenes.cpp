@@ -4,31 +4,13 @@
 #include <cstdio>
 #include <vector>
 
+#include "tests/support/random_draws.hpp"
+
 namespace fetic::testing {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-
-double uniform(std::mt19937& rng, double low, double high) {
-  return std::uniform_real_distribution<double>(low, high)(rng);
-}
-int integer(std::mt19937& rng, int low, int high) {
-  return std::uniform_int_distribution<int>(low, high)(rng);
-}
-bool chance(std::mt19937& rng, double p) {
-  return uniform(rng, 0.0, 1.0) < p;
-}
-
-std::string number(double value) {
-  char buffer[40];
-  std::snprintf(buffer, sizeof buffer, "%.17g", value);
-  std::string text = buffer;
-  if (text.find_first_of(".eEn") == std::string::npos) text += ".0";
-  return text;
-}
-
 std::string point(double x, double y) {
-  return "[" + number(x) + ", " + number(y) + "]";
+  return "[" + toml_number(x) + ", " + toml_number(y) + "]";
 }
 
 struct Writer {
@@ -51,8 +33,8 @@ struct Writer {
     struts += "\n[[strut]]\nname = \"" + name + "\"\n";
     struts += "from = " + (reversed ? point(bx, by) : point(ax, ay)) + "\n";
     struts += "to = " + (reversed ? point(ax, ay) : point(bx, by)) + "\n";
-    struts += "E = " + number(uniform(rng, 5e10, 3e11)) + "\n";
-    struts += "area = " + number(uniform(rng, 2e-5, 4e-4)) + "\n";
+    struts += "E = " + toml_number(uniform(rng, 5e10, 3e11)) + "\n";
+    struts += "area = " + toml_number(uniform(rng, 2e-5, 4e-4)) + "\n";
     struts += "elements = " + std::to_string(elements) + "\n";
     struts += "subdomains = " + std::to_string(subdomains) + "\n";
     struts += "fixed = " + fixed + "\n";
@@ -189,8 +171,9 @@ std::string random_plane_pairs(std::mt19937& rng, int pairs) {
       struts += "\n[[strut]]\nname = \"" + name + "\"\n";
       struts += "from = " + (reversed ? point(bx, by) : point(ax, ay)) + "\n";
       struts += "to = " + (reversed ? point(ax, ay) : point(bx, by)) + "\n";
-      struts += "E = " + number(E * uniform(rng, 0.5, 1.5)) + "\nnu = " + number(nu) + "\n";
-      struts += "height = " + number(h) + "\nthickness = " + number(t) + "\n";
+      struts +=
+          "E = " + toml_number(E * uniform(rng, 0.5, 1.5)) + "\nnu = " + toml_number(nu) + "\n";
+      struts += "height = " + toml_number(h) + "\nthickness = " + toml_number(t) + "\n";
       struts += "elements = " + std::to_string(elements) +
                 "\nelements_across = " + std::to_string(across) + "\n";
       struts += "subdomains = " + std::to_string(integer(rng, 1, std::min(3, elements))) + "\n";

@@ -1,0 +1,32 @@
+#pragma once
+// The random draws and number formatting the random scene generators share: numbers are
+// written with 17 significant digits (and always as TOML floats), so that a scene read
+// back is the scene drawn.
+
+#include <cstdio>
+#include <random>
+#include <string>
+
+namespace fetic::testing {
+
+inline constexpr double kPi = 3.14159265358979323846;
+
+inline double uniform(std::mt19937& rng, double low, double high) {
+  return std::uniform_real_distribution<double>(low, high)(rng);
+}
+inline int integer(std::mt19937& rng, int low, int high) {
+  return std::uniform_int_distribution<int>(low, high)(rng);
+}
+inline bool chance(std::mt19937& rng, double p) {
+  return uniform(rng, 0.0, 1.0) < p;
+}
+
+inline std::string toml_number(double value) {
+  char buffer[40];
+  std::snprintf(buffer, sizeof buffer, "%.17g", value);
+  std::string text = buffer;
+  if (text.find_first_of(".eEn") == std::string::npos) text += ".0";
+  return text;
+}
+
+}  // namespace fetic::testing
