@@ -99,37 +99,7 @@ TEST_CASE("FETI-C on the thesis scene: the reference to 1e-6 within 10 iteration
 }
 
 TEST_CASE("FETI-C: a floating tip pushed away from every contact is reported as unbounded") {
-  const std::string chain = R"(
-model = "bar"
-[defaults]
-E = 2e11
-area = 1e-4
-elements = 3
-subdomains = 2
-[[strut]]
-name = "base"
-from = [0.0, 0.0]
-to = [1.0, 0.0]
-fixed = ["from"]
-[[strut]]
-name = "middle"
-from = [1.001, 0.0]
-to = [2.0, 0.0]
-[[strut]]
-name = "tip"
-from = [2.0, 0.0]
-to = [3.0, 0.0]
-[[contact]]
-a = "base.to"
-b = "middle.from"
-[[contact]]
-a = "middle.to"
-b = "tip.from"
-[[load]]
-strut = "middle"
-at = "from"
-force = [-800.0, 0.0]
-)";
+  const std::string chain = testing::kFloatingChain;
   // The middle strut is pushed onto the base, the tip is pulled away from the middle.
   const auto escaping = testing::solve_text(
       chain + "[[load]]\nstrut = \"tip\"\nat = \"to\"\nforce = [500.0, 0.0]\n", MethodKind::FetiC);

@@ -57,37 +57,7 @@ TEST_CASE("MPRGP agrees with FETI-C and the active-set method on every bundled s
 }
 
 TEST_CASE("MPRGP: floating struts held only by contacts, and one pushed away from them") {
-  const std::string chain = R"(
-model = "bar"
-[defaults]
-E = 2e11
-area = 1e-4
-elements = 3
-subdomains = 2
-[[strut]]
-name = "base"
-from = [0.0, 0.0]
-to = [1.0, 0.0]
-fixed = ["from"]
-[[strut]]
-name = "middle"
-from = [1.001, 0.0]
-to = [2.0, 0.0]
-[[strut]]
-name = "tip"
-from = [2.0, 0.0]
-to = [3.0, 0.0]
-[[contact]]
-a = "base.to"
-b = "middle.from"
-[[contact]]
-a = "middle.to"
-b = "tip.from"
-[[load]]
-strut = "middle"
-at = "from"
-force = [-800.0, 0.0]
-)";
+  const std::string chain = testing::kFloatingChain;
   const auto escaping = testing::solve_text(
       chain + "[[load]]\nstrut = \"tip\"\nat = \"to\"\nforce = [500.0, 0.0]\n", MethodKind::Mprgp);
   CHECK(escaping->state.status == solver::Status::Failed);

@@ -75,4 +75,39 @@ inline double load_scale(const solver::Model& model) {
   return std::max(total, 1e-300);
 }
 
+// A bar chain: a clamped base, a floating middle strut pushed onto it (its left end 1 mm
+// away), and a floating tip touching the middle one. Tests append the tip's load: pulled
+// away the scene is unbounded, pushed back it rests on the chain.
+inline constexpr const char* kFloatingChain = R"(
+model = "bar"
+[defaults]
+E = 2e11
+area = 1e-4
+elements = 3
+subdomains = 2
+[[strut]]
+name = "base"
+from = [0.0, 0.0]
+to = [1.0, 0.0]
+fixed = ["from"]
+[[strut]]
+name = "middle"
+from = [1.001, 0.0]
+to = [2.0, 0.0]
+[[strut]]
+name = "tip"
+from = [2.0, 0.0]
+to = [3.0, 0.0]
+[[contact]]
+a = "base.to"
+b = "middle.from"
+[[contact]]
+a = "middle.to"
+b = "tip.from"
+[[load]]
+strut = "middle"
+at = "from"
+force = [-800.0, 0.0]
+)";
+
 }  // namespace fetic::testing
