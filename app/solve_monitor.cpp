@@ -7,7 +7,7 @@
 namespace fetic::app {
 
 SolveMonitor::SolveMonitor(const solver::Model& model, int full_every, bool writes)
-    : model_(model), full_every_(full_every), writes_(writes) {}
+    : model_(&model), full_every_(full_every), writes_(writes) {}
 
 void SolveMonitor::open(const std::string& path) {
   if (writes_) out_.open(path);
@@ -17,6 +17,11 @@ void SolveMonitor::open(const std::string& path) {
 void SolveMonitor::begin_load(double load_factor) {
   load_factor_ = load_factor;
   written_ = 0;
+}
+
+void SolveMonitor::begin_load(double load_factor, const solver::Model& model) {
+  model_ = &model;
+  begin_load(load_factor);
 }
 
 void SolveMonitor::observe(const solver::Method& method) {
@@ -30,7 +35,7 @@ void SolveMonitor::observe(const solver::Method& method) {
   std::vector<char> working_set;
   if (full)
     working_set = state.in_working_set;
-  else if (!model_.pairs.empty())
+  else if (!model_->pairs.empty())
     working_set = method.working_set();
   if (!writes_) {
     written_ = history.size();
@@ -38,7 +43,7 @@ void SolveMonitor::observe(const solver::Method& method) {
   }
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
-  working_set.resize(model_.pairs.size(), 0);
+  working_set.resize(model_->pairs.size(), 0);
   if (working_set_.size() != working_set.size()) working_set_.assign(working_set.size(), 0);
 
   std::string lines;
@@ -63,7 +68,7 @@ void SolveMonitor::observe(const solver::Method& method) {
     line["left"] = left;
     line["time"] = seconds;
     if (newest && full) {
-      const auto displacements = solver::strut_displacements(model_, state);
+      const auto displacements = solver::strut_displacements(*model_, state);
       nlohmann::ordered_json struts = nlohmann::ordered_json::array();
       for (const auto& strut : displacements) {
         nlohmann::ordered_json nodes = nlohmann::ordered_json::array();

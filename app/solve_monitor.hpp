@@ -6,6 +6,8 @@
 // entered and left the working set since the previous line, seconds since the solve
 // began, and with --monitor-full N the state (displacements, contact multipliers) every
 // N-th iteration. The entries equal the result file's `history` entry for entry.
+// `fetic gui --monitor FILE` writes the same lines for every solve the window performs
+// (each a new load factor starting at iteration 0; the model may change on a reload).
 
 #include <chrono>
 #include <string>
@@ -26,13 +28,15 @@ class SolveMonitor {
   void open(const std::string& path);
   // Before each load factor of a sweep.
   void begin_load(double load_factor);
+  // Before a solve of another model (the window reloaded its scene file).
+  void begin_load(double load_factor, const solver::Model& model);
   // After the start (history entry 0) and after each iteration: writes the new entries.
   void observe(const solver::Method& method);
   // Closes the target; returns the first write failure ("" when every line arrived).
   std::string close();
 
  private:
-  const solver::Model& model_;
+  const solver::Model* model_;
   int full_every_;
   bool writes_;
   OutputStream out_;

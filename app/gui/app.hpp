@@ -35,6 +35,7 @@
 #include "app/gui/script.hpp"
 #include "app/gui/solver_worker.hpp"
 #include "app/gui/state_log.hpp"
+#include "app/solve_monitor.hpp"
 #include "app/view_file.hpp"
 #include "app/vtu_export.hpp"
 #include "render/draw_list.hpp"
@@ -72,6 +73,9 @@ class App {
   // sync_point.cpp
   void push(Request request) { queue_.push_back(std::move(request)); }
   void send_to_worker();
+  // --monitor: the worker writes a line per iteration of every solve (main_loop.cpp).
+  void open_monitor();
+  std::string close_monitor();  // "" when every line arrived
   void apply(const Request& request);
   void sync();  // the sync point: applies the queued requests, takes the newest state
   int shown_index() const;
@@ -153,6 +157,9 @@ class App {
 
   const Options& args_;
   std::string title_;
+  // --monitor, written by the worker's thread: declared before the worker, so that it
+  // outlives the worker's thread.
+  std::unique_ptr<SolveMonitor> monitor_;
   SolverWorker worker_;
   SolverWorker compare_worker_;  // the second method of the comparison
   std::optional<solver::MethodKind> compare_;

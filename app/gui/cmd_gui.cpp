@@ -19,6 +19,7 @@
 #include "app/load_factor_check.hpp"
 #include "app/method_options.hpp"
 #include "app/out_of_memory.hpp"
+#include "app/output_file.hpp"
 #include "app/render_output.hpp"
 #include "app/scene_input.hpp"
 #include "app/view_file.hpp"
@@ -52,6 +53,14 @@ int run_gui(const gui::Options& args) {
       std::cerr << scenes::printable(args.script) << ":" << error.line << ": " << error.message
                 << '\n';
     if (!errors.empty()) return kExitUsage;
+  }
+  if (args.monitor_full > 0 && args.monitor.empty()) {
+    std::cerr << "fetic gui: --monitor-full needs --monitor FILE\n";
+    return kExitUsage;
+  }
+  if (is_stdout(args.monitor) && is_stdout(args.state_file)) {
+    std::cerr << "fetic gui: --monitor - and --state-file - cannot both go to standard output\n";
+    return kExitUsage;
   }
   ImageSize size = *parse_image_size(args.size);
   if (!args.view.empty()) try {
@@ -139,6 +148,16 @@ void register_gui(CLI::App& app, int& exit_code) {
                       "Start with a saved view (JSON; the window's Save view, docs/WINDOW.md)");
   command->add_option("--state-file", args->state_file,
                       "Write what the app does as JSON lines to this file (- for stdout)");
+  command->add_option("--monitor", args->monitor,
+                      "Write one JSON line per iteration of every solve the window performs, as "
+                      "fetic solve --monitor does (- for stdout)");
+  command
+      ->add_option("--monitor-full", args->monitor_full,
+                   "With --monitor: add the state (displacements, contact multipliers) every "
+                   "N-th iteration (N = 1 when not given)")
+      ->expected(0, 1)
+      ->default_str("1")
+      ->check(CLI::PositiveNumber);
   command->add_option("--script", args->script,
                       "Run timed actions from this file (see docs/WINDOW.md)");
   command->add_option("--screenshot-dir", args->screenshot_dir, "Where S saves screenshots")

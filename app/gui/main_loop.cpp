@@ -32,9 +32,28 @@ namespace fs = std::filesystem;
 
 }  // namespace
 
+void App::open_monitor() {
+  if (args_.monitor.empty()) return;
+  monitor_ = std::make_unique<SolveMonitor>(*target_.model, args_.monitor_full, true);
+  monitor_->open(args_.monitor);
+  worker_.observe_with([monitor = monitor_.get()](const solver::Model& model,
+                                                  const solver::Method& method, double load_factor,
+                                                  bool started) {
+    if (started) monitor->begin_load(load_factor, model);
+    monitor->observe(method);
+  });
+}
+
+std::string App::close_monitor() {
+  if (!monitor_) return "";
+  worker_.observe_with(nullptr);  // waits for a line being written
+  return monitor_->close();
+}
+
 int App::run(render::GlfwWindow& window, std::vector<ScriptAction> script) {
   try {
     log_.open(args_.state_file);
+    open_monitor();
   } catch (const OutputError& error) {
     return report_output_error(error);
   }
@@ -175,6 +194,7 @@ int App::run(render::GlfwWindow& window, std::vector<ScriptAction> script) {
   ImGui::DestroyContext();
 
   if (args_.bench > 0) print_bench(window);
+  const std::string lost_monitor = close_monitor();
   const std::string lost_outputs = log_.lost_outputs();
   if (!lost_outputs.empty()) std::cerr << "fetic gui: " << lost_outputs << '\n';
   if (const std::string lost = log_.close(); !lost.empty()) {
@@ -182,6 +202,10 @@ int App::run(render::GlfwWindow& window, std::vector<ScriptAction> script) {
     return kExitOutput;
   }
   if (!lost_outputs.empty()) return kExitOutput;
+  if (!lost_monitor.empty()) {
+    std::cerr << "fetic gui: the monitor stream is incomplete: " << lost_monitor << '\n';
+    return kExitOutput;
+  }
   if (interrupted()) {
     std::cerr << "fetic gui: interrupted by " << interrupt_name() << "; the window closed\n";
     return kExitInterrupted;

@@ -20,6 +20,8 @@ struct Options {
   std::string screenshot_dir = ".";
   std::string view;  // a saved view to start with (app/view_file.hpp)
   std::string record_dir = "fetic-recordings";
+  std::string monitor;   // --monitor: the solve's JSON lines (app/solve_monitor.hpp)
+  int monitor_full = 0;  // --monitor-full N: the state every N-th iteration
   std::string vtu_dir = "fetic-paraview";  // where "ParaView export" writes
   bool no_overlay = false;
   int bench = 0;  // load changes of the benchmark drag; 0: no benchmark

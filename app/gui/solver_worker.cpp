@@ -71,6 +71,17 @@ void SolverWorker::allow(int iterations) {
   changed_.notify_all();
 }
 
+void SolverWorker::observe_with(Observer observer) {
+  std::lock_guard lock(observer_mutex_);
+  observer_ = std::move(observer);
+}
+
+void SolverWorker::notify_observer(const solver::Model& model, const solver::Method& method,
+                                   double load_factor, bool started) {
+  std::lock_guard lock(observer_mutex_);
+  if (observer_) observer_(model, method, load_factor, started);
+}
+
 bool SolverWorker::paused() const {
   std::lock_guard lock(mutex_);
   return paused_;
@@ -296,6 +307,7 @@ void SolverWorker::run() {
       set_progress(progress);
     };
     take();
+    notify_observer(*target.model, *method, target.load_factor, true);
     publish(std::make_shared<const SolveState>(*state));
     bool abandoned = false;
     while (method->status() == solver::Status::Running) {
@@ -305,6 +317,7 @@ void SolverWorker::run() {
       }
       method->step();
       take();
+      notify_observer(*target.model, *method, target.load_factor, false);
       state->finished = method->status() != solver::Status::Running;
       publish(std::make_shared<const SolveState>(*state));
     }

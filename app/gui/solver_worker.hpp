@@ -98,8 +98,17 @@ class SolverWorker {
   // True while a live solve waits for allow().
   bool paused() const;
   WorkerProgress progress() const;
+  // Called on the worker thread when a solve has started (`started`, history entry 0) and
+  // after each of its iterations - not for the survey solves that fix the picture's
+  // scales: the window's --monitor stream. Clearing it (nullptr) waits for a call in
+  // progress, so that what it writes to can be closed afterwards.
+  using Observer = std::function<void(const solver::Model&, const solver::Method&,
+                                      double load_factor, bool started)>;
+  void observe_with(Observer observer);
 
  private:
+  void notify_observer(const solver::Model& model, const solver::Method& method, double load_factor,
+                       bool started);
   void run();
   bool superseded() const;
   void publish(std::shared_ptr<const SolveState> state);
@@ -124,6 +133,8 @@ class SolverWorker {
   bool paused_ = false;
   WorkerProgress progress_;
   std::shared_ptr<const SolveState> latest_;
+  std::mutex observer_mutex_;  // held while the observer runs
+  Observer observer_;
   std::thread thread_;
 };
 

@@ -403,6 +403,88 @@ TEST_CASE("two methods side by side: --compare solves every load with both", "[s
   CHECK(fs::file_size(dir / "both.png") > 10000);
 }
 
+// The result file of `fetic solve` at this load factor.
+json solve_result(const std::string& scene_file, double load) {
+  const fs::path out =
+      fs::temp_directory_path() / ("fetic_gui_result_" + std::to_string(::getpid()) + ".json");
+  const auto [status, output] =
+      shell(std::string(FETIC_EXECUTABLE) + " solve " + scene_file + " --load-factor " +
+            std::to_string(load) + " --json " + out.string() + " --quiet");
+  INFO(output);
+  REQUIRE(status == 0);
+  return json::parse(read_text(out));
+}
+
+std::vector<json> json_lines(const fs::path& path) {
+  std::vector<json> lines;
+  std::ifstream in(path);
+  for (std::string line; std::getline(in, line);)
+    lines.push_back(json::parse(line));  // every line whole: a torn one throws
+  return lines;
+}
+
+TEST_CASE("the window writes the monitor stream of every solve while it runs", "[script]") {
+  REQUIRE(have_display());
+  const fs::path dir = fresh_directory("fetic_gui_monitor");
+  const fs::path state = dir / "state.jsonl";
+  const fs::path monitor = dir / "monitor.jsonl";
+  const fs::path script = dir / "script.txt";
+  // Stays open after the second solve: the stream is read while the window still runs.
+  std::ofstream(script) << "wait\nload 1.5\nwait\n60 quit\n";
+  App app({scene("thesis.toml"), "--state-file", state.string(), "--script", script.string(),
+           "--monitor", monitor.string(), "--monitor-full", "3"});
+  const auto second = wait_for(state, [](const json& e) {
+    return is(e, "solved") && e["load_factor"].get<double>() == 1.5;
+  });
+  INFO("reported state:\n" << read_text(state));
+  REQUIRE(second);
+  REQUIRE(app.running());
+  const std::vector<json> lines = json_lines(monitor);
+
+  // Two solves, each starting at iteration 0: the first (cold, at the scene's loads) is
+  // `fetic solve`'s history entry for entry; the second is warm-started.
+  std::vector<std::vector<json>> solves;
+  for (const json& line : lines) {
+    if (line["iteration"] == 0) solves.emplace_back();
+    REQUIRE(!solves.empty());
+    solves.back().push_back(line);
+  }
+  REQUIRE(solves.size() == 2);
+  const json cold = solve_result(scene("thesis.toml"), 1.0);
+  REQUIRE(solves[0].size() == cold["history"].size());
+  for (size_t i = 0; i < solves[0].size(); ++i) {
+    INFO("line " << i << ": " << solves[0][i].dump());
+    CHECK(solves[0][i]["load_factor"].get<double>() == 1.0);
+    CHECK(solves[0][i]["residual"] == cold["history"][i]["residual"]);
+    CHECK(solves[0][i]["active_set"] == cold["history"][i]["active_set"]);
+    CHECK(solves[0][i].contains("displacements") == (i % 3 == 0));
+  }
+  // The working-set changes of both solves replay to the final working set at 1.5, which
+  // is `fetic solve`'s; the second solve has as many lines as its "solved" event says.
+  CHECK(solves[1].size() == static_cast<size_t>((*second)["iterations"].get<int>() + 1));
+  std::vector<int> replayed(50, 0);
+  for (const json& line : lines) {
+    CHECK(line["time"].get<double>() >= 0.0);
+    for (const json& k : line["entered"])
+      replayed.at(k.get<size_t>()) = 1;
+    for (const json& k : line["left"])
+      replayed.at(k.get<size_t>()) = 0;
+  }
+  std::vector<int> active;
+  for (int k = 0; k < 50; ++k)
+    if (replayed[static_cast<size_t>(k)]) active.push_back(k);
+  CHECK(active == solve_active(scene("thesis.toml"), 1.5));
+  CHECK(active == (*second)["active_contacts"].get<std::vector<int>>());
+  for (const json& line : solves[1])
+    CHECK(line["load_factor"].get<double>() == 1.5);
+
+  app.signal(SIGTERM);
+  const auto status = app.wait(30.0);
+  REQUIRE(status);
+  CHECK(*status == 130);
+  CHECK(json_lines(monitor).size() == lines.size());  // nothing torn or lost at the end
+}
+
 TEST_CASE("a load sweep is recorded as frames, a method that cannot solve is reported",
           "[script]") {
   REQUIRE(have_display());
