@@ -142,7 +142,8 @@ void CoarseProblem::factorize() {
   factorized_ = true;
 
   find_unheld_groups();
-  if (unheld_.empty()) {
+  const std::vector<UnheldGroup>& pins = pinned_.empty() ? unheld_ : pinned_;
+  if (pins.empty()) {
     // The analysis of the fixed pattern is kept unless the last factor had extra entries.
     const CholmodFactor::Result result =
         pattern_extended_ ? factor_.factorize(matrix_) : factor_.refactorize(matrix_);
@@ -152,7 +153,7 @@ void CoarseProblem::factorize() {
     // Pin each free direction: G^ G^' + z z' (outside the fixed pattern, so analysed anew).
     const Decomposition& d = system_.decomposition();
     std::vector<Eigen::Triplet<double>> extra;
-    for (const UnheldGroup& group : unheld_) {
+    for (const UnheldGroup& group : pins) {
       const Eigen::VectorXd& z = group.direction;
       for (int a : group.subdomains)
         for (int b : group.subdomains) {

@@ -64,6 +64,14 @@ class CoarseProblem {
   Eigen::VectorXd amplitudes(const Eigen::VectorXd& r) const;  // (G^ G^')^+ G^ r
 
   const std::vector<UnheldGroup>& unheld() const { return unheld_; }
+  // Pins these directions in every factorization, instead of those of the groups the
+  // active rows leave unheld (which must lie in their span): G^ G^' + sum z z'. MPRGP's
+  // face projector pins the groups of the equality rows, so that its projection keeps
+  // the part of their motion that SMALBE balances (face_projector.hpp).
+  void pin_always(std::vector<UnheldGroup> groups) {
+    pinned_ = std::move(groups);
+    factorized_ = false;
+  }
   std::size_t factor_memory() const { return factor_.peak_memory(); }
   int size() const { return system_.modes(); }
   // Nonzeros of G G' (the stored lower triangle) and how often it was factorized.
@@ -86,11 +94,11 @@ class CoarseProblem {
   // This process' block rows of G G': per own subdomain, its local rows; each row's
   // products g_a g_b go to value positions of the block rows.
   struct Product {
-    int value = 0;  // into own_values_
+    int value = 0;     // into own_values_
     int a = 0, b = 0;  // positions of the two factors in the row's column of G
   };
   struct RowProducts {
-    int row = 0;  // local row
+    int row = 0;             // local row
     int first = 0, end = 0;  // into products_
   };
   std::vector<RowProducts> row_products_;  // in increasing local row, grouped by own subdomain
@@ -99,6 +107,7 @@ class CoarseProblem {
   std::vector<int> value_slot_;  // per gathered value: its position in matrix_ (or -1)
   SparseMatrix matrix_;          // lower triangle of G^ G^', fixed pattern
   std::vector<UnheldGroup> unheld_;
+  std::vector<UnheldGroup> pinned_;                       // pin_always()
   std::shared_ptr<const FreeMotionSpace> frame_motions_;  // frame model
   CholmodFactor factor_;
   bool pattern_extended_ = false;  // factor_ holds G^G^' + zz' (a pattern of its own)
