@@ -2,9 +2,12 @@
 
 #include <sys/resource.h>
 
+#include <cstdlib>
+
 #include <nlohmann/json.hpp>
 
 #include "app/output_file.hpp"
+#include "solver/threads.hpp"
 
 namespace fetic::app {
 namespace {
@@ -78,6 +81,10 @@ void write_solve_profile(const std::string& path, const solver::Communicator& pr
   profile["iterations"] = run.iterations;
   profile["setup_seconds"] = run.setup_seconds;
   profile["solve_seconds"] = run.solve_seconds;
+  // As the OpenMP runtime read it at start-up (fetic sets "passive" unless given: main.cpp).
+  const char* wait_policy = std::getenv("OMP_WAIT_POLICY");
+  profile["openmp_wait_policy"] = wait_policy ? wait_policy : "";
+  profile["threads"] = solver::thread_budget();
   if (run.mprgp_steps)
     profile["mprgp_steps"] = {{"conjugate_gradient", run.mprgp_steps->cg},
                               {"expansion", run.mprgp_steps->expansion},

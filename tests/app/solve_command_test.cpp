@@ -271,3 +271,20 @@ TEST_CASE("solve --profile: per process counts, and MPRGP's iterations by step k
     std::filesystem::remove(json_path);
   }
 }
+
+TEST_CASE("fetic starts its OpenMP threads passive unless OMP_WAIT_POLICY is given") {
+  const std::string profile_path = temporary("fetic_profile_wait_policy.json");
+  const auto policy_of = [&](const std::string& environment) {
+    const Run r =
+        fetic::test::run_shell(environment + " " + std::string(FETIC_EXECUTABLE) + " solve " +
+                               scene("thesis.toml") + " --quiet --profile " + profile_path);
+    INFO(r.output);
+    REQUIRE(r.status == 0);
+    std::ifstream in(profile_path);
+    return nlohmann::json::parse(in)["openmp_wait_policy"].get<std::string>();
+  };
+  // Spinning threads make a solve several times slower when another process holds a core.
+  CHECK(policy_of("env -u OMP_WAIT_POLICY") == "passive");
+  CHECK(policy_of("env OMP_WAIT_POLICY=active") == "active");  // the user's choice wins
+  std::filesystem::remove(profile_path);
+}
