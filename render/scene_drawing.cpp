@@ -471,12 +471,19 @@ void draw_labels(DrawList& list, const solver::Model& model, const SceneFraming&
   }
 }
 
+// What a value colouring shows: its quantity, the colour map's end and its name.
+struct ValueLegend {
+  scenes::Quantity quantity;
+  double scale;
+  const char* name;
+};
+
 // One line: "-420 [colour bar] 420 MPa  axial stress", centred on y.
-void draw_stress_legend(DrawList& list, const SceneFraming& framing, const scenes::Units& units,
-                        float x0, float y) {
+void draw_value_legend(DrawList& list, const SceneFraming& framing, const scenes::Units& units,
+                       const ValueLegend& legend, float x0, float y) {
   const float text = framing.text_size, label = 0.8f * text;
-  const double scale = framing.stress_scale;
-  const scenes::DisplayUnit unit = scenes::display_unit(scenes::Quantity::Stress, units, scale);
+  const double scale = legend.scale;
+  const scenes::DisplayUnit unit = scenes::display_unit(legend.quantity, units, scale);
   const std::string low = format("%.3g", -scale / unit.divisor);
   list.text(low, {x0, y}, label, palette::ink, HAlign::Left, VAlign::Middle);
   const float bar0 = x0 + estimated_text_width(low, label) + 0.3f * text;
@@ -493,8 +500,18 @@ void draw_stress_legend(DrawList& list, const SceneFraming& framing, const scene
   list.rect_outline({bar0, y0, bar0 + width, y1}, framing.line_width, kOutline);
   list.line({bar0 + 0.5f * width, y1}, {bar0 + 0.5f * width, y1 + 0.25f * text}, framing.line_width,
             kOutline);
-  list.text(format("%.3g", scale / unit.divisor) + " " + unit.name + "   axial stress",
+  list.text(format("%.3g", scale / unit.divisor) + " " + unit.name + "   " + legend.name,
             {bar0 + width + 0.3f * text, y}, label, palette::ink, HAlign::Left, VAlign::Middle);
+}
+
+// The moment colouring of a scene without beams: a grey swatch and why it is grey.
+void draw_no_moment_legend(DrawList& list, const SceneFraming& framing, float x0, float y) {
+  const float text = framing.text_size;
+  const Rect swatch{x0, y - 0.3f * text, x0 + 1.6f * text, y + 0.3f * text};
+  list.rect(swatch, palette::no_value);
+  list.rect_outline(swatch, framing.line_width, kOutline);
+  list.text("no bending moment: bars and plane struts carry none", {swatch.x1 + 0.4f * text, y},
+            0.8f * text, palette::ink, HAlign::Left, VAlign::Middle);
 }
 
 // A bar of a round length (1, 2 or 5 x 10^k in the scene's units), about a sixth of the
@@ -726,7 +743,7 @@ DrawList draw_glyphs(const solver::Model& model, const solver::Snapshot& snapsho
   if (view.show_labels) draw_labels(list, model, framing, nodes, tally);
 
   // What the frame shows: the caption above; below, two rows of glyph legend, then the
-  // stress colours (left) and the length scale (right).
+  // stress or moment colours (left) and the length scale (right).
   const float t = framing.text_size;
   draw_caption(list, snapshot, framing, caption, model.units);
   const Rect& region = framing.region;
@@ -734,7 +751,15 @@ DrawList draw_glyphs(const solver::Model& model, const solver::Snapshot& snapsho
   if (view.show_scale)
     draw_scale_bar(list, framing, model.units, region.x1 - t, bottom_row + 0.4f * t);
   if (view.color_by == ColorBy::Stress)
-    draw_stress_legend(list, framing, model.units, region.x0 + t, bottom_row);
+    draw_value_legend(list, framing, model.units,
+                      {scenes::Quantity::Stress, framing.stress_scale, "axial stress"},
+                      region.x0 + t, bottom_row);
+  if (view.color_by == ColorBy::Moment && model.frame())
+    draw_value_legend(list, framing, model.units,
+                      {scenes::Quantity::Moment, framing.moment_scale, "bending moment"},
+                      region.x0 + t, bottom_row);
+  else if (view.color_by == ColorBy::Moment)
+    draw_no_moment_legend(list, framing, region.x0 + t, bottom_row);
   if (view.show_legend)
     draw_glyph_legend(list, framing, tally, model.units, view,
                       {region.x0 + t, region.y1 - 3.5f * t, region.x1 - t, region.y1 - 2.2f * t});
