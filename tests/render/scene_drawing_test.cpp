@@ -272,7 +272,7 @@ TEST_CASE("the stress legend speaks the scene's units: N and mm give MPa") {
   CHECK_THAT(all, Catch::Contains(" mm|"));        // the scale bar
 }
 
-TEST_CASE("the moment legend: kN m for a frame in m and N; bars drawn grey, and it says why") {
+TEST_CASE("the moment legend: kN m for a frame in m and N, bars drawn grey with a note why") {
   View view;  // 1280x720: room for the legend's name
   view.color_by = ColorBy::Moment;
   const auto frame = solve("frame_post_on_beam.toml", solver::MethodKind::ActiveSet);
