@@ -56,6 +56,11 @@ struct RenderArgs {
   bool quiet = false;
 };
 
+// --color NAME (the CLI11 check admits only known names).
+render::ColorBy color_by(const std::string& name) {
+  return color_from_name(name).value_or(render::ColorBy::Subdomain);
+}
+
 int run_render(const RenderArgs& args) {
   SavedView saved;
   if (!args.view.empty()) try {
@@ -72,6 +77,16 @@ int run_render(const RenderArgs& args) {
                               args.method.load_steps.empty() ? "--load-factor" : "--load-steps");
       !problem.empty()) {
     std::cerr << scenes::printable(args.scene) << ": " << problem << '\n';
+    return kExitUsage;
+  }
+  // Only beams carry a bending moment: a picture of bars or plane struts coloured by it
+  // would be all grey, so say why rather than draw it.
+  const render::ColorBy wanted =
+      args.color_given || !saved.color_by ? color_by(args.color) : *saved.color_by;
+  if (wanted == render::ColorBy::Moment && scene->model != scenes::ModelKind::Frame) {
+    std::cerr << scenes::printable(args.scene) << ": colouring by bending moment needs a frame "
+              << "scene (model = \"frame\"); this one is a " << scenes::to_string(scene->model)
+              << " model, whose struts carry no bending moment\n";
     return kExitUsage;
   }
   if (!memory_suffices(*scene, args.scene, {{args.method.kind()}, false, 0}, status)) return status;
@@ -134,7 +149,7 @@ int run_render(const RenderArgs& args) {
   view.width = size.width;
   view.height = size.height;
   view.magnification = args.magnification;
-  view.color_by = args.color == "stress" ? render::ColorBy::Stress : render::ColorBy::Subdomain;
+  view.color_by = color_by(args.color);
   view.show_overlay = !args.no_overlay;
   view.show_labels = args.labels;
   // A saved view: its entries, then the options given on the command line.
@@ -142,8 +157,7 @@ int run_render(const RenderArgs& args) {
   view.width = size.width;
   view.height = size.height;
   if (args.magnification_given) view.magnification = args.magnification;
-  if (args.color_given)
-    view.color_by = args.color == "stress" ? render::ColorBy::Stress : render::ColorBy::Subdomain;
+  if (args.color_given) view.color_by = color_by(args.color);
   if (args.no_overlay) view.show_overlay = false;
   if (args.labels) view.show_labels = true;
   apply_scales(saved.scales, extent);
@@ -311,8 +325,11 @@ void register_render(CLI::App& app, int& exit_code) {
           ->check(number_in(0.0, 0.0, Bound::Closed, Bound::None))
           ->capture_default_str();
   CLI::Option* color =
-      command->add_option("--color", args->color, "Colour struts by subdomain or by axial stress")
-          ->check(CLI::IsMember({"subdomain", "stress"}))
+      command
+          ->add_option("--color", args->color,
+                       "Colour struts by subdomain, by axial stress or by bending moment (frame "
+                       "scenes only)")
+          ->check(CLI::IsMember({"subdomain", "stress", "moment"}))
           ->capture_default_str();
   command->add_flag("--no-overlay", args->no_overlay, "No information panel");
   command->add_flag("--labels", args->labels,

@@ -15,18 +15,6 @@ namespace {
 
 using nlohmann::json;
 
-const char* color_name(render::ColorBy color) {
-  switch (color) {
-    case render::ColorBy::Stress:
-      return "stress";
-    case render::ColorBy::Strut:
-      return "strut";
-    case render::ColorBy::Subdomain:
-      break;
-  }
-  return "subdomain";
-}
-
 // Reads one entry, checking its type and range; the message names the entry.
 class Reader {
  public:
@@ -77,6 +65,27 @@ class Reader {
 
 }  // namespace
 
+const char* color_name(render::ColorBy color) {
+  switch (color) {
+    case render::ColorBy::Stress:
+      return "stress";
+    case render::ColorBy::Strut:
+      return "strut";
+    case render::ColorBy::Moment:
+      return "moment";
+    case render::ColorBy::Subdomain:
+      break;
+  }
+  return "subdomain";
+}
+
+std::optional<render::ColorBy> color_from_name(const std::string& name) {
+  for (const render::ColorBy color : {render::ColorBy::Subdomain, render::ColorBy::Stress,
+                                      render::ColorBy::Strut, render::ColorBy::Moment})
+    if (name == color_name(color)) return color;
+  return std::nullopt;
+}
+
 SavedView read_view_file(const std::string& path) {
   std::ifstream in(path);
   if (!in) throw ViewFileError(scenes::printable(path) + ": cannot read the view file");
@@ -123,15 +132,9 @@ SavedView read_view_file(const std::string& path) {
     r.fail("zoom", "must be between 0.01 and 1000");
   view.magnification = r.number(root, "magnification", 0.0);
   if (const json* color = r.find(root, "color")) {
-    const std::string name = color->is_string() ? color->get<std::string>() : "";
-    if (name == "subdomain")
-      view.color_by = render::ColorBy::Subdomain;
-    else if (name == "stress")
-      view.color_by = render::ColorBy::Stress;
-    else if (name == "strut")
-      view.color_by = render::ColorBy::Strut;
-    else
-      r.fail("color", "must be \"subdomain\", \"stress\" or \"strut\"");
+    view.color_by = color_from_name(color->is_string() ? color->get<std::string>() : "");
+    if (!view.color_by)
+      r.fail("color", "must be \"subdomain\", \"stress\", \"strut\" or \"moment\"");
   }
   if (const json* show = r.find(root, "show")) {
     if (!show->is_object()) r.fail("show", "must be an object of true/false toggles");
@@ -144,13 +147,14 @@ SavedView read_view_file(const std::string& path) {
   if (const json* scales = r.find(root, "scales")) {
     if (!scales->is_object()) r.fail("scales", "must be an object");
     r.only(*scales,
-           {"displacement", "force", "stress", "iterations", "active_set", "residual_low",
+           {"displacement", "force", "stress", "moment", "iterations", "active_set", "residual_low",
             "residual_high", "stretch", "lateral"},
            " in 'scales'");
     render::RunExtent extent;
     extent.largest_displacement = r.number(*scales, "displacement", 0.0).value_or(0.0);
     extent.largest_force = r.number(*scales, "force", 0.0).value_or(0.0);
     extent.largest_stress = r.number(*scales, "stress", 0.0).value_or(0.0);
+    extent.largest_moment = r.number(*scales, "moment", 0.0).value_or(0.0);
     extent.largest_iteration = static_cast<int>(r.number(*scales, "iterations", 0.0).value_or(0.0));
     extent.largest_active_set =
         static_cast<int>(r.number(*scales, "active_set", 0.0).value_or(0.0));
@@ -189,6 +193,7 @@ std::string view_json(const SavedView& view) {
     root["scales"] = {{"displacement", e.largest_displacement},
                       {"force", e.largest_force},
                       {"stress", e.largest_stress},
+                      {"moment", e.largest_moment},
                       {"iterations", e.largest_iteration},
                       {"active_set", e.largest_active_set},
                       {"residual_low", e.smallest_residual},
@@ -226,6 +231,7 @@ void apply_scales(const std::optional<render::RunExtent>& scales, render::RunExt
   extent.largest_displacement = s.largest_displacement;
   extent.largest_force = s.largest_force;
   extent.largest_stress = s.largest_stress;
+  extent.largest_moment = s.largest_moment;
   extent.largest_iteration = s.largest_iteration;
   extent.largest_active_set = s.largest_active_set;
   extent.smallest_residual = s.smallest_residual;

@@ -34,6 +34,11 @@ class ViewFileError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// A colouring's name in view files, `fetic render --color` and window scripts:
+// "subdomain", "strut", "stress", "moment"; nullopt for another name.
+const char* color_name(render::ColorBy color);
+std::optional<render::ColorBy> color_from_name(const std::string& name);
+
 SavedView read_view_file(const std::string& path);
 std::string view_json(const SavedView& view);  // the file's text
 // Writes atomically through the output targets (throws OutputError).

@@ -32,6 +32,9 @@ inline constexpr Color contact{215, 25, 28, 255};  // active contacts (the thesi
 inline constexpr Color gap{150, 150, 160, 255};    // open gaps
 inline constexpr Color force{120, 30, 140, 255};   // contact force glyphs
 inline constexpr Color panel{255, 255, 255, 235};  // overlay panel
+// Struts a colouring has no value for (bars and plane struts under bending moment): a
+// mid grey, apart from the diverging map's light grey zero.
+inline constexpr Color no_value{165, 165, 170, 255};
 }  // namespace palette
 
 }  // namespace fetic::render

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "solver/element_results.hpp"
 #include "solver/stiffness.hpp"
 
 namespace fetic::render {
@@ -113,6 +114,11 @@ void RunExtent::include(const solver::Model& model, const Frame& frame) {
   for (const auto& piece : piece_stresses(model, frame.snapshot))
     for (double s : piece)
       if (std::isfinite(s)) largest_stress = std::max(largest_stress, std::abs(s));
+  if (model.frame())
+    for (const solver::BeamMoments& piece : solver::piece_moments(model, frame.snapshot))
+      for (const auto& ends : piece.ends)
+        for (double m : ends)
+          if (std::isfinite(m)) largest_moment = std::max(largest_moment, std::abs(m));
   largest_iteration = std::max(largest_iteration, frame.snapshot.iteration);
   largest_active_set = std::max(largest_active_set, frame.snapshot.active_set_size());
   // Every point the plots will show: the whole history up to this frame.

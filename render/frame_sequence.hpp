@@ -47,6 +47,7 @@ struct RunExtent {
   double largest_displacement = 0.0;  // |u| over all nodes and frames
   double largest_force = 0.0;         // contact pressure
   double largest_stress = 0.0;        // |axial stress|
+  double largest_moment = 0.0;        // |bending moment| of frame beams (0: none)
   int largest_iteration = 0;          // iterations of the longest solve
   int largest_active_set = 0;
   double smallest_residual = 0.0;  // positive residuals only; 0 when there were none

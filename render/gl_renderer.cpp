@@ -44,11 +44,11 @@ layout(location = 3) in int element;
 layout(location = 4) in vec4 color;
 uniform samplerBuffer reference;       // per node row: x, y, widening x, widening y
 uniform samplerBuffer node_values;     // per node row: ux, uy, rotation, 0
-uniform samplerBuffer element_values;  // per element row: stress / scale
+uniform samplerBuffer element_values;  // per element row: value / scale at t = 0 and t = 1
 uniform vec2 viewport;
 uniform float magnification, widening, pixels_per_unit, half_bar_width, rim, line_width;
 uniform vec2 center, pixel_center;
-uniform bool stress;
+uniform bool by_value;
 out vec4 fragment_color;
 // The diverging map of colormap.cpp: ColorBrewer RdBu reversed, compression blue.
 const vec3 stops[7] = vec3[7](vec3(33, 102, 172), vec3(103, 169, 207), vec3(209, 229, 240),
@@ -90,9 +90,8 @@ void main() {
   vec2 p = a + t * (b - a) + bend +
            (offset.x * half_bar_width + offset.y * rim + offset.w * line_width) * across +
            offset.z * rim * d;
-  fragment_color = element >= 0 && stress
-                       ? vec4(diverging(texelFetch(element_values, element).r), 1.0)
-                       : color;
+  vec2 ends = element >= 0 && by_value ? texelFetch(element_values, element).rg : vec2(0.0);
+  fragment_color = element >= 0 && by_value ? vec4(diverging(mix(ends.x, ends.y, t)), 1.0) : color;
   gl_Position = vec4(2.0 * p.x / viewport.x - 1.0, 1.0 - 2.0 * p.y / viewport.y, 0.0, 1.0);
 }
 )";
@@ -220,7 +219,7 @@ GlRenderer::GlRenderer(GlContext& context, const FontAtlas& font) : context_(con
                         reinterpret_cast<void*>(offsetof(MeshVertex, color)));
   make_texture_buffer(reference_buffer_, reference_texture_, GL_RGBA32F);
   make_texture_buffer(values_buffer_, values_texture_, GL_RGBA32F);
-  make_texture_buffer(elements_buffer_, elements_texture_, GL_R32F);
+  make_texture_buffer(elements_buffer_, elements_texture_, GL_RG32F);
   glUseProgram(mesh_program_);
   glUniform1i(glGetUniformLocation(mesh_program_, "reference"), 1);
   glUniform1i(glGetUniformLocation(mesh_program_, "node_values"), 2);
@@ -403,7 +402,7 @@ void GlRenderer::draw_mesh(const SceneMesh& mesh, const MeshValues& values, cons
   glUniform1f(location("line_width"), u.line_width);
   glUniform2f(location("center"), u.center[0], u.center[1]);
   glUniform2f(location("pixel_center"), u.pixel_center[0], u.pixel_center[1]);
-  glUniform1i(location("stress"), u.stress ? 1 : 0);
+  glUniform1i(location("by_value"), u.by_value ? 1 : 0);
   const GLuint textures[] = {reference_texture_, values_texture_, elements_texture_};
   for (int i = 0; i < 3; ++i) {
     glActiveTexture(static_cast<GLenum>(GL_TEXTURE1 + i));

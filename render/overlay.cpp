@@ -157,9 +157,10 @@ DrawList draw_overlay(const OverlayInfo& info, const solver::Model& model,
   row("status", info.status.empty() ? solver::to_string(snapshot.status) : info.status,
       status_color);
   row("colour",
-      view.color_by == ColorBy::Stress  ? "axial stress"
-      : view.color_by == ColorBy::Strut ? "struts"
-                                        : "subdomains",
+      view.color_by == ColorBy::Stress   ? "axial stress"
+      : view.color_by == ColorBy::Moment ? "bending moment"
+      : view.color_by == ColorBy::Strut  ? "struts"
+                                         : "subdomains",
       palette::ink);
   y += 0.4f * t;
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <limits>
 #include <map>
 #include <numeric>
 
@@ -471,12 +472,21 @@ void draw_labels(DrawList& list, const solver::Model& model, const SceneFraming&
   }
 }
 
-// One line: "-420 [colour bar] 420 MPa  axial stress", centred on y.
-void draw_stress_legend(DrawList& list, const SceneFraming& framing, const scenes::Units& units,
-                        float x0, float y) {
+// What a value colouring shows: its quantity, the colour map's end and its name.
+struct ValueLegend {
+  scenes::Quantity quantity;
+  double scale;
+  const char* name;
+};
+
+// One line: "-420 [colour bar] 420 MPa  axial stress", centred on y; without the name
+// when it would run past x1 (into the length scale of a small frame; the information
+// panel names the colouring too).
+void draw_value_legend(DrawList& list, const SceneFraming& framing, const scenes::Units& units,
+                       const ValueLegend& legend, float x0, float x1, float y) {
   const float text = framing.text_size, label = 0.8f * text;
-  const double scale = framing.stress_scale;
-  const scenes::DisplayUnit unit = scenes::display_unit(scenes::Quantity::Stress, units, scale);
+  const double scale = legend.scale;
+  const scenes::DisplayUnit unit = scenes::display_unit(legend.quantity, units, scale);
   const std::string low = format("%.3g", -scale / unit.divisor);
   list.text(low, {x0, y}, label, palette::ink, HAlign::Left, VAlign::Middle);
   const float bar0 = x0 + estimated_text_width(low, label) + 0.3f * text;
@@ -493,16 +503,28 @@ void draw_stress_legend(DrawList& list, const SceneFraming& framing, const scene
   list.rect_outline({bar0, y0, bar0 + width, y1}, framing.line_width, kOutline);
   list.line({bar0 + 0.5f * width, y1}, {bar0 + 0.5f * width, y1 + 0.25f * text}, framing.line_width,
             kOutline);
-  list.text(format("%.3g", scale / unit.divisor) + " " + unit.name + "   axial stress",
-            {bar0 + width + 0.3f * text, y}, label, palette::ink, HAlign::Left, VAlign::Middle);
+  const std::string end = format("%.3g", scale / unit.divisor) + " " + unit.name;
+  const std::string named = end + "   " + legend.name;
+  const float at = bar0 + width + 0.3f * text;
+  list.text(at + estimated_text_width(named, label) <= x1 ? named : end, {at, y}, label,
+            palette::ink, HAlign::Left, VAlign::Middle);
 }
 
-// A bar of a round length (1, 2 or 5 x 10^k in the scene's units), about a sixth of the
-// region wide.
-void draw_scale_bar(DrawList& list, const SceneFraming& framing, const scenes::Units& units,
-                    float x1, float y1) {
+// The moment colouring of a scene without beams: a grey swatch and why it is grey.
+void draw_no_moment_legend(DrawList& list, const SceneFraming& framing, float x0, float y) {
+  const float text = framing.text_size;
+  const Rect swatch{x0, y - 0.3f * text, x0 + 1.6f * text, y + 0.3f * text};
+  list.rect(swatch, palette::no_value);
+  list.rect_outline(swatch, framing.line_width, kOutline);
+  list.text("no bending moment: bars and plane struts carry none", {swatch.x1 + 0.4f * text, y},
+            0.8f * text, palette::ink, HAlign::Left, VAlign::Middle);
+}
+
+// The length of the scale bar: a round length (1, 2 or 5 x 10^k in the scene's units),
+// about a sixth of the region wide; 0 when there is none.
+double scale_bar_length(const SceneFraming& framing) {
   const double target = 0.16 * framing.region.width() / framing.pixels_per_unit;
-  if (!(target > 0.0) || !std::isfinite(target)) return;
+  if (!(target > 0.0) || !std::isfinite(target)) return 0.0;
   const double decade = std::pow(10.0, std::floor(std::log10(target)));
   double world = decade;
   for (double mantissa : {5.0, 2.0, 1.0})
@@ -510,6 +532,14 @@ void draw_scale_bar(DrawList& list, const SceneFraming& framing, const scenes::U
       world = mantissa * decade;
       break;
     }
+  return world;
+}
+
+// The scale bar, ending at x1.
+void draw_scale_bar(DrawList& list, const SceneFraming& framing, const scenes::Units& units,
+                    float x1, float y1) {
+  const double world = scale_bar_length(framing);
+  if (!(world > 0.0)) return;
   const float pixels = static_cast<float>(world * framing.pixels_per_unit);
   const float lw = framing.line_width, tick = 0.35f * framing.text_size;
   const float x0 = x1 - pixels, y = y1 - 0.2f * framing.text_size;
@@ -726,15 +756,31 @@ DrawList draw_glyphs(const solver::Model& model, const solver::Snapshot& snapsho
   if (view.show_labels) draw_labels(list, model, framing, nodes, tally);
 
   // What the frame shows: the caption above; below, two rows of glyph legend, then the
-  // stress colours (left) and the length scale (right).
+  // stress or moment colours (left) and the length scale (right).
   const float t = framing.text_size;
   draw_caption(list, snapshot, framing, caption, model.units);
   const Rect& region = framing.region;
   const float bottom_row = region.y1 - 0.9f * t;
   if (view.show_scale)
     draw_scale_bar(list, framing, model.units, region.x1 - t, bottom_row + 0.4f * t);
+  // The moment legend ends half a text size before the scale bar's label, its long name
+  // dropped in a small frame. (The stress legend has always kept its name, as pictures
+  // and tests of it expect; in the smallest frames it may touch the scale bar.)
+  const float legend_end =
+      view.show_scale
+          ? region.x1 - t -
+                static_cast<float>(scale_bar_length(framing) * framing.pixels_per_unit) - 0.5f * t
+          : region.x1 - t;
   if (view.color_by == ColorBy::Stress)
-    draw_stress_legend(list, framing, model.units, region.x0 + t, bottom_row);
+    draw_value_legend(list, framing, model.units,
+                      {scenes::Quantity::Stress, framing.stress_scale, "axial stress"},
+                      region.x0 + t, std::numeric_limits<float>::infinity(), bottom_row);
+  if (view.color_by == ColorBy::Moment && model.frame())
+    draw_value_legend(list, framing, model.units,
+                      {scenes::Quantity::Moment, framing.moment_scale, "bending moment"},
+                      region.x0 + t, legend_end, bottom_row);
+  else if (view.color_by == ColorBy::Moment)
+    draw_no_moment_legend(list, framing, region.x0 + t, bottom_row);
   if (view.show_legend)
     draw_glyph_legend(list, framing, tally, model.units, view,
                       {region.x0 + t, region.y1 - 3.5f * t, region.x1 - t, region.y1 - 2.2f * t});

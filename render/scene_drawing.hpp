@@ -1,8 +1,8 @@
 #pragma once
 // What a scene frame shows besides the struts (which are a SceneMesh, drawn by the GPU):
 // supports as walls, loads as arrows, open gaps, active contacts and their forces, strut
-// labels, and what the frame shows - a caption, the stress colour legend, a legend of
-// the glyphs, a length scale bar.
+// labels, and what the frame shows - a caption, the stress or moment colour legend, a
+// legend of the glyphs, a length scale bar.
 //
 // Glyphs are sized from the zoom and the local spacing of the struts (level of detail):
 // nothing is drawn over a strut beyond a small share of its pixels. Where struts lie too

@@ -286,6 +286,7 @@ SceneFraming frame_scene(const solver::Model& model, const View& view, const Run
       view.magnify_gaps && framing.magnification != 1.0 && !model.pairs.empty();
   framing.force_scale = extent.largest_force;
   framing.stress_scale = extent.largest_stress;
+  framing.moment_scale = extent.largest_moment;
   for (std::size_t s = 0; s < model.struts.size(); ++s) {
     const Eigen::VectorXd& load = model.loads[s];
     const int dofs = model.struts[s].dofs_per_node;

@@ -39,6 +39,7 @@ struct SceneFraming {
   float line_width = 1.0f;    // pixels of a thin line; grows with the text
   double force_scale = 0.0;   // largest contact force of the run (glyph size 1)
   double stress_scale = 0.0;  // largest |axial stress| of the run (colour map end)
+  double moment_scale = 0.0;  // largest |bending moment| of the run (colour map end)
   double load_scale = 0.0;    // largest nodal load at load factor 1 (arrow length 1)
 
   Point to_pixel(const solver::Vec2& world) const;

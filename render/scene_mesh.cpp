@@ -9,6 +9,7 @@
 
 #include "render/colormap.hpp"
 #include "render/frame_sequence.hpp"
+#include "solver/element_results.hpp"
 
 namespace fetic::render {
 namespace {
@@ -125,14 +126,21 @@ SceneMesh build_scene_mesh(const solver::Model& model, const solver::Snapshot& s
                               static_cast<float>(q.x()), static_cast<float>(q.y())});
       }
     const auto row = [&](int i, int k) { return first + box.local(i, k); };
-    const Color fill = subdomain_color(piece.strut, color_by == ColorBy::Strut ? 0 : ranks[p]);
+    // Struts without a value for the colouring (no moment in bars and planes) are grey and
+    // take no element rows' colours.
+    const bool valueless = color_by == ColorBy::Moment && strut.dofs_per_node != 3;
+    const Color fill =
+        valueless ? palette::no_value
+                  : subdomain_color(piece.strut, color_by == ColorBy::Strut ? 0 : ranks[p]);
+    const auto element_row = [&](int element) { return valueless ? -1 : element; };
     if (strut.dofs_per_node == 1) {
       const int elements = box.i1 - box.i0;
       if (elements <= 0) continue;
       band(rims, row(box.i0, 0), row(box.i1, 0), {1, 0, 0}, 0, 0, -1, kOutline);
       for (int e = 0; e < elements; ++e)
         band(bar_fills, row(box.i0 + e, 0), row(box.i0 + e + 1, 0), {1, -1, 0},
-             e == 0 ? 1.0f : 0.0f, e + 1 == elements ? 1.0f : 0.0f, mesh.element_count + e, fill);
+             e == 0 ? 1.0f : 0.0f, e + 1 == elements ? 1.0f : 0.0f,
+             element_row(mesh.element_count + e), fill);
       mesh.element_count += elements;
       continue;
     }
@@ -161,8 +169,10 @@ SceneMesh build_scene_mesh(const solver::Model& model, const solver::Snapshot& s
     int element = mesh.element_count;
     for (int i = box.i0; i < box.i1; ++i)
       for (int k = box.k0; k < box.k1; ++k, ++element)
-        quad(plane_fills, at_node(row(i, k), element, fill), at_node(row(i + 1, k), element, fill),
-             at_node(row(i + 1, k + 1), element, fill), at_node(row(i, k + 1), element, fill));
+        quad(plane_fills, at_node(row(i, k), element_row(element), fill),
+             at_node(row(i + 1, k), element_row(element), fill),
+             at_node(row(i + 1, k + 1), element_row(element), fill),
+             at_node(row(i, k + 1), element_row(element), fill));
     mesh.element_count = element;
     // Lines across (fixed i) and along (fixed k); the box's outer ones outline the piece.
     for (int i = box.i0; i <= box.i1; ++i)
@@ -210,15 +220,26 @@ void fill_mesh_values(const SceneMesh& mesh, const solver::Model& model,
                    : std::array<float, 4>{0, 0, 0, 0};
     }
   }
-  values.elements.assign(static_cast<std::size_t>(mesh.element_count), 0.0f);
-  if (mesh.color_by != ColorBy::Stress || !(framing.stress_scale > 0.0)) return;
-  const auto stresses = piece_stresses(model, snapshot);
-  for (std::size_t p = 0; p < stresses.size() && p < mesh.first_element.size(); ++p)
-    for (std::size_t e = 0; e < stresses[p].size(); ++e) {
-      const double v = stresses[p][e] / framing.stress_scale;
-      values.elements[static_cast<std::size_t>(mesh.first_element[p]) + e] =
-          std::isfinite(v) ? static_cast<float>(v) : 0.0f;
-    }
+  values.elements.assign(static_cast<std::size_t>(mesh.element_count), {0.0f, 0.0f});
+  const auto scaled = [](double value, double scale) {
+    const double v = value / scale;
+    return std::isfinite(v) ? static_cast<float>(v) : 0.0f;
+  };
+  if (mesh.color_by == ColorBy::Stress && framing.stress_scale > 0.0) {
+    const auto stresses = piece_stresses(model, snapshot);
+    for (std::size_t p = 0; p < stresses.size() && p < mesh.first_element.size(); ++p)
+      for (std::size_t e = 0; e < stresses[p].size(); ++e) {
+        const float v = scaled(stresses[p][e], framing.stress_scale);
+        values.elements[static_cast<std::size_t>(mesh.first_element[p]) + e] = {v, v};
+      }
+  } else if (mesh.color_by == ColorBy::Moment && framing.moment_scale > 0.0) {
+    const auto moments = solver::piece_moments(model, snapshot);
+    for (std::size_t p = 0; p < moments.size() && p < mesh.first_element.size(); ++p)
+      for (std::size_t e = 0; e < moments[p].ends.size(); ++e)
+        values.elements[static_cast<std::size_t>(mesh.first_element[p]) + e] = {
+            scaled(moments[p].ends[e][0], framing.moment_scale),
+            scaled(moments[p].ends[e][1], framing.moment_scale)};
+  }
 }
 
 MeshUniforms mesh_uniforms(const SceneMesh& mesh, const SceneFraming& framing) {
@@ -232,7 +253,7 @@ MeshUniforms mesh_uniforms(const SceneMesh& mesh, const SceneFraming& framing) {
   u.half_bar_width = 0.5f * framing.bar_width;
   u.rim = framing.bar_width >= 4.0f ? 1.0f : 0.0f;
   u.line_width = framing.line_width;
-  u.stress = mesh.color_by == ColorBy::Stress;
+  u.by_value = colors_by_value(mesh.color_by);
   // Mesh lines only where elements are large enough on screen not to fill with them.
   u.mesh_lines = mesh.smallest_element * framing.pixels_per_unit >= 6.0;
   return u;
@@ -276,9 +297,11 @@ void expand_mesh(const SceneMesh& mesh, const MeshValues& values, const MeshUnif
     const float across =
         v.offset[0] * u.half_bar_width + v.offset[1] * u.rim + v.offset[3] * u.line_width;
     const float along = v.offset[2] * u.rim;
-    const Color color = v.element >= 0 && u.stress
-                            ? diverging(values.elements[static_cast<std::size_t>(v.element)])
-                            : v.color;
+    Color color = v.color;
+    if (v.element >= 0 && u.by_value) {
+      const auto& ends = values.elements[static_cast<std::size_t>(v.element)];
+      color = diverging((1.0f - v.t) * ends[0] + v.t * ends[1]);
+    }
     const auto bend = bending(v);
     const Point curve{bend[0] * u.pixels_per_unit, -bend[1] * u.pixels_per_unit};
     return Vertex{a + v.t * (b - a) + curve + across * n + along * d, color};

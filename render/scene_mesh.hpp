@@ -2,7 +2,7 @@
 // The struts of a scene as one static mesh, built once per scene (and piece layout and
 // colouring) and kept on the GPU: every vertex names the rows of the node table its
 // position comes from. Per frame only the node values (displacements) and the element
-// values (stresses) change; the magnification, pan and zoom are uniforms, applied in the
+// values (stresses, moments) change; the magnification, pan and zoom are uniforms, applied in the
 // vertex shader (GlRenderer). expand_mesh() evaluates the same formulas on the CPU, for
 // figures and for tests without GL.
 //
@@ -31,7 +31,7 @@ struct MeshVertex {
   // across it (d turned by +90 degrees): across = x * half bar width + y * rim + w * line
   // width, along = z * rim (see MeshUniforms).
   std::array<float, 4> offset{0, 0, 0, 0};
-  std::int32_t element = -1;  // row of the element table (stress colour); -1: its own colour
+  std::int32_t element = -1;  // row of the element table (value colour); -1: its own colour
   Color color;
 };
 
@@ -67,7 +67,10 @@ SceneMesh build_scene_mesh(const solver::Model& model, const solver::Snapshot& s
 // What changes per frame.
 struct MeshValues {
   std::vector<std::array<float, 4>> nodes;  // per node row: ux, uy, rotation, 0
-  std::vector<float> elements;              // per element row: stress / stress scale
+  // Per element row, the value over its scale at the element's first node (t = 0) and at
+  // its second (t = 1); a vertex at t between them is coloured by the linear blend. Axial
+  // stress is constant over an element (both the same); a beam's moment is linear.
+  std::vector<std::array<float, 2>> elements;
 };
 void fill_mesh_values(const SceneMesh& mesh, const solver::Model& model,
                       const solver::Snapshot& snapshot, const SceneFraming& framing,
@@ -83,7 +86,7 @@ struct MeshUniforms {
   float half_bar_width = 3.0f;
   float rim = 1.0f;         // 1: bars have a dark rim and pieces are inset at their ends
   float line_width = 1.0f;  // pixels per line-width unit (grows with the text size)
-  bool stress = false;      // colour elements by their value (diverging map)
+  bool by_value = false;    // colour elements by their values (stress, moment; diverging map)
   bool mesh_lines = true;   // draw plane_lines
 };
 MeshUniforms mesh_uniforms(const SceneMesh& mesh, const SceneFraming& framing);

@@ -4,8 +4,15 @@
 
 namespace fetic::render {
 
-// Subdomain: each FETI piece its own colour; Strut: one colour per strut (subdomains hidden).
-enum class ColorBy { Subdomain, Stress, Strut };
+// Subdomain: each FETI piece its own colour; Strut: one colour per strut (subdomains hidden);
+// Stress: axial stress; Moment: the bending moment of frame beams, along each element
+// (struts without one - bars, plane struts - are drawn in palette::no_value grey).
+enum class ColorBy { Subdomain, Stress, Strut, Moment };
+
+// Colourings that map a signed value to the diverging colour map.
+inline bool colors_by_value(ColorBy color) {
+  return color == ColorBy::Stress || color == ColorBy::Moment;
+}
 
 struct View {
   int width = 1280;

@@ -95,6 +95,11 @@ DisplayUnit display_unit(Quantity quantity, const Units& units, double largest) 
   // Lengths and distributed loads read best in the units the scene was written in.
   if (quantity == Quantity::Length) return {units.length, 1.0};
   if (quantity == Quantity::ForcePerLength) return {force_per_length_unit(units), 1.0};
+  if (quantity == Quantity::Moment) {
+    // Engineers read moments in a force unit times the drawing's length unit.
+    const DisplayUnit force = display_unit(Quantity::Force, units, largest);
+    return {force.name + " " + units.length, force.divisor};
+  }
   if (!metric(units)) return {quantity == Quantity::Force ? units.force : stress_unit(units), 1.0};
   const double to_si = quantity == Quantity::Force
                            ? *newtons_per(units.force)

@@ -31,8 +31,10 @@ std::string force_per_length_unit(const Units& units);
 
 // A quantity's unit and how to print a value of it: when the scene's units are metric,
 // values are shown in the SI unit with the prefix that makes `largest` read between 1 and
-// 1000 (420 in N/mm² reads "420 MPa"); otherwise in the scene's own unit.
-enum class Quantity { Length, Force, Stress, ForcePerLength };
+// 1000 (420 in N/mm² reads "420 MPa"); otherwise in the scene's own unit. A Moment (force
+// times length) keeps the scene's length unit and prefixes its force like Force does:
+// "kN m", "N mm", "kN mm"; "lbf in" in imperial units.
+enum class Quantity { Length, Force, Stress, ForcePerLength, Moment };
 struct DisplayUnit {
   std::string name;      // e.g. "MPa"
   double divisor = 1.0;  // value in the scene's units / divisor = number shown

@@ -190,6 +190,46 @@ std::vector<StrutElements> element_results(const Model& model, const Snapshot& s
   return result;
 }
 
+namespace {
+
+BeamMoments beam_moments(const StrutMesh& mesh, int strut, const NodeBox& box,
+                         const Eigen::VectorXd& dofs) {
+  BeamMoments moments;
+  moments.strut = strut;
+  moments.first_element = box.i0;
+  if (mesh.dofs_per_node != 3) return moments;
+  const BeamForces forces = beam_forces(mesh, box, dofs);
+  for (Eigen::Index e = 0; e < forces.moment.rows(); ++e)
+    moments.ends.push_back({forces.moment(e, 0), forces.moment(e, 1)});
+  return moments;
+}
+
+}  // namespace
+
+std::vector<BeamMoments> piece_moments(const Model& model, const Snapshot& snapshot) {
+  std::vector<BeamMoments> result;
+  result.reserve(snapshot.pieces.size());
+  for (const Piece& piece : snapshot.pieces) {
+    const StrutMesh& mesh = model.struts[static_cast<size_t>(piece.strut)];
+    if (mesh.dofs_per_node != 3) {
+      result.push_back({piece.strut, piece.box.i0, {}});
+      continue;
+    }
+    const Eigen::VectorXd dofs = piece_dofs(mesh, piece, clamped_flags(model, piece.strut));
+    result.push_back(beam_moments(mesh, piece.strut, piece.box, dofs));
+  }
+  return result;
+}
+
+std::vector<BeamMoments> strut_moments(const Model& model, const Snapshot& snapshot) {
+  std::vector<BeamMoments> result;
+  const std::vector<Eigen::VectorXd> dofs = strut_dofs(model, snapshot);
+  for (size_t s = 0; s < model.struts.size(); ++s)
+    result.push_back(
+        beam_moments(model.struts[s], static_cast<int>(s), whole_strut(model.struts[s]), dofs[s]));
+  return result;
+}
+
 std::vector<Eigen::VectorXd> strut_dofs(const Model& model, const Snapshot& snapshot) {
   const std::vector<std::vector<Vec2>> u = strut_displacements(model, snapshot);
   const std::vector<std::vector<double>> rotations =

@@ -6,6 +6,7 @@
 // stress; plane: sxx, syy, sxy, von Mises and the axial stress e1' sigma e1); a new model
 // adds a case there and everything that writes results (JSON, VTU, CSV) follows.
 
+#include <array>
 #include <string>
 #include <vector>
 
@@ -39,6 +40,34 @@ std::vector<StrutElements> element_results(const Model& model, const Snapshot& s
 
 // The element topology alone (connectivity and subdomains, no values).
 std::vector<StrutElements> element_topology(const Model& model);
+
+// The bending moment M = E I w'' along the beam elements of a frame strut. An
+// Euler-Bernoulli element's w is cubic, so M is linear along it: its two end values come
+// from the element's end rotations and transverse end displacements in local axes (the
+// Hermite second derivatives; exact for loads at the nodes). Sign: sagging positive - M
+// is positive where it bends the strut towards +e2 (its axis e1 turned +90 degrees), i.e.
+// concave towards +e2; for a strut drawn left to right, sagging (concave up).
+struct BeamMoments {
+  int strut = 0;
+  int first_element = 0;                    // strut element index of ends[0]
+  std::vector<std::array<double, 2>> ends;  // per element: M at xi = 0 (its node i) and 1 (i + 1)
+
+  // M at xi in [0, 1] along element `element` (strut numbering) of this range.
+  double at(int element, double xi) const {
+    const auto& m = ends[static_cast<size_t>(element - first_element)];
+    return (1.0 - xi) * m[0] + xi * m[1];
+  }
+  bool empty() const { return ends.empty(); }
+};
+
+// One per piece of `snapshot`, in its order: the moments of the elements of the piece's
+// box, from the piece's own displacements (a torn FETI iterate shows each subdomain's
+// own moments). Empty for struts without bending stiffness (bars, plane struts).
+std::vector<BeamMoments> piece_moments(const Model& model, const Snapshot& snapshot);
+
+// One per strut: the moments of all its elements from its DOF vector (strut_dofs). Empty
+// for struts that are not beams.
+std::vector<BeamMoments> strut_moments(const Model& model, const Snapshot& snapshot);
 
 // The force a clamped end exerts on its strut: r = K u - t f - (contact forces) at the
 // end's nodes. Summed over all supports, the reactions balance the applied loads.

@@ -133,6 +133,7 @@ class App {
   void save_view(const std::string& path);  // "": the next fetic_view_NNNN.json
   void load_view(const std::string& path);
   void use_view(const SavedView& saved);
+  void set_color(render::ColorBy color);
   void place_pending_center();  // a loaded view's centre, into pan_ (framing_ is fitted)
   void view_buttons();          // in the panel: save and load views
   std::string next_view_name();
@@ -203,7 +204,10 @@ class App {
   // View settings.
   double magnification_ = 0.0;  // 0: automatic
   double shown_magnification_ = 0.0;
-  bool subdomains_ = true, stress_ = false, forces_ = true, gaps_ = true, show_overlay_ = true;
+  // The colouring: moment_, else stress_, else subdomains_ or struts. Stress and moment
+  // exclude each other; subdomains_ is kept under them (what turning them off returns to).
+  bool subdomains_ = true, stress_ = false, moment_ = false;
+  bool forces_ = true, gaps_ = true, show_overlay_ = true;
   bool labels_ = false;
   bool help_ = false;
   bool dragging_slider_ = false, draft_ = false;

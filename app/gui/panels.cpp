@@ -6,6 +6,7 @@
 #include <cmath>
 #include <iterator>
 #include <string>
+#include <utility>
 
 #include <imgui.h>
 
@@ -135,14 +136,29 @@ void App::history_controls() {
     push({RequestKind::Scrub, static_cast<double>(iteration), {}});
 }
 
-// What the picture shows.
+// What the picture shows: the colouring (bending moment only where there are beams), then
+// the glyphs and labels.
 void App::display_toggles() {
-  bool value = subdomains_;
-  if (ImGui::Checkbox("subdomains", &value)) push({RequestKind::Toggle, 0.0, "subdomains"});
-  ImGui::SameLine();
-  value = stress_;
-  if (ImGui::Checkbox("stress colours", &value)) push({RequestKind::Toggle, 0.0, "stress"});
-  value = forces_;
+  const render::ColorBy shown = view(1, 1).color_by;
+  ImGui::TextUnformatted("colour by:");
+  const bool frame = shown_ && shown_->model && shown_->model->frame();
+  const std::pair<render::ColorBy, const char*> choices[] = {
+      {render::ColorBy::Subdomain, "subdomains"},
+      {render::ColorBy::Strut, "struts"},
+      {render::ColorBy::Stress, "axial stress"},
+      {render::ColorBy::Moment, "bending moment"}};
+  for (std::size_t c = 0; c < std::size(choices); ++c) {
+    const auto& [color, label] = choices[c];
+    if (c % 2 == 1) ImGui::SameLine();
+    const bool unavailable = color == render::ColorBy::Moment && !frame && shown != color;
+    ImGui::BeginDisabled(unavailable);
+    if (ImGui::RadioButton(label, shown == color))
+      push({RequestKind::SetColor, 0.0, color_name(color)});
+    ImGui::EndDisabled();
+    if (unavailable && ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
+      ImGui::SetTooltip("Only beams (model = \"frame\") carry a bending moment");
+  }
+  bool value = forces_;
   if (ImGui::Checkbox("forces", &value)) push({RequestKind::Toggle, 0.0, "forces"});
   ImGui::SameLine();
   value = gaps_;

@@ -22,8 +22,9 @@ render::View App::view(int width, int height) const {
   v.width = width;
   v.height = height;
   v.magnification = magnification_;
-  v.color_by = stress_ ? render::ColorBy::Stress
-                       : (subdomains_ ? render::ColorBy::Subdomain : render::ColorBy::Strut);
+  v.color_by = moment_   ? render::ColorBy::Moment
+               : stress_ ? render::ColorBy::Stress
+                         : (subdomains_ ? render::ColorBy::Subdomain : render::ColorBy::Strut);
   v.show_forces = forces_;
   v.show_gaps = gaps_;
   v.show_overlay = show_overlay_;

@@ -23,7 +23,8 @@ enum class RequestKind {
   SetLive,           // value: 1 = Step and Play advance the solver itself, 0 = solve at once
   Cancel,            // stop the running solve (it stays on screen, marked cancelled)
   Scrub,             // value: iteration to show
-  Toggle,            // text: subdomains | forces | gaps | stress | overlay | labels | help
+  Toggle,            // text: subdomains | forces | gaps | stress | moment | overlay | labels | help
+  SetColor,          // text: subdomain | strut | stress | moment (app/view_file.hpp names)
   Screenshot,        // text: file (empty: next name in the screenshot directory)
   RecordIterations,  // every iteration of the current solve as frames
   RecordSweep,       // value: steps; a load sweep 0 .. maximum as frames

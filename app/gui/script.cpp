@@ -139,12 +139,19 @@ std::vector<ScriptAction> parse_script(const std::string& text, std::vector<Scri
       ok = need_number(RequestKind::Scrub, 0.0, 1e9);
     } else if (verb == "toggle") {
       ok = argument == "subdomains" || argument == "forces" || argument == "gaps" ||
-           argument == "stress" || argument == "overlay" || argument == "labels" ||
-           argument == "help";
+           argument == "stress" || argument == "moment" || argument == "overlay" ||
+           argument == "labels" || argument == "help";
       if (!ok)
-        errors.push_back(
-            {line, "'toggle' needs subdomains, forces, gaps, stress, overlay, labels or help"});
+        errors.push_back({line,
+                          "'toggle' needs subdomains, forces, gaps, stress, moment, overlay, "
+                          "labels or help"});
       r.kind = RequestKind::Toggle;
+      r.text = argument;
+    } else if (verb == "color") {
+      ok = argument == "subdomain" || argument == "strut" || argument == "stress" ||
+           argument == "moment";
+      if (!ok) errors.push_back({line, "'color' needs subdomain, strut, stress or moment"});
+      r.kind = RequestKind::SetColor;
       r.text = argument;
     } else if (verb == "screenshot") {
       r.kind = RequestKind::Screenshot;

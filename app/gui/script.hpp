@@ -5,13 +5,13 @@
 //
 // Actions run in order; one with a TIME waits until then. Actions: load T, method NAME,
 // preconditioner NAME, magnification M|auto, play, pause, step, back, reset, scrub I,
-// live on|off, cancel, toggle subdomains|forces|gaps|stress|overlay|help,
-// screenshot [FILE], view FILE (a saved view, applied before the next picture),
-// save-view [FILE], record-iterations, record-sweep N, export-vtu [DIR], reload, wait
-// (until the current solve has finished - or, stepping live, has stopped for the next
-// step - and is on screen), quit. Each becomes the same request a key or a panel widget
-// makes. Method and preconditioner names are checked here, so a misspelt one is refused
-// before the window opens rather than ignored at run time.
+// live on|off, cancel, toggle subdomains|forces|gaps|stress|moment|overlay|labels|help,
+// color subdomain|strut|stress|moment, screenshot [FILE], view FILE (a saved view, applied before
+// the next picture), save-view [FILE], record-iterations, record-sweep N, export-vtu [DIR], reload,
+// wait (until the current solve has finished - or, stepping live, has stopped for the next step -
+// and is on screen), quit. Each becomes the same request a key or a panel widget makes. Method and
+// preconditioner names are checked here, so a misspelt one is refused before the window opens
+// rather than ignored at run time.
 
 #include <optional>
 #include <string>

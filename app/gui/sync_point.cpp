@@ -197,10 +197,22 @@ void App::apply(const Request& r) {
       if (r.text == "subdomains") subdomains_ = !subdomains_;
       if (r.text == "forces") forces_ = !forces_;
       if (r.text == "gaps") gaps_ = !gaps_;
-      if (r.text == "stress") stress_ = !stress_;
+      // Stress and moment exclude each other; off, the subdomain or strut colours return.
+      if (r.text == "stress") {
+        stress_ = !stress_;
+        if (stress_) moment_ = false;
+      }
+      if (r.text == "moment") {
+        moment_ = !moment_;
+        if (moment_) stress_ = false;
+      }
       if (r.text == "overlay") show_overlay_ = !show_overlay_;
       if (r.text == "labels") labels_ = !labels_;
       if (r.text == "help") help_ = !help_;
+      redraw_ = true;
+      break;
+    case RequestKind::SetColor:
+      if (const auto color = color_from_name(r.text)) set_color(*color);
       redraw_ = true;
       break;
     case RequestKind::Screenshot:

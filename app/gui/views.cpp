@@ -42,6 +42,14 @@ SavedView App::current_view() const {
   return saved;
 }
 
+// Stress and moment leave the subdomain-or-strut choice beneath them as it is.
+void App::set_color(render::ColorBy color) {
+  stress_ = color == render::ColorBy::Stress;
+  moment_ = color == render::ColorBy::Moment;
+  if (color == render::ColorBy::Subdomain) subdomains_ = true;
+  if (color == render::ColorBy::Strut) subdomains_ = false;
+}
+
 void App::view_buttons() {
   if (ImGui::Button("Save view (V)")) push({RequestKind::SaveView, 0.0, {}});
   ImGui::SameLine();
@@ -79,10 +87,7 @@ void App::load_view(const std::string& path) {
 
 void App::use_view(const SavedView& saved) {
   if (saved.magnification) magnification_ = *saved.magnification;
-  if (saved.color_by) {
-    stress_ = *saved.color_by == render::ColorBy::Stress;
-    if (!stress_) subdomains_ = *saved.color_by == render::ColorBy::Subdomain;
-  }
+  if (saved.color_by) set_color(*saved.color_by);
   if (saved.forces) forces_ = *saved.forces;
   if (saved.gaps) gaps_ = *saved.gaps;
   if (saved.overlay) show_overlay_ = *saved.overlay;

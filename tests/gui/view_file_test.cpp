@@ -86,6 +86,52 @@ TEST_CASE("a saved view is read back as written") {
   CHECK_FALSE(kept.centered);
 }
 
+TEST_CASE("a view coloured by bending moment is read back with its moment scale") {
+  fetic::app::SavedView view;
+  view.color_by = fetic::render::ColorBy::Moment;
+  fetic::render::RunExtent scales;
+  scales.largest_moment = 3.27e4;
+  view.scales = scales;
+  const std::string text = fetic::app::view_json(view);
+  CHECK_THAT(text, Catch::Contains(R"("color": "moment")"));
+  CHECK_THAT(text, Catch::Contains(R"("moment": 32700)"));
+  const fetic::app::SavedView back = fetic::app::read_view_file(file_with(text));
+  CHECK(back.color_by == fetic::render::ColorBy::Moment);
+  REQUIRE(back.scales);
+  CHECK(back.scales->largest_moment == 3.27e4);
+  fetic::render::View applied;
+  fetic::app::apply_view(back, applied);
+  CHECK(applied.color_by == fetic::render::ColorBy::Moment);
+  fetic::render::RunExtent extent;
+  fetic::app::apply_scales(back.scales, extent);
+  CHECK(extent.largest_moment == 3.27e4);
+  // Written by hand, too; every colouring's name is its own.
+  CHECK(fetic::app::read_view_file(file_with(R"({"color": "moment"})")).color_by ==
+        fetic::render::ColorBy::Moment);
+  for (const auto color : {fetic::render::ColorBy::Subdomain, fetic::render::ColorBy::Stress,
+                           fetic::render::ColorBy::Strut, fetic::render::ColorBy::Moment})
+    CHECK(fetic::app::color_from_name(fetic::app::color_name(color)) == color);
+  CHECK_FALSE(fetic::app::color_from_name("moments"));
+}
+
+TEST_CASE("scripts choose the colouring: color NAME, toggle moment") {
+  std::vector<fetic::app::gui::ScriptError> errors;
+  const auto actions = fetic::app::gui::parse_script(
+      "color moment\ncolor strut\ntoggle moment\ntoggle stress\n", errors);
+  REQUIRE(errors.empty());
+  REQUIRE(actions.size() == 4);
+  CHECK(actions[0].request.kind == fetic::app::gui::RequestKind::SetColor);
+  CHECK(actions[0].request.text == "moment");
+  CHECK(actions[1].request.text == "strut");
+  CHECK(actions[2].request.kind == fetic::app::gui::RequestKind::Toggle);
+  CHECK(actions[2].request.text == "moment");
+  CHECK(actions[3].request.text == "stress");
+  fetic::app::gui::parse_script("color blue\n", errors);
+  REQUIRE(errors.size() == 1);
+  CHECK_THAT(errors[0].message,
+             Catch::Contains("'color' needs subdomain, strut, stress or moment"));
+}
+
 TEST_CASE("a bad view file is refused naming the entry") {
   CHECK_THAT(error_of("{\"zoom\": 2,\n \"size\": [1, }"),
              Catch::Contains(":2: not a JSON view file"));
@@ -94,6 +140,7 @@ TEST_CASE("a bad view file is refused naming the entry") {
   CHECK_THAT(error_of(R"({"zoom": "big"})"), Catch::Contains("'zoom' must be a number"));
   CHECK_THAT(error_of(R"({"size": [10, 800]})"), Catch::Contains("'size' must be [width, height]"));
   CHECK_THAT(error_of(R"({"color": "blue"})"), Catch::Contains("'color' must be"));
+  CHECK_THAT(error_of(R"({"color": "blue"})"), Catch::Contains(R"("moment")"));
   CHECK_THAT(error_of(R"({"center": [1]})"), Catch::Contains("'center' must be [x, y]"));
   CHECK_THAT(error_of(R"({"zom": 2})"), Catch::Contains("unknown entry 'zom'"));
   CHECK_THAT(error_of(R"({"show": {"force": true}})"),

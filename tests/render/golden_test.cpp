@@ -227,3 +227,13 @@ TEST_CASE("golden: the bundled frame scenes, beams along their Hermite curves") 
     CHECK(problem.empty());
   }
 }
+
+TEST_CASE("golden: the portal frame coloured by bending moment") {
+  // Sagging beam red in its middle, hogging blue at the rigid corners; the legend in kN m.
+  Shot shot{bundled("frame_portal_sway.toml"), solver::MethodKind::ActiveSet, 1.0,
+            view_of(400, 300)};
+  shot.view.color_by = ColorBy::Moment;
+  const std::string problem = check_golden("frame_portal_sway_moment_400x300", render_final(shot));
+  INFO(problem);
+  CHECK(problem.empty());
+}

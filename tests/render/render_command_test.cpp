@@ -129,6 +129,44 @@ TEST_CASE("fetic render: final state, load steps, stress colours") {
   CHECK(files(steps).size() == 4);
 }
 
+TEST_CASE("fetic render --color moment: frame scenes coloured by bending moment") {
+  const fs::path moment = fresh_directory("fetic_render_moment");
+  const fs::path plain = fresh_directory("fetic_render_moment_plain");
+  const std::string common =
+      scene("frame_portal_sway.toml") + " --method active-set --final --size 320x200 --out ";
+  const Run r = run("render " + common + moment.string() + " --color moment");
+  INFO(r.output);
+  REQUIRE(r.status == 0);
+  REQUIRE(files(moment) == std::vector<std::string>{"frame_0000.png"});
+  REQUIRE(run("render " + common + plain.string() + " --color subdomain").status == 0);
+  CHECK(bytes(moment / "frame_0000.png") != bytes(plain / "frame_0000.png"));
+
+  // A saved view's "color": "moment" draws the same picture.
+  const fs::path viewed = fresh_directory("fetic_render_moment_view");
+  const fs::path view =
+      fs::temp_directory_path() / ("fetic_render_moment_" + std::to_string(::getpid()) + ".json");
+  std::ofstream(view) << R"({"fetic_view": 1, "color": "moment"})";
+  REQUIRE(run("render " + common + viewed.string() + " --view " + view.string()).status == 0);
+  CHECK(bytes(viewed / "frame_0000.png") == bytes(moment / "frame_0000.png"));
+
+  // Bars carry no bending moment: refused, by option or by view, naming the scene.
+  const fs::path bars = fresh_directory("fetic_render_moment_bars");
+  const Run refused =
+      run("render " + scene("two_bars.toml") + " --color moment --final --out " + bars.string());
+  CHECK(refused.status == 1);
+  CHECK_THAT(refused.output, Catch::Contains("two_bars.toml: colouring by bending moment needs a "
+                                             "frame scene"));
+  CHECK(run("render " + scene("two_bars.toml") + " --final --view " + view.string() + " --out " +
+            bars.string())
+            .status == 1);
+  // ... unless the command line asks for another colouring.
+  CHECK(run("render " + scene("two_bars.toml") + " --final --view " + view.string() +
+            " --color stress --size 200x120 --out " + bars.string())
+            .status == 0);
+  CHECK(run("render " + common + moment.string() + " --color moments").status == 1);
+  fs::remove(view);
+}
+
 TEST_CASE("fetic render: errors name the file and use the documented statuses") {
   const fs::path out = fresh_directory("fetic_render_errors");
   const Run refused = run("render " + scene("thesis.toml") + " --method cg --out " + out.string());

@@ -5,6 +5,7 @@
 
 #include <cmath>
 
+#include "render/colormap.hpp"
 #include "render/frame_sequence.hpp"
 #include "render/overlay.hpp"
 #include "render/scene_drawing.hpp"
@@ -269,4 +270,36 @@ TEST_CASE("the stress legend speaks the scene's units: N and mm give MPa") {
   CHECK_THAT(all, Catch::Contains(format("%.3g", framing.stress_scale) + " MPa   axial stress"));
   CHECK_THAT(all, Catch::Contains("mm, N, MPa"));  // the caption
   CHECK_THAT(all, Catch::Contains(" mm|"));        // the scale bar
+}
+
+TEST_CASE("the moment legend: kN m for a frame in m and N, bars drawn grey with a note why") {
+  View view;  // 1280x720: room for the legend's name
+  view.color_by = ColorBy::Moment;
+  const auto frame = solve("frame_post_on_beam.toml", solver::MethodKind::ActiveSet);
+  SceneFraming framing = frame_scene(frame->model, view, frame->extent, scene_region(view));
+  // The post pushes the clamped-clamped beam down: tens of kN m at most.
+  REQUIRE(framing.moment_scale > 1e3);
+  REQUIRE(framing.moment_scale < 1e6);
+  DrawList list = draw_scene(frame->model, frame->final, view, framing);
+  std::string all;
+  for (const TextItem& text : list.texts())
+    all += text.text + "|";
+  CHECK_THAT(
+      all, Catch::Contains(format("%.3g", framing.moment_scale / 1e3) + " kN m   bending moment"));
+
+  const auto bars = solve("two_bars.toml", solver::MethodKind::ActiveSet);
+  CHECK(bars->extent.largest_moment == 0.0);
+  framing = frame_scene(bars->model, view, bars->extent, scene_region(view));
+  const SceneMesh mesh = build_scene_mesh(bars->model, bars->final, framing, ColorBy::Moment);
+  int grey = 0;
+  for (const MeshVertex& v : mesh.vertices) {
+    CHECK(v.element == -1);  // no value colours
+    grey += v.color == palette::no_value;
+  }
+  CHECK(grey > 0);
+  list = draw_scene(bars->model, bars->final, view, framing);
+  all.clear();
+  for (const TextItem& text : list.texts())
+    all += text.text + "|";
+  CHECK_THAT(all, Catch::Contains("no bending moment"));
 }

@@ -270,3 +270,74 @@ TEST_CASE("the GPU draws the scene mesh where the CPU puts it") {
     CHECK(same.fraction <= 0.001);
   }
 }
+
+TEST_CASE("moment colours: a cantilever is coloured most strongly at its clamped end") {
+  // Clamped at x = 0, pushed down at its tip x = L: it hogs, M = -P (L - x), so the colour
+  // runs from the map's blue end (-|M|max) at the wall to its neutral middle at the tip.
+  const std::string text =
+      "model = \"frame\"\n[[strut]]\nname = \"C\"\nfrom = [0.0, 0.0]\nto = [2.0, 0.0]\n"
+      "E = 2.1e11\narea = 2.0e-3\ninertia = 3.0e-6\nelements = 6\nsubdomains = 2\n"
+      "fixed = [\"from\"]\n[[load]]\nstrut = \"C\"\nat = \"to\"\nforce = [0.0, -40.0]\n";
+  const Solved solved =
+      solve(scenes::parse_scene(text, "cantilever.toml"), solver::MethodKind::ActiveSet);
+  REQUIRE(solved.extent.largest_moment == Approx(40.0 * 2.0).epsilon(1e-9));
+  View view = view_of(480, 240);
+  // Unmagnified, the tip moves 0.5 mm: a straight strut on screen, its axis one pixel row.
+  view.magnification = 1.0;
+  view.color_by = ColorBy::Moment;
+  const SceneFraming framing = frame_scene(solved.model, view, solved.extent, scene_region(view));
+  const SceneMesh mesh = build_scene_mesh(solved.model, solved.final, framing, ColorBy::Moment);
+  MeshValues values;
+  fill_mesh_values(mesh, solved.model, solved.final, framing, values);
+  GlRenderer& renderer = fetic::testing::test_renderer();
+  renderer.set_samples(1);
+  const Image image =
+      renderer.render(view.width, view.height,
+                      {Layer(&mesh, &values, mesh_uniforms(mesh, framing))}, {255, 255, 255, 255});
+  renderer.set_samples(4);
+  const solver::StrutMesh& strut = solved.model.struts[0];
+  const Point wall = framing.to_pixel(strut.nodes.front()),
+              tip = framing.to_pixel(strut.nodes.back());
+  // How far a colour is from the map's neutral middle (zero moment).
+  const Color zero = diverging(0.0);
+  const auto strength = [&](const std::uint8_t* p) {
+    return std::abs(p[0] - zero.r) + std::abs(p[1] - zero.g) + std::abs(p[2] - zero.b);
+  };
+  const auto near = [](const std::uint8_t* p, Color c) {
+    return std::abs(p[0] - c.r) <= 10 && std::abs(p[1] - c.g) <= 10 && std::abs(p[2] - c.b) <= 10;
+  };
+  constexpr int kSamples = 50;
+  std::vector<int> strengths;
+  for (int j = 0; j < kSamples; ++j) {
+    const float s = 0.02f + 0.96f * j / (kSamples - 1);  // clear of the rim at both ends
+    const Point p = wall + s * (tip - wall);
+    const std::uint8_t* pixel =
+        image.pixel(static_cast<int>(std::floor(p.x)), static_cast<int>(std::floor(p.y)));
+    INFO("at " << s << " of the length: " << int(pixel[0]) << " " << int(pixel[1]) << " "
+               << int(pixel[2]));
+    // Linear along the strut: the colour of M / |M|max = -(1 - s).
+    CHECK(near(pixel, diverging(-(1.0 - s))));
+    strengths.push_back(strength(pixel));
+  }
+  // The strongest colour at the wall, and never stronger further from it.
+  CHECK(std::max_element(strengths.begin(), strengths.end()) == strengths.begin());
+  for (int j = 1; j < kSamples; ++j)
+    CHECK(strengths[static_cast<std::size_t>(j)] <= strengths[static_cast<std::size_t>(j - 1)] + 2);
+}
+
+TEST_CASE("the GPU colours beams by moment as the CPU does") {
+  const Solved solved = solve(bundled("frame_portal_sway.toml"), solver::MethodKind::ActiveSet);
+  REQUIRE(solved.extent.largest_moment > 0.0);
+  View view = view_of(480, 320);
+  view.color_by = ColorBy::Moment;
+  const FrameComposer composer(solved.model, view, solved.extent, {"t", "m", "", ""});
+  std::vector<solver::HistoryEntry> history;
+  const ComposedFrame frame = composer.compose(Frame{0, 0, solved.final, history});
+  GlRenderer& renderer = fetic::testing::test_renderer();
+  const Image gpu = renderer.render(view.width, view.height, frame.layers(), palette::background);
+  const DrawList cpu = frame.flattened();
+  const Image expanded = renderer.render(view.width, view.height, {&cpu}, palette::background);
+  const fetic::testing::Comparison same = fetic::testing::compare(gpu, expanded);
+  INFO(same.differing << " pixels differ, by up to " << same.largest);
+  CHECK(same.fraction <= 0.001);
+}

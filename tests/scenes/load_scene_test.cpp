@@ -218,6 +218,16 @@ TEST_CASE("units: derived names and the prefix a legend uses") {
   unit = display_unit(Quantity::Force, {"mm", "N"}, 84000.0);
   CHECK(unit.name == "kN");
   CHECK(84000.0 / unit.divisor == Approx(84.0));
+  // Moments: the scene's length, the force prefixed: 3.2e6 N mm reads 3.2 MN mm.
+  unit = display_unit(Quantity::Moment, {"mm", "N"}, 3.2e6);
+  CHECK(unit.name == "MN mm");
+  CHECK(3.2e6 / unit.divisor == Approx(3.2));
+  unit = display_unit(Quantity::Moment, {"mm", "N"}, 420.0);
+  CHECK(unit.name == "N mm");
+  unit = display_unit(Quantity::Moment, {"m", "N"}, 6800.0);
+  CHECK(unit.name == "kN m");
+  CHECK(6800.0 / unit.divisor == Approx(6.8));
+  CHECK(display_unit(Quantity::Moment, {"in", "kip"}, 30.0).name == "kip in");
   // Lengths stay in the scene's unit; imperial quantities are not converted.
   CHECK(display_unit(Quantity::Length, {"mm", "N"}, 0.001).name == "mm");
   CHECK(display_unit(Quantity::Stress, {"in", "lbf"}, 3000.0).name == "psi");
