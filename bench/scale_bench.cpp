@@ -12,6 +12,7 @@
 
 #include <sys/resource.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -200,6 +201,10 @@ struct Args {
   std::string preset = "quick";
   std::string csv_dir;
   bool skip_active_set_above_limit = true;
+  std::vector<std::string> only;  // parts to run; empty: all
+  bool runs(const std::string& part) const {
+    return only.empty() || std::find(only.begin(), only.end(), part) != only.end();
+  }
 };
 
 Table comparison_table(const std::vector<scenes::GenerateOptions>& sizes, long long ipopt_limit,
@@ -344,6 +349,13 @@ std::string machine() {
   return model + ", " + std::to_string(std::thread::hardware_concurrency()) + " threads";
 }
 
+int finish() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  std::cout << "\npeak resident memory of this run: " << usage.ru_maxrss / 1024 << " MB\n";
+  return 0;
+}
+
 int run(const Args& args) {
   const bool full = args.preset == "full";
   std::cout << "fetic-bench-scale, preset " << args.preset << ", machine: " << machine() << "\n";
@@ -353,8 +365,8 @@ int run(const Args& args) {
   // (one contact per iteration, dense Schur updates) and Ipopt take too long to be useful.
   if (full) sizes.push_back(plane(10, 100, 24, 5, 1));
   if (full) sizes.push_back(plane(25, 200, 48, 10, 2));
-  const Table comparison = comparison_table(sizes, 120'000, 200'000);
-  comparison.write_csv(args.csv_dir, "comparison.csv");
+  if (args.runs("comparison"))
+    comparison_table(sizes, 120'000, 200'000).write_csv(args.csv_dir, "comparison.csv");
 
   // 2. numerical scalability.
   const int step = full ? 16 : 8;  // elements per subdomain side (H/h)
@@ -366,22 +378,24 @@ int run(const Args& args) {
   // Full: one step further, 32x16 subdomains per strut (about a million unknowns), with
   // the Dirichlet preconditioner only.
   if (full) more_subdomains.push_back(plane(2, 32 * step, 16 * step, 32, 16));
-  const Table scale_h =
-      scalability_table("2a. Iterations / applications of F as the subdomains grow at fixed H/h",
-                        more_subdomains, 1024);
-  scale_h.write_csv(args.csv_dir, "subdomains.csv");
+  if (args.runs("subdomains"))
+    scalability_table("2a. Iterations / applications of F as the subdomains grow at fixed H/h",
+                      more_subdomains, 1024)
+        .write_csv(args.csv_dir, "subdomains.csv");
   std::vector<scenes::GenerateOptions> finer{plane(2, 8, 4, 4, 2), plane(2, 16, 8, 4, 2),
                                              plane(2, 32, 16, 4, 2)};
   if (full) finer.push_back(plane(2, 64, 32, 4, 2));
-  const Table scale_small_h = scalability_table(
-      "2b. Iterations / applications of F as h shrinks at fixed H (4x2 subdomains per strut)",
-      finer);
-  scale_small_h.write_csv(args.csv_dir, "refinement.csv");
+  if (args.runs("refinement"))
+    scalability_table(
+        "2b. Iterations / applications of F as h shrinks at fixed H (4x2 subdomains per strut)",
+        finer)
+        .write_csv(args.csv_dir, "refinement.csv");
 
   // 3. memory.
   std::vector<scenes::GenerateOptions> memory{plane(5, 100, 24, 5, 1)};
   if (full) memory.push_back(plane(25, 200, 48, 10, 2));
-  memory_table(memory).write_csv(args.csv_dir, "memory.csv");
+  if (args.runs("memory")) memory_table(memory).write_csv(args.csv_dir, "memory.csv");
+  if (!args.runs("frames")) return finish();
 
   // 4. frames: the same questions on generated portal frames (6 struts per pair).
   const int frame_step = full ? 16 : 8;
@@ -400,11 +414,7 @@ int run(const Args& args) {
   std::vector<scenes::GenerateOptions> frame_sizes{frame(20, 40, 4)};
   if (full) frame_sizes.push_back(frame(50, 100, 5));
   comparison_table(frame_sizes, 120'000, 200'000).write_csv(args.csv_dir, "frame_comparison.csv");
-
-  rusage usage{};
-  getrusage(RUSAGE_SELF, &usage);
-  std::cout << "\npeak resident memory of this run: " << usage.ru_maxrss / 1024 << " MB\n";
-  return 0;
+  return finish();
 }
 
 }  // namespace
@@ -420,6 +430,10 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--csv-dir", args.csv_dir, "Write every table as CSV into this directory")
       ->check(CLI::NonexistentPath | CLI::ExistingDirectory);
+  app.add_option("--only", args.only,
+                 "Run only these parts: comparison (against the direct floor), subdomains, "
+                 "refinement, memory, frames")
+      ->check(CLI::IsMember({"comparison", "subdomains", "refinement", "memory", "frames"}));
   CLI11_PARSE(app, argc, argv);
   try {
     return fetic::bench::run(args);
