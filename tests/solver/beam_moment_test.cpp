@@ -11,18 +11,13 @@
 #include <functional>
 
 #include "solver/element_results.hpp"
+#include "tests/support/random_draws.hpp"
 #include "tests/support/solve_helpers.hpp"
 
 using namespace fetic;
 using fetic::solver::MethodKind;
 
 namespace {
-
-std::string point(double x, double y) {
-  char b[96];
-  std::snprintf(b, sizeof b, "[%.17g, %.17g]", x, y);
-  return b;
-}
 
 // Checks every element of `moments` against `expected` (a function of the distance from
 // the strut's start) at both ends and at xi = 0.3, to `tolerance` of `scale`.
@@ -48,9 +43,9 @@ TEST_CASE("frame moments: a cantilever with a tip force P has M = -P (L - x)") {
     // The force against e2 (the axis turned +90 degrees): the strut hogs, M <= 0.
     const std::string text =
         "model = \"frame\"\n[[strut]]\nname = \"C\"\nfrom = [0.0, 0.0]\nto = " +
-        point(L * c, L * s) + "\nE = 2.1e11\narea = 2.0e-3\ninertia = 3.0e-6\n" +
+        testing::toml_point(L * c, L * s) + "\nE = 2.1e11\narea = 2.0e-3\ninertia = 3.0e-6\n" +
         "elements = 8\nsubdomains = 3\nfixed = [\"from\"]\n[[load]]\nstrut = \"C\"\n" +
-        "at = \"to\"\nforce = " + point(P * s, -P * c) + "\n";
+        "at = \"to\"\nforce = " + testing::toml_point(P * s, -P * c) + "\n";
     const auto expected = [&](double x) { return -P * (L - x); };
     for (MethodKind kind : {MethodKind::ActiveSet, MethodKind::FetiC}) {
       INFO("angle " << angle << ", method " << solver::to_string(kind));
@@ -78,10 +73,11 @@ TEST_CASE(
   const double L = 2.4, P = 6.0e4;
   const int elements = 8;
   const std::string text =
-      "model = \"frame\"\n[[strut]]\nname = \"B\"\nfrom = [0.0, 0.0]\nto = " + point(L, 0.0) +
+      "model = \"frame\"\n[[strut]]\nname = \"B\"\nfrom = [0.0, 0.0]\nto = " +
+      testing::toml_point(L, 0.0) +
       "\nE = 2.0e11\narea = 3.0e-3\ninertia = 1.5e-5\nelements = 8\nsubdomains = 2\n"
       "fixed = [\"from\", \"to\"]\n[[load]]\nstrut = \"B\"\nat = 4\nforce = " +
-      point(0.0, -P) + "\n";
+      testing::toml_point(0.0, -P) + "\n";
   // Symmetric halves, each linear from -P L / 8 to +P L / 8.
   const auto expected = [&](double x) {
     const double from_end = std::min(x, L - x);

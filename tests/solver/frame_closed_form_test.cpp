@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "tests/support/random_draws.hpp"
 #include "tests/support/solve_helpers.hpp"
 
 using namespace fetic;
@@ -15,12 +16,6 @@ using fetic::solver::MethodKind;
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
-
-std::string point(double x, double y) {
-  char b[96];
-  std::snprintf(b, sizeof b, "[%.17g, %.17g]", x, y);
-  return b;
-}
 
 // The displacement and rotation of node `node` of strut `strut`.
 struct NodeState {
@@ -42,9 +37,9 @@ TEST_CASE("frame: a cantilever's tip deflects P L^3 / (3 E I) and turns P L^2 / 
     // counter-clockwise.
     const std::string text =
         "model = \"frame\"\n[[strut]]\nname = \"C\"\nfrom = [0.0, 0.0]\nto = " +
-        point(L * c, L * s) + "\nE = 2.1e11\narea = 2.0e-3\ninertia = 3.0e-6\n" +
+        testing::toml_point(L * c, L * s) + "\nE = 2.1e11\narea = 2.0e-3\ninertia = 3.0e-6\n" +
         "elements = 8\nsubdomains = 3\nfixed = [\"from\"]\n[[load]]\nstrut = \"C\"\n" +
-        "at = \"to\"\nforce = " + point(-P * s, P * c) + "\n";
+        "at = \"to\"\nforce = " + testing::toml_point(-P * s, P * c) + "\n";
     for (MethodKind kind : {MethodKind::ActiveSet, MethodKind::ConjugateGradient, MethodKind::Feti,
                             MethodKind::FetiC}) {
       INFO("angle " << angle << ", method " << solver::to_string(kind));
@@ -66,7 +61,7 @@ namespace {
 // beam, pushed down by P at the tip.
 std::string post_on_beam(double P, double gap, double angle, const char* normal) {
   const double c = std::cos(angle), s = std::sin(angle);
-  auto at = [&](double x, double y) { return point(c * x - s * y, s * x + c * y); };
+  auto at = [&](double x, double y) { return testing::toml_point(c * x - s * y, s * x + c * y); };
   return "model = \"frame\"\n[defaults]\nE = 2.0e11\n"
          "[[strut]]\nname = \"beam\"\nfrom = " +
          at(0.0, 0.0) + "\nto = " + at(2.4, 0.0) +
@@ -98,7 +93,8 @@ TEST_CASE(
       // Where the nodes coincide the normal must be given (any turn of it, with the scene).
       const double angle = gap == 0.0 ? 0.4 : 0.0;
       const std::string normal =
-          gap == 0.0 ? "normal = " + point(-std::sin(angle), std::cos(angle)) + "\n" : "";
+          gap == 0.0 ? "normal = " + testing::toml_point(-std::sin(angle), std::cos(angle)) + "\n"
+                     : "";
       for (MethodKind kind : {MethodKind::ActiveSet, MethodKind::FetiC}) {
         INFO("gap " << gap << ", P " << P << ", method " << solver::to_string(kind));
         const auto solved = testing::solve_text(post_on_beam(P, gap, angle, normal.c_str()), kind);
@@ -122,10 +118,10 @@ TEST_CASE("frame: a symmetric two-leg pinned truss: apex deflection P L / (2 E A
         "model = \"frame\"\n[defaults]\nE = 2.1e11\narea = 6.0e-4\ninertia = 2.0e-7\n"
         "elements = 5\nsubdomains = 2\npinned = [\"from\"]\n"
         "[[strut]]\nname = \"left\"\nfrom = " +
-        point(-w, 0.0) + "\nto = " + point(0.0, h) +
+        testing::toml_point(-w, 0.0) + "\nto = " + testing::toml_point(0.0, h) +
         "\n"
         "[[strut]]\nname = \"right\"\nfrom = " +
-        point(w, 0.0) + "\nto = " + point(0.0, h) +
+        testing::toml_point(w, 0.0) + "\nto = " + testing::toml_point(0.0, h) +
         "\n"
         "[[joint]]\nends = [\"left.to\", \"right.to\"]\nkind = \"pinned\"\n"
         "[[load]]\nstrut = \"right\"\nat = 5\nforce = [0.0, " +

@@ -29,4 +29,9 @@ inline std::string toml_number(double value) {
   return text;
 }
 
+// "[x, y]" with every digit, for scene text.
+inline std::string toml_point(double x, double y) {
+  return "[" + toml_number(x) + ", " + toml_number(y) + "]";
+}
+
 }  // namespace fetic::testing
