@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <cstdlib>
+#include <cstring>
 #include <iostream>
 #include <new>
 #include <string>
@@ -54,6 +55,10 @@ bool refuse_under_mpi(int argc, char** argv) {
 // When the executable cannot be run again, the run goes on with libgomp's default.
 void use_passive_openmp_threads(char** argv) {
   if (std::getenv("OMP_WAIT_POLICY")) return;
+  // Under valgrind the new program would run outside it (valgrind follows no exec by
+  // default): keep the process it watches.
+  if (const char* preload = std::getenv("LD_PRELOAD"); preload && std::strstr(preload, "vgpreload"))
+    return;
   char path[4096];
   const ssize_t length = ::readlink("/proc/self/exe", path, sizeof path - 1);
   if (length <= 0) return;
