@@ -327,9 +327,9 @@ void register_render(CLI::App& app, int& exit_code) {
   CLI::Option* color =
       command
           ->add_option("--color", args->color,
-                       "Colour struts by subdomain, by axial stress or by bending moment (frame "
-                       "scenes only)")
-          ->check(CLI::IsMember({"subdomain", "stress", "moment"}))
+                       "Colour struts by subdomain, one colour per strut, by axial stress or by "
+                       "bending moment (frame scenes only)")
+          ->check(CLI::IsMember({"subdomain", "strut", "stress", "moment"}))
           ->capture_default_str();
   command->add_flag("--no-overlay", args->no_overlay, "No information panel");
   command->add_flag("--labels", args->labels,

@@ -167,6 +167,24 @@ TEST_CASE("fetic render --color moment: frame scenes coloured by bending moment"
   fs::remove(view);
 }
 
+TEST_CASE("fetic render --color strut: one colour per strut, as in a view file") {
+  const fs::path by_strut = fresh_directory("fetic_render_strut");
+  const fs::path by_view = fresh_directory("fetic_render_strut_view");
+  const fs::path by_subdomain = fresh_directory("fetic_render_strut_subdomain");
+  const std::string common =
+      scene("thesis.toml") + " --method active-set --final --size 320x200 --out ";
+  REQUIRE(run("render " + common + by_strut.string() + " --color strut").status == 0);
+  REQUIRE(run("render " + common + by_subdomain.string() + " --color subdomain").status == 0);
+  const fs::path view =
+      fs::temp_directory_path() / ("fetic_render_strut_" + std::to_string(::getpid()) + ".json");
+  std::ofstream(view) << R"({"fetic_view": 1, "color": "strut"})";
+  REQUIRE(run("render " + common + by_view.string() + " --view " + view.string()).status == 0);
+  CHECK(bytes(by_strut / "frame_0000.png") == bytes(by_view / "frame_0000.png"));
+  // The thesis' struts have two subdomains each: coloured per strut, the picture differs.
+  CHECK(bytes(by_strut / "frame_0000.png") != bytes(by_subdomain / "frame_0000.png"));
+  fs::remove(view);
+}
+
 TEST_CASE("fetic render: errors name the file and use the documented statuses") {
   const fs::path out = fresh_directory("fetic_render_errors");
   const Run refused = run("render " + scene("thesis.toml") + " --method cg --out " + out.string());
