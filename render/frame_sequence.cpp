@@ -49,23 +49,7 @@ std::vector<std::vector<double>> piece_stresses(const solver::Model& model,
   stresses.reserve(snapshot.pieces.size());
   for (const solver::Piece& piece : snapshot.pieces) {
     const solver::StrutMesh& mesh = model.struts[static_cast<std::size_t>(piece.strut)];
-    const int dofs = mesh.dofs_per_node;
-    Eigen::VectorXd box_dofs(piece.box.node_count() * dofs);
-    for (int n = 0; n < piece.box.node_count(); ++n) {
-      const solver::Vec2& u = piece.displacement[static_cast<std::size_t>(n)];
-      if (dofs == 1) {
-        box_dofs[n] = u.dot(mesh.e1);
-      } else if (dofs == 3) {  // frame: ux, uy, rotation
-        box_dofs[3 * n] = u.x();
-        box_dofs[3 * n + 1] = u.y();
-        box_dofs[3 * n + 2] = static_cast<std::size_t>(n) < piece.rotation.size()
-                                  ? piece.rotation[static_cast<std::size_t>(n)]
-                                  : 0.0;
-      } else {
-        box_dofs[2 * n] = u.x();
-        box_dofs[2 * n + 1] = u.y();
-      }
-    }
+    const Eigen::VectorXd box_dofs = solver::piece_dofs(mesh, piece);
     const Eigen::VectorXd sigma = solver::axial_stress(mesh, piece.box, box_dofs);
     stresses.emplace_back(sigma.data(), sigma.data() + sigma.size());
   }

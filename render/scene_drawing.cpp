@@ -111,8 +111,6 @@ void draw_wall(DrawList& list, const Wall& wall, const SceneFraming& framing) {
   }
 }
 
-// One wall per clamped end, merged where the ends of several struts line up (a column of
-// clamped bars gets one straight wall, not a stack of short ones).
 // Frame model: a pinned support as a triangle on a hatched base, its tip on the node; a
 // joint as a small filled square (rigid) or an open circle (pinned: the ends turn).
 void draw_pins_and_joints(DrawList& list, const solver::Model& model, const SceneFraming& framing,
@@ -154,6 +152,9 @@ void draw_pins_and_joints(DrawList& list, const solver::Model& model, const Scen
   }
 }
 
+// One wall per clamped end, merged where the ends of several struts line up (a column of
+// clamped bars gets one straight wall, not a stack of short ones); then the frame model's
+// pinned supports and joints.
 void draw_supports(DrawList& list, const solver::Model& model, const SceneFraming& framing,
                    const NodeLookup& nodes, GlyphTally& tally) {
   std::map<std::tuple<int, int, long>, std::vector<std::pair<float, float>>> groups;

@@ -10,6 +10,23 @@
 namespace fetic::solver {
 namespace {
 
+void put_node_dofs(const StrutMesh& mesh, const Vec2& u, double* node_dofs);
+
+}  // namespace
+
+Eigen::VectorXd piece_dofs(const StrutMesh& mesh, const Piece& piece) {
+  const int d = mesh.dofs_per_node;
+  Eigen::VectorXd dofs = Eigen::VectorXd::Zero(piece.box.node_count() * d);
+  for (int local = 0; local < piece.box.node_count(); ++local) {
+    put_node_dofs(mesh, piece.displacement[static_cast<size_t>(local)], dofs.data() + local * d);
+    if (d == 3 && static_cast<size_t>(local) < piece.rotation.size())  // frame: the rotation
+      dofs(local * d + 2) = piece.rotation[static_cast<size_t>(local)];
+  }
+  return dofs;
+}
+
+namespace {
+
 bool is_plane(const StrutMesh& mesh) {
   return mesh.ny > 0;
 }
@@ -32,19 +49,15 @@ void put_node_dofs(const StrutMesh& mesh, const Vec2& u, double* node_dofs) {
   }
 }
 
-// A piece's DOF vector in box-local numbering, clamped nodes exactly zero.
-Eigen::VectorXd piece_dofs(const StrutMesh& mesh, const Piece& piece,
-                           const std::vector<char>& clamped) {
+// piece_dofs with the clamped nodes exactly zero.
+Eigen::VectorXd clamped_piece_dofs(const StrutMesh& mesh, const Piece& piece,
+                                   const std::vector<char>& clamped) {
   const int d = mesh.dofs_per_node;
-  Eigen::VectorXd dofs = Eigen::VectorXd::Zero(piece.box.node_count() * d);
+  Eigen::VectorXd dofs = piece_dofs(mesh, piece);
   for (int i = piece.box.i0; i <= piece.box.i1; ++i)
-    for (int k = piece.box.k0; k <= piece.box.k1; ++k) {
-      const int local = piece.box.local(i, k);
-      if (clamped[static_cast<size_t>(mesh.node(i, k))]) continue;
-      put_node_dofs(mesh, piece.displacement[static_cast<size_t>(local)], dofs.data() + local * d);
-      if (d == 3 && static_cast<size_t>(local) < piece.rotation.size())  // frame: the rotation
-        dofs(local * d + 2) = piece.rotation[static_cast<size_t>(local)];
-    }
+    for (int k = piece.box.k0; k <= piece.box.k1; ++k)
+      if (clamped[static_cast<size_t>(mesh.node(i, k))])
+        dofs.segment(piece.box.local(i, k) * d, d).setZero();
   return dofs;
 }
 
@@ -172,7 +185,8 @@ std::vector<StrutElements> element_results(const Model& model, const Snapshot& s
     clamped.push_back(clamped_flags(model, static_cast<int>(s)));
   for (const Piece& piece : snapshot.pieces) {
     const StrutMesh& mesh = model.struts[static_cast<size_t>(piece.strut)];
-    const Eigen::VectorXd dofs = piece_dofs(mesh, piece, clamped[static_cast<size_t>(piece.strut)]);
+    const Eigen::VectorXd dofs =
+        clamped_piece_dofs(mesh, piece, clamped[static_cast<size_t>(piece.strut)]);
     StrutElements& out = result[static_cast<size_t>(piece.strut)];
     if (mesh.dofs_per_node == 1) {
       recover_bar(mesh, piece.box, dofs, out);
@@ -215,7 +229,7 @@ std::vector<BeamMoments> piece_moments(const Model& model, const Snapshot& snaps
       result.push_back({piece.strut, piece.box.i0, {}});
       continue;
     }
-    const Eigen::VectorXd dofs = piece_dofs(mesh, piece, clamped_flags(model, piece.strut));
+    const Eigen::VectorXd dofs = clamped_piece_dofs(mesh, piece, clamped_flags(model, piece.strut));
     result.push_back(beam_moments(mesh, piece.strut, piece.box, dofs));
   }
   return result;

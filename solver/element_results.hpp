@@ -33,6 +33,10 @@ struct StrutElements {
   int element_count() const { return static_cast<int>(connectivity.size()) / nodes_per_element; }
 };
 
+// A piece's DOF vector in box-local numbering, as the piece holds it (a torn iterate's
+// clamped copies included): per node u . e1 (bar), ux, uy (plane), ux, uy, rotation (frame).
+Eigen::VectorXd piece_dofs(const StrutMesh& mesh, const Piece& piece);
+
 // Elements of every strut with the stresses and resultants of `snapshot`. Each element's
 // values come from the displacements of the piece (subdomain) that holds it, so a torn
 // FETI iterate shows each subdomain's own stresses.
