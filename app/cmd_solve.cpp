@@ -416,16 +416,9 @@ void register_solve(CLI::App& app, int& exit_code) {
                     "Record each iteration's displacement error against an active-set solve "
                     "made in the same run");
   command->add_flag("--quiet", args->quiet, "Print no summary and no progress");
-  command->add_option("--monitor", args->monitor,
+  add_monitor_options(command, args->monitor, args->monitor_full,
                       "Write one JSON line per iteration here as the solve runs (- for stdout; "
                       "a FIFO or pipe can follow it live; docs/COMMANDS.md)");
-  command
-      ->add_option("--monitor-full", args->monitor_full,
-                   "With --monitor: add the state (displacements, contact multipliers) every "
-                   "N-th iteration (N = 1 when not given)")
-      ->expected(0, 1)
-      ->default_str("1")
-      ->check(CLI::PositiveNumber);
   command->add_flag("--progress", args->progress,
                     "Show the progress line on stderr even when it is not a terminal");
   command->add_option("--profile", args->profile,

@@ -16,7 +16,16 @@
 #include "app/output_file.hpp"
 #include "solver/method.hpp"
 
+namespace CLI {
+class App;
+}
+
 namespace fetic::app {
+
+// --monitor FILE|- and --monitor-full [N] (fetic solve, fetic gui); `path_help` says what
+// the stream covers for the command.
+void add_monitor_options(CLI::App* command, std::string& path, int& full_every,
+                         const std::string& path_help);
 
 class SolveMonitor {
  public:

@@ -22,6 +22,7 @@
 #include "app/output_file.hpp"
 #include "app/render_output.hpp"
 #include "app/scene_input.hpp"
+#include "app/solve_monitor.hpp"
 #include "app/view_file.hpp"
 #include "render/glfw_window.hpp"
 #include "scenes/load_scene.hpp"
@@ -148,16 +149,9 @@ void register_gui(CLI::App& app, int& exit_code) {
                       "Start with a saved view (JSON; the window's Save view, docs/WINDOW.md)");
   command->add_option("--state-file", args->state_file,
                       "Write what the app does as JSON lines to this file (- for stdout)");
-  command->add_option("--monitor", args->monitor,
+  add_monitor_options(command, args->monitor, args->monitor_full,
                       "Write one JSON line per iteration of every solve the window performs, as "
                       "fetic solve --monitor does (- for stdout)");
-  command
-      ->add_option("--monitor-full", args->monitor_full,
-                   "With --monitor: add the state (displacements, contact multipliers) every "
-                   "N-th iteration (N = 1 when not given)")
-      ->expected(0, 1)
-      ->default_str("1")
-      ->check(CLI::PositiveNumber);
   command->add_option("--script", args->script,
                       "Run timed actions from this file (see docs/WINDOW.md)");
   command->add_option("--screenshot-dir", args->screenshot_dir, "Where S saves screenshots")

@@ -151,6 +151,17 @@ std::vector<int> solve_active(const std::string& scene_file, double load) {
   return active;
 }
 
+// The result file of `fetic solve` at this load factor, written into `dir`.
+json solve_json(const std::string& scene_file, double load, const fs::path& dir) {
+  const fs::path out = dir / "result.json";
+  const auto [status, output] =
+      shell(std::string(FETIC_EXECUTABLE) + " solve " + scene_file + " --load-factor " +
+            std::to_string(load) + " --json " + out.string() + " --quiet");
+  INFO(output);
+  REQUIRE(status == 0);
+  return json::parse(read_text(out));
+}
+
 void require_golden(const std::string& name, const fs::path& png) {
   const fetic::render::Image image = fetic::testing::read_png(png.string());
   REQUIRE(image.width > 0);
@@ -403,18 +414,6 @@ TEST_CASE("two methods side by side: --compare solves every load with both", "[s
   CHECK(fs::file_size(dir / "both.png") > 10000);
 }
 
-// The result file of `fetic solve` at this load factor.
-json solve_result(const std::string& scene_file, double load) {
-  const fs::path out =
-      fs::temp_directory_path() / ("fetic_gui_result_" + std::to_string(::getpid()) + ".json");
-  const auto [status, output] =
-      shell(std::string(FETIC_EXECUTABLE) + " solve " + scene_file + " --load-factor " +
-            std::to_string(load) + " --json " + out.string() + " --quiet");
-  INFO(output);
-  REQUIRE(status == 0);
-  return json::parse(read_text(out));
-}
-
 std::vector<json> json_lines(const fs::path& path) {
   std::vector<json> lines;
   std::ifstream in(path);
@@ -450,7 +449,7 @@ TEST_CASE("the window writes the monitor stream of every solve while it runs", "
     solves.back().push_back(line);
   }
   REQUIRE(solves.size() == 2);
-  const json cold = solve_result(scene("thesis.toml"), 1.0);
+  const json cold = solve_json(scene("thesis.toml"), 1.0, dir);
   REQUIRE(solves[0].size() == cold["history"].size());
   for (size_t i = 0; i < solves[0].size(); ++i) {
     INFO("line " << i << ": " << solves[0][i].dump());
@@ -682,16 +681,6 @@ json picked_by_click(const std::string& scene_file, const std::string& what, dou
   REQUIRE(status);
   CHECK(*status == 0);
   return *picked;
-}
-
-json solve_json(const std::string& scene_file, double load, const fs::path& dir) {
-  const fs::path out = dir / "result.json";
-  const auto [status, output] =
-      shell(std::string(FETIC_EXECUTABLE) + " solve " + scene_file + " --load-factor " +
-            std::to_string(load) + " --json " + out.string() + " --quiet");
-  INFO(output);
-  REQUIRE(status == 0);
-  return json::parse(read_text(out));
 }
 
 }  // namespace

@@ -160,6 +160,23 @@ View view_of(int width, int height) {
   return view;
 }
 
+// The final state drawn at 480x320 with `color`: the scene mesh placed by the GPU (the
+// frame's layers) and expanded on the CPU (flattened) give the same picture.
+void check_gpu_draws_as_cpu(const Solved& solved, ColorBy color) {
+  View view = view_of(480, 320);
+  view.color_by = color;
+  const FrameComposer composer(solved.model, view, solved.extent, {"t", "m", "", ""});
+  std::vector<solver::HistoryEntry> history;
+  const ComposedFrame frame = composer.compose(Frame{0, 0, solved.final, history});
+  GlRenderer& renderer = fetic::testing::test_renderer();
+  const Image gpu = renderer.render(view.width, view.height, frame.layers(), palette::background);
+  const DrawList cpu = frame.flattened();
+  const Image expanded = renderer.render(view.width, view.height, {&cpu}, palette::background);
+  const fetic::testing::Comparison same = fetic::testing::compare(gpu, expanded);
+  INFO(same.differing << " pixels differ, by up to " << same.largest);
+  CHECK(same.fraction <= 0.001);
+}
+
 }  // namespace
 
 TEST_CASE("no glyph hides more than a tenth of any strut") {
@@ -255,20 +272,8 @@ TEST_CASE("clamped ends are drawn on their walls, the walls where the supports a
 
 TEST_CASE("the GPU draws the scene mesh where the CPU puts it") {
   const Solved solved = solve(bundled("plane_pair.toml"), solver::MethodKind::FetiC);
-  for (const ColorBy color : {ColorBy::Subdomain, ColorBy::Stress}) {
-    View view = view_of(480, 320);
-    view.color_by = color;
-    const FrameComposer composer(solved.model, view, solved.extent, {"t", "m", "", ""});
-    std::vector<solver::HistoryEntry> history;
-    const ComposedFrame frame = composer.compose(Frame{0, 0, solved.final, history});
-    GlRenderer& renderer = fetic::testing::test_renderer();
-    const Image gpu = renderer.render(view.width, view.height, frame.layers(), palette::background);
-    const DrawList cpu = frame.flattened();
-    const Image expanded = renderer.render(view.width, view.height, {&cpu}, palette::background);
-    const fetic::testing::Comparison same = fetic::testing::compare(gpu, expanded);
-    INFO(same.differing << " pixels differ, by up to " << same.largest);
-    CHECK(same.fraction <= 0.001);
-  }
+  for (const ColorBy color : {ColorBy::Subdomain, ColorBy::Stress})
+    check_gpu_draws_as_cpu(solved, color);
 }
 
 TEST_CASE("moment colours: a cantilever is coloured most strongly at its clamped end") {
@@ -328,16 +333,5 @@ TEST_CASE("moment colours: a cantilever is coloured most strongly at its clamped
 TEST_CASE("the GPU colours beams by moment as the CPU does") {
   const Solved solved = solve(bundled("frame_portal_sway.toml"), solver::MethodKind::ActiveSet);
   REQUIRE(solved.extent.largest_moment > 0.0);
-  View view = view_of(480, 320);
-  view.color_by = ColorBy::Moment;
-  const FrameComposer composer(solved.model, view, solved.extent, {"t", "m", "", ""});
-  std::vector<solver::HistoryEntry> history;
-  const ComposedFrame frame = composer.compose(Frame{0, 0, solved.final, history});
-  GlRenderer& renderer = fetic::testing::test_renderer();
-  const Image gpu = renderer.render(view.width, view.height, frame.layers(), palette::background);
-  const DrawList cpu = frame.flattened();
-  const Image expanded = renderer.render(view.width, view.height, {&cpu}, palette::background);
-  const fetic::testing::Comparison same = fetic::testing::compare(gpu, expanded);
-  INFO(same.differing << " pixels differ, by up to " << same.largest);
-  CHECK(same.fraction <= 0.001);
+  check_gpu_draws_as_cpu(solved, ColorBy::Moment);
 }
