@@ -4,7 +4,9 @@
 //      imposed as equalities), the primal active-set method and Ipopt;
 //   2. numerical scalability: iterations and applications of F as the number of
 //      subdomains grows 16 (full: 64) times at fixed H/h, and as h shrinks at fixed H,
-//      for each method and preconditioner;
+//      for each method and preconditioner, with MPRGP's steps by kind and the
+//      applications of F spent before the working set settled; 2c the same scenes
+//      pressed flat (the whole end faces close), which isolates the face solve;
 //   3. memory: FETI-C's factors against the CHOLMOD factor of the whole problem;
 //   4. the frame model (generated pairs of portal frames): iterations as in 2, and a
 //      comparison row as in 1.
@@ -120,6 +122,10 @@ struct FetiRun {
   int iterations = 0;
   long long f_applications = 0;  // in the solve
   int setup_f_applications = 0;  // MPRGP's power method for ||F||
+  // Applications of F up to the iteration that last changed the working set's size: the
+  // cost of finding the contact zone, the rest is the conjugate gradients on its face.
+  long long f_to_settle = 0;
+  solver::Mprgp::Counts steps;  // MPRGP: its steps by kind
   bool converged = false;
   double setup = 0.0, solve = 0.0;
   std::size_t memory = 0;
@@ -141,8 +147,14 @@ FetiRun run_dual(solver::MethodKind kind, const solver::Model& model,
   run.solve = seconds_since(start);
   run.iterations = method->iteration();
   run.f_applications = method->history().back().f_applications;
-  if (const auto* mprgp = dynamic_cast<const solver::Mprgp*>(method.get()))
+  if (const auto* mprgp = dynamic_cast<const solver::Mprgp*>(method.get())) {
     run.setup_f_applications = mprgp->setup_f_applications();
+    run.steps = mprgp->counts();
+  }
+  const auto& history = method->history();
+  for (std::size_t k = 1; k < history.size(); ++k)
+    if (history[k].active_set != history[k - 1].active_set)
+      run.f_to_settle = history[k].f_applications;
   run.converged = method->status() == solver::Status::Converged;
   run.state = method->snapshot();
   run.memory = dynamic_cast<const solver::FetiMethod&>(*method).factor_memory();
@@ -195,6 +207,12 @@ std::string describe(const scenes::GenerateOptions& o) {
   return std::to_string(o.pairs) + "x(" + std::to_string(o.elements) + "x" +
          std::to_string(o.elements_across) + " el, " + std::to_string(o.subdomains) + "x" +
          std::to_string(o.subdomains_across) + " sub)";
+}
+
+// The generator bends the left plane struts by a load along their length: without it the
+// struts stay straight and their end faces close completely.
+void remove_bending_loads(scenes::Scene& scene) {
+  std::erase_if(scene.loads, [](const scenes::Load& load) { return load.per_length; });
 }
 
 struct Args {
@@ -276,21 +294,27 @@ Table comparison_table(const std::vector<scenes::GenerateOptions>& sizes, long l
 // Iterations / applications of F per method and preconditioner; MPRGP's power method
 // (set-up, once per model) in its own column. `dirichlet_only`: the largest scenes, where
 // the slower preconditioners would take too long to be useful.
+// `adjust` changes each generated scene before it is solved (the pressed-flat variant).
 Table scalability_table(const std::string& title, const std::vector<scenes::GenerateOptions>& sizes,
-                        int dirichlet_only_above = 0) {
+                        int dirichlet_only_above = 0,
+                        const std::function<void(scenes::Scene&)>& adjust = {}) {
   Table table{
       title,
       {"scene", "unknowns", "subdomains", "H/h", "FETI-C dirichlet", "FETI-C lumped", "FETI-C none",
-       "MPRGP dirichlet", "MPRGP lumped", "MPRGP none", "MPRGP power F", "FETI-C d s", "MPRGP d s"},
+       "MPRGP dirichlet", "MPRGP lumped", "MPRGP none", "MPRGP power F", "FETI-C d s", "MPRGP d s",
+       "MPRGP d cg / exp / prop", "F to settle: FETI-C d / MPRGP d"},
       {}};
   for (const auto& options : sizes) {
-    const scenes::Scene scene = scenes::generate_scene(options);
+    scenes::Scene scene = scenes::generate_scene(options);
+    if (adjust) adjust(scene);
     const solver::Model model = solver::build_model(scene);
     const int subdomains = options.pairs * 2 * options.subdomains * options.subdomains_across;
     std::vector<std::string> row{describe(options), std::to_string(model.dof_count()),
                                  std::to_string(subdomains),
                                  std::to_string(options.elements / options.subdomains)};
     double seconds[2] = {0.0, 0.0};
+    long long settle[2] = {0, 0};
+    solver::Mprgp::Counts steps;
     int power = 0;
     for (solver::MethodKind kind : {solver::MethodKind::FetiC, solver::MethodKind::Mprgp})
       for (solver::Preconditioner p :
@@ -303,13 +327,20 @@ Table scalability_table(const std::string& title, const std::vector<scenes::Gene
         }
         const FetiRun run = run_dual(kind, model, p);
         row.push_back(counts(run));
-        if (p == solver::Preconditioner::Dirichlet)
-          seconds[kind == solver::MethodKind::Mprgp ? 1 : 0] = run.total();
+        if (p == solver::Preconditioner::Dirichlet) {
+          const int column = kind == solver::MethodKind::Mprgp ? 1 : 0;
+          seconds[column] = run.total();
+          settle[column] = run.f_to_settle;
+          if (column == 1) steps = run.steps;
+        }
         if (kind == solver::MethodKind::Mprgp) power = run.setup_f_applications;
       }
     row.push_back(std::to_string(power));
     row.push_back(fixed(seconds[0]));
     row.push_back(fixed(seconds[1]));
+    row.push_back(std::to_string(steps.cg) + " / " + std::to_string(steps.expansion) + " / " +
+                  std::to_string(steps.proportioning));
+    row.push_back(std::to_string(settle[0]) + " / " + std::to_string(settle[1]));
     table.rows.push_back(row);
     std::cerr << "  done: " << row[0] << ", " << row[1] << " unknowns\n";
   }
@@ -382,6 +413,16 @@ int run(const Args& args) {
     scalability_table("2a. Iterations / applications of F as the subdomains grow at fixed H/h",
                       more_subdomains, 1024)
         .write_csv(args.csv_dir, "subdomains.csv");
+  // 2c. The same scenes pressed flat: without the bending loads the end faces close over
+  // their whole height, so the contact zone is known after the first proportioning and
+  // what remains is the conjugate gradients on the face. Set beside 2a, it separates the
+  // cost of finding the zone's edge (which grows with the nodes along the face) from the
+  // cost of the face solve.
+  if (args.runs("pressed"))
+    scalability_table(
+        "2c. The scenes of 2a pressed flat (no bending loads: the whole end faces close)",
+        more_subdomains, 1, remove_bending_loads)
+        .write_csv(args.csv_dir, "subdomains_pressed.csv");
   std::vector<scenes::GenerateOptions> finer{plane(2, 8, 4, 4, 2), plane(2, 16, 8, 4, 2),
                                              plane(2, 32, 16, 4, 2)};
   if (full) finer.push_back(plane(2, 64, 32, 4, 2));
@@ -432,8 +473,9 @@ int main(int argc, char** argv) {
       ->check(CLI::NonexistentPath | CLI::ExistingDirectory);
   app.add_option("--only", args.only,
                  "Run only these parts: comparison (against the direct floor), subdomains, "
-                 "refinement, memory, frames")
-      ->check(CLI::IsMember({"comparison", "subdomains", "refinement", "memory", "frames"}));
+                 "pressed (2c: the subdomain scenes pressed flat), refinement, memory, frames")
+      ->check(
+          CLI::IsMember({"comparison", "subdomains", "pressed", "refinement", "memory", "frames"}));
   CLI11_PARSE(app, argc, argv);
   try {
     return fetic::bench::run(args);
