@@ -174,6 +174,7 @@ void Mprgp::step_to_bound(double a, const Eigen::VectorXd& p) {
 }
 
 void Mprgp::restart_direction() {
+  face_steps_ = 0;
   split_gradient();
   precondition_free_gradient(z_);
   p_ = z_;
@@ -246,7 +247,13 @@ void Mprgp::advance() {
   ++iteration_;
   const double chopped = space().dot(g_chopped_, g_chopped_);
   const double proportional = space().dot(g_reduced_, g_free_);
-  if (chopped <= parameters_.gamma * parameters_.gamma * proportional)
+  // A new face is explored before its bound rows are judged (a large gamma: releasing
+  // rows early costs expansions); once CG has run on it, a bound row whose chopped
+  // gradient rivals the free one is released at once instead of waiting for the free
+  // gradient to fall tenfold below it (docs/METHODS.md, "Parameters").
+  const double gamma =
+      face_steps_ >= parameters_.settle_steps ? parameters_.settled_gamma : parameters_.gamma;
+  if (chopped <= gamma * gamma * proportional)
     conjugate_gradient_or_expansion();
   else
     proportioning();
@@ -272,6 +279,7 @@ void Mprgp::conjugate_gradient_or_expansion() {
   const double a_feasible = feasible_step(p_);
   if (a_cg <= a_feasible) {
     ++counts_.cg;
+    ++face_steps_;
     x_ -= a_cg * p_;
     g_ -= a_cg * Ap;
     ftx_ -= a_cg * ftp;

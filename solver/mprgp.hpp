@@ -45,7 +45,11 @@ namespace fetic::solver {
 
 // The parameters, the values used and why (docs/METHODS.md has the measurements).
 struct MprgpParameters {
-  double gamma = 10.0;            // proportioning when ||g_chopped||^2 > gamma^2 g_reduced'g_free
+  // Proportioning when ||g_chopped||^2 > gamma^2 g_reduced'g_free: gamma while a face is
+  // new (fewer than settle_steps CG steps since the last restart), settled_gamma after.
+  double gamma = 10.0;
+  double settled_gamma = 1.0;
+  int settle_steps = 3;
   double alpha_factor = 1.9;      // expansion step alpha_bar = alpha_factor / ||A||, < 2
   double rho_factor = 10.0;       // SMALBE penalty rho = rho_factor ||H|| for the groups
   double m_factor = 100.0;        // initial M = m_factor ||A|| (PERMON)
@@ -117,6 +121,7 @@ class Mprgp final : public FetiMethod {
   Eigen::VectorXd g_free_, g_chopped_, g_reduced_;
   double m_ = 0.0, eta_ = 0.0, lagrangian_previous_ = 0.0;
   Counts counts_;
+  int face_steps_ = 0;  // CG steps since the direction was last restarted
 };
 
 }  // namespace fetic::solver
