@@ -158,13 +158,6 @@ int run_solve(const SolveArgs& args) {
   int status = kExitOk;
   const auto scene = load_scene_or_report(args.scene, status);
   if (!scene) return status;
-  if (processes.distributed() && scene->model == scenes::ModelKind::Frame) {
-    // The frame model's free motions (FreeMotionSpace) are found from all rows at once;
-    // they are not distributed yet (issue 17).
-    std::cerr << scenes::printable(args.scene)
-              << ": a frame scene runs in one process; run fetic solve without mpirun\n";
-    return kExitUsage;
-  }
   if (const std::string problem =
           load_factor_problem(*scene, args.method.load_factors(),
                               args.method.load_steps.empty() ? "--load-factor" : "--load-steps");

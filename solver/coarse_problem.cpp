@@ -16,15 +16,7 @@ CoarseProblem::CoarseProblem(const FetiSystem& system) : system_(system) {
   contact_active_.assign(d.contact_rows(), 1);
   active_.assign(system.rows(), 1);
   build_pattern();
-  if (system.model().frame()) {
-    // FreeMotionSpace reads the columns of G for the local rows; under mpirun those are a
-    // part of the rows, so its free motions would differ between processes.
-    if (system.communicator().distributed())
-      throw SolverError(
-          "frame scenes run in one process: the frame model's free motions are not "
-          "distributed yet (issue 17); run without mpirun");
-    frame_motions_ = std::make_shared<const FreeMotionSpace>(system);
-  }
+  if (system.model().frame()) frame_motions_ = std::make_shared<const FreeMotionSpace>(system);
 }
 
 // The block rows of G G' this process computes: for own subdomain j, the sum over the
@@ -192,7 +184,7 @@ double CoarseProblem::g(int global_row, int subdomain) const {
 void CoarseProblem::find_unheld_groups() {
   unheld_.clear();
   if (frame_motions_) {
-    unheld_ = frame_motions_->unheld(active_);
+    unheld_ = frame_motions_->unheld(contact_active_);
     return;
   }
   const Decomposition& d = system_.decomposition();

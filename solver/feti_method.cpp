@@ -153,17 +153,21 @@ Snapshot FetiMethod::gathered_snapshot() const {
   Snapshot s = snapshot();
   const Communicator& comm = system_.communicator();
   if (!comm.distributed()) return s;
-  // Pieces as numbers: subdomain, then per node (ux, uy); per owned pair row the pair,
+  // Pieces as numbers: subdomain, then per node (ux, uy) and in the frame model its
+  // rotation; per owned pair row the pair,
   // its force and its working-set flag (FETI-C knows every pair's flag, MPRGP only its
   // own rows').
   const Decomposition& d = system_.decomposition();
   const DualSpace& space = system_.space();
   std::vector<double> pieces, forces;
+  const bool rotations = model_.frame();
   for (size_t i = 0; i < s.pieces.size(); ++i) {
     pieces.push_back(system_.subdomains()[i].index);
-    for (const Vec2& u : s.pieces[i].displacement) {
-      pieces.push_back(u.x());
-      pieces.push_back(u.y());
+    const Piece& piece = s.pieces[i];
+    for (size_t n = 0; n < piece.displacement.size(); ++n) {
+      pieces.push_back(piece.displacement[n].x());
+      pieces.push_back(piece.displacement[n].y());
+      if (rotations) pieces.push_back(piece.rotation[n]);
     }
   }
   for (size_t k = 0; k < s.force.size(); ++k) {
@@ -188,9 +192,11 @@ Snapshot FetiMethod::gathered_snapshot() const {
     piece.strut = sub.strut;
     piece.box = sub.box;
     piece.displacement.resize(sub.box.node_count());
-    for (Vec2& u : piece.displacement) {
-      u = Vec2(all_pieces[at], all_pieces[at + 1]);
+    if (rotations) piece.rotation.resize(sub.box.node_count());
+    for (size_t n = 0; n < piece.displacement.size(); ++n) {
+      piece.displacement[n] = Vec2(all_pieces[at], all_pieces[at + 1]);
       at += 2;
+      if (rotations) piece.rotation[n] = all_pieces[at++];
     }
   }
   s.pieces = std::move(ordered);

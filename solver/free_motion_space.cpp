@@ -40,8 +40,28 @@ FreeMotionSpace::FreeMotionSpace(const FetiSystem& system) : system_(system) {
   }
   Z_.resize(d.total_modes, k);
   Z_.setFromTriplets(entries.begin(), entries.end());
-  GZ_ = Eigen::SparseMatrix<double, Eigen::RowMajor>(
-      Eigen::SparseMatrix<double>(system.G().transpose()) * Z_);
+
+  // (G'Z)(r, m) = sum over row r's entries of value * (R_j Z_j)(dof, m): the change of
+  // contact row r per unit of motion m. From the replicated decomposition and the rigid
+  // modes of the subdomains contact rows touch, not from G, whose columns a process
+  // holds only for its own rows - so every process finds the same motions.
+  const int first_contact = d.equality_rows;
+  std::vector<Eigen::Triplet<double>> gz;
+  std::vector<Eigen::MatrixXd> modes_of(d.subdomains.size());  // R_j Z_j, when needed
+  for (int r = first_contact; r < d.row_count(); ++r)
+    for (const RowEntry& entry : d.rows[r].entries) {
+      Eigen::MatrixXd& RZ = modes_of[entry.subdomain];
+      if (RZ.size() == 0) {
+        const Subdomain& sub = d.subdomains[entry.subdomain];
+        RZ = rigid_body_modes(model.struts[sub.strut], sub.box) *
+             Eigen::MatrixXd(Z_.middleRows(sub.mode_offset, sub.mode_count));
+      }
+      for (int m = 0; m < k; ++m)
+        if (RZ(entry.dof, m) != 0.0)
+          gz.emplace_back(r - first_contact, m, entry.value * RZ(entry.dof, m));
+    }
+  GZ_.resize(d.contact_rows(), k);
+  GZ_.setFromTriplets(gz.begin(), gz.end());
 
   // Clusters: motions that a contact row changes together.
   std::vector<int> parent(k);
@@ -51,8 +71,8 @@ FreeMotionSpace::FreeMotionSpace(const FetiSystem& system) : system_(system) {
       i = parent[i] = parent[parent[i]];
     return i;
   };
-  std::vector<std::vector<int>> row_motions(d.row_count());
-  for (int r = d.equality_rows; r < d.row_count(); ++r) {
+  std::vector<std::vector<int>> row_motions(d.contact_rows());
+  for (int r = 0; r < d.contact_rows(); ++r) {
     for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(GZ_, r); it; ++it)
       if (std::abs(it.value()) > kNegligible) row_motions[r].push_back(static_cast<int>(it.col()));
     for (int m : row_motions[r])
@@ -67,7 +87,7 @@ FreeMotionSpace::FreeMotionSpace(const FetiSystem& system) : system_(system) {
     }
     clusters_[c].motions.push_back(m);
   }
-  for (int r = d.equality_rows; r < d.row_count(); ++r)
+  for (int r = 0; r < d.contact_rows(); ++r)
     if (!row_motions[r].empty())
       clusters_[cluster_of[root(row_motions[r].front())]].rows.push_back(r);
   for (Cluster& cluster : clusters_) {
@@ -86,10 +106,11 @@ FreeMotionSpace::FreeMotionSpace(const FetiSystem& system) : system_(system) {
   }
 }
 
-std::vector<UnheldGroup> FreeMotionSpace::unheld(const std::vector<char>& active) const {
+std::vector<UnheldGroup> FreeMotionSpace::unheld(const std::vector<char>& contact_active) const {
   const Decomposition& d = system_.decomposition();
-  for (int r = 0; r < d.equality_rows; ++r)
-    if (!active[r]) throw std::logic_error("FreeMotionSpace: every equality row must be active");
+  if (static_cast<int>(contact_active.size()) != d.contact_rows())
+    throw std::logic_error("FreeMotionSpace: one flag per contact row expected");
+  const std::vector<char>& active = contact_active;
   std::vector<UnheldGroup> groups;
   for (const Cluster& cluster : clusters_) {
     const int k = static_cast<int>(cluster.motions.size());

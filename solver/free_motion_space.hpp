@@ -24,21 +24,23 @@ class FreeMotionSpace {
  public:
   explicit FreeMotionSpace(const FetiSystem& system);
 
-  // Orthonormal directions over all modes that no row with active[r] != 0 stops, one
-  // group each (with the subdomains it moves). Every equality row must be active.
-  std::vector<UnheldGroup> unheld(const std::vector<char>& active) const;
+  // Orthonormal directions over all modes that no active contact row stops (the equality
+  // rows never do), one group each (with the subdomains it moves). `contact_active`: one
+  // flag per contact row of the decomposition, in global order (replicated, so that
+  // every process finds the same directions).
+  std::vector<UnheldGroup> unheld(const std::vector<char>& contact_active) const;
 
  private:
   struct Cluster {
     std::vector<int> motions;
-    std::vector<int> rows;        // contact rows some motion of the cluster changes
+    std::vector<int> rows;        // contact rows (from 0) some motion of the cluster changes
     std::vector<int> modes;       // modes some motion of the cluster moves
     std::vector<int> subdomains;  // of the struts its motions move
   };
 
   const FetiSystem& system_;
   Eigen::SparseMatrix<double> Z_;                    // modes x motions
-  Eigen::SparseMatrix<double, Eigen::RowMajor> GZ_;  // rows x motions: G'Z
+  Eigen::SparseMatrix<double, Eigen::RowMajor> GZ_;  // contact rows x motions: G'Z
   std::vector<Cluster> clusters_;
 };
 

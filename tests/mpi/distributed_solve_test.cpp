@@ -5,7 +5,9 @@
 // status and the same iteration count (the scalar products are summed exactly, so no
 // decision depends on how the rows are split among the processes). Scenes: the bundled ones, random
 // bar scenes (opposing pairs and chains with floating struts held only by contacts), random plane
-// scenes, random contact-free scenes for FETI-1, and warm-started load sweeps.
+// scenes, random frame scenes (rotations compared too; a floating beam is a group the
+// equality rows leave free), random contact-free scenes for FETI-1, and warm-started load
+// sweeps.
 //
 // A plain program rather than Catch2: a failed assertion on one process must not leave
 // the others waiting in a collective, so every process runs every case to its end and
@@ -26,6 +28,7 @@
 #include "solver/load_sweep.hpp"
 #include "solver/method.hpp"
 #include "solver/model.hpp"
+#include "tests/support/random_frames.hpp"
 #include "tests/support/random_scenes.hpp"
 
 namespace {
@@ -66,6 +69,14 @@ std::vector<double> flat_displacements(const fetic::solver::Model& model, const 
       flat.push_back(u.x());
       flat.push_back(u.y());
     }
+  return flat;
+}
+
+// Frame model: every piece's node rotations, in subdomain order (empty in the others).
+std::vector<double> flat_rotations(const Snapshot& s) {
+  std::vector<double> flat;
+  for (const auto& piece : s.pieces)
+    flat.insert(flat.end(), piece.rotation.begin(), piece.rotation.end());
   return flat;
 }
 
@@ -115,6 +126,8 @@ std::string compare(const Case& c, const fetic::solver::Model& model, const Outc
     const double du =
         relative_difference(flat_displacements(model, a), flat_displacements(model, b));
     if (!(du <= 1e-10)) why << "displacements differ by " << du << at << "; ";
+    const double dr = relative_difference(flat_rotations(a), flat_rotations(b));
+    if (!(dr <= 1e-10)) why << "rotations differ by " << dr << at << "; ";
     const double df = relative_difference(a.force, b.force);
     if (!(df <= 1e-10)) why << "contact forces differ by " << df << at << "; ";
   }
@@ -168,6 +181,26 @@ std::vector<Case> cases(const std::string& scenes_dir) {
   for (int i = 0; i < 8; ++i)
     list.push_back({"random plane scene (mprgp) " + std::to_string(i),
                     fetic::testing::random_plane_pairs(rng, 1 + i % 3), MethodKind::Mprgp});
+  // Frames: free motions from the replicated decomposition, rotations gathered.
+  for (const char* name :
+       {"frame_post_on_beam.toml", "frame_apex_stop.toml", "frame_portal_sway.toml",
+        "frame_beam_on_contacts.toml", "frame_truss_bridge.toml", "frame_scaffold.toml"})
+    for (MethodKind method : {MethodKind::FetiC, MethodKind::Mprgp})
+      list.push_back({std::string(name) + " (" + to_string(method) + ")",
+                      read_file(scenes_dir + "/" + name), method});
+  list.push_back({"frame_portal_sway.toml, load sweep 0:2:5",
+                  read_file(scenes_dir + "/frame_portal_sway.toml"), MethodKind::FetiC,
+                  fetic::solver::Preconditioner::Dirichlet,
+                  fetic::solver::load_steps(0.0, 2.0, 5)});
+  using fetic::testing::FrameKind;
+  const FrameKind kinds[] = {FrameKind::PostOnBeam, FrameKind::ApexOnStop, FrameKind::PortalOnStop,
+                             FrameKind::FloatingBeam};
+  for (int i = 0; i < 16; ++i)
+    list.push_back({"random frame scene " + std::to_string(i),
+                    fetic::testing::random_frame_scene(rng, kinds[i % 4]),
+                    i % 2 == 0 ? MethodKind::FetiC : MethodKind::Mprgp,
+                    i % 3 == 0 ? fetic::solver::Preconditioner::Lumped
+                               : fetic::solver::Preconditioner::Dirichlet});
   return list;
 }
 
