@@ -52,6 +52,29 @@ ActiveSet::ActiveSet(const Model& model, const SolveOptions& options)
     max_iterations_ = 20 * static_cast<int>(model.pairs.size()) + 100;
   S_ = schur_complement(problem_);
   AR_ = SparseMatrix(problem_.contact_rows() * problem_.kernel());
+  // The blocks each contact row touches, and the block of each rigid-body mode.
+  std::vector<int> block_of(problem_.size(), -1);
+  for (int b = 0; b < static_cast<int>(problem_.blocks().size()); ++b) {
+    const StrutBlock& block = problem_.blocks()[b];
+    for (int i = 0; i < block.size; ++i)
+      block_of[block.offset + i] = b;
+  }
+  const RowSparseMatrix& A = problem_.contact_rows();
+  row_blocks_.assign(A.rows(), {});
+  for (int k = 0; k < A.rows(); ++k) {
+    for (RowSparseMatrix::InnerIterator it(A, k); it; ++it)
+      if (std::find(row_blocks_[k].begin(), row_blocks_[k].end(), block_of[it.col()]) ==
+          row_blocks_[k].end())
+        row_blocks_[k].push_back(block_of[it.col()]);
+    if (row_blocks_[k].empty()) row_blocks_[k].push_back(0);  // a row on held DOFs only
+  }
+  const SparseMatrix& R = problem_.kernel();
+  mode_block_.assign(R.cols(), 0);
+  for (int m = 0; m < R.cols(); ++m)
+    for (SparseMatrix::InnerIterator it(R, m); it; ++it) {
+      mode_block_[m] = block_of[it.row()];
+      break;
+    }
 }
 
 double ActiveSet::slack(int row) const {
@@ -84,81 +107,154 @@ void ActiveSet::begin(const Snapshot* warm) {
   record_move();
 }
 
+// Blocks the working set links: rows of W touching the same strut block, and the block
+// modes, form one component; S = A K^+ A' and C = A_W R have no entries between
+// components, so the subproblem splits into one small dense system per component (and
+// blocks no row of W touches, whose modes are all free). One system over all of W cost
+// O(|W|^3) per iteration: 200 s on 2,000 bar pairs.
+std::vector<ActiveSet::Component> ActiveSet::components() const {
+  const int blocks = static_cast<int>(problem_.blocks().size());
+  std::vector<int> parent(blocks);
+  for (int b = 0; b < blocks; ++b)
+    parent[b] = b;
+  auto root = [&](int b) {
+    while (parent[b] != b)
+      b = parent[b] = parent[parent[b]];
+    return b;
+  };
+  for (int row : working_)
+    for (int b : row_blocks_[row])
+      parent[root(b)] = root(row_blocks_[row].front());
+  std::vector<int> index(blocks, -1);
+  std::vector<Component> list;
+  auto component_of = [&](int block) -> Component& {
+    int& i = index[root(block)];
+    if (i < 0) {
+      i = static_cast<int>(list.size());
+      list.emplace_back();
+    }
+    return list[i];
+  };
+  for (int j = 0; j < static_cast<int>(working_.size()); ++j)
+    component_of(row_blocks_[working_[j]].front()).rows.push_back(j);
+  for (int m = 0; m < static_cast<int>(mode_block_.size()); ++m)
+    component_of(mode_block_[m]).modes.push_back(m);
+  return list;
+}
+
 void ActiveSet::solve_subproblem() {
   const RowSparseMatrix& A = problem_.contact_rows();
   const SparseMatrix& R = problem_.kernel();
   const int w = static_cast<int>(working_.size());
   const int modes = static_cast<int>(R.cols());
-  std::vector<int> position(A.rows(), -1);
-  for (int i = 0; i < w; ++i)
-    position[working_[i]] = i;
+  const std::vector<Component> parts = components();
+  const Eigen::VectorXd Rg = R.transpose() * g_;
 
-  // Rigid-body modes the working set does not hold: the null space of C = A_W R.
-  Eigen::MatrixXd held_basis(modes, 0);
-  Eigen::MatrixXd C = Eigen::MatrixXd::Zero(w, modes);
-  if (modes > 0) {
-    for (int col = 0; col < AR_.outerSize(); ++col)
-      for (SparseMatrix::InnerIterator it(AR_, col); it; ++it)
-        if (position[it.row()] >= 0) C(position[it.row()], col) = it.value();
+  // Rigid-body modes the working set does not hold: per component, the null space of
+  // C = A_W R (rows of W x modes of the component).
+  std::vector<Eigen::MatrixXd> held(parts.size());
+  Eigen::VectorXd amplitudes = Eigen::VectorXd::Zero(modes);  // of a rigid motion
+  bool pushed = false;
+  for (size_t c = 0; c < parts.size(); ++c) {
+    const Component& part = parts[c];
+    const int cm = static_cast<int>(part.modes.size());
+    held[c].resize(cm, 0);
+    if (cm == 0) continue;
     Eigen::MatrixXd free_basis;
-    if (w == 0) {
-      free_basis = Eigen::MatrixXd::Identity(modes, modes);
+    if (part.rows.empty()) {
+      free_basis = Eigen::MatrixXd::Identity(cm, cm);
     } else {
+      Eigen::MatrixXd C = Eigen::MatrixXd::Zero(static_cast<int>(part.rows.size()), cm);
+      for (size_t i = 0; i < part.rows.size(); ++i)
+        for (int k = 0; k < cm; ++k)
+          C(static_cast<int>(i), k) = AR_.coeff(working_[part.rows[i]], part.modes[k]);
       Eigen::JacobiSVD<Eigen::MatrixXd> svd(C, Eigen::ComputeFullV);
       const Eigen::VectorXd& sigma = svd.singularValues();
       const double threshold = 1e-10 * (sigma.size() ? sigma(0) : 0.0);
       int rank = 0;
       while (rank < sigma.size() && sigma(rank) > threshold)
         ++rank;
-      free_basis = svd.matrixV().rightCols(modes - rank);
-      held_basis = svd.matrixV().leftCols(rank);
+      free_basis = svd.matrixV().rightCols(cm - rank);
+      held[c] = svd.matrixV().leftCols(rank);
     }
-    if (free_basis.cols() > 0) {
-      const Eigen::VectorXd h = free_basis.transpose() * (R.transpose() * g_);
-      if (h.lpNorm<Eigen::Infinity>() > options_.tolerance * f_scale_) {
-        // Unheld and pushed: move as a rigid body down the load (zero curvature).
-        const Eigen::VectorXd amplitudes = -(free_basis * h);
-        p_ = R * amplitudes;
-        moving_struts_.clear();
-        for (int j = 0; j < modes; ++j)
-          if (std::abs(amplitudes(j)) > 1e-12 * amplitudes.lpNorm<Eigen::Infinity>())
-            for (int strut : problem_.kernel_struts()[j])
-              if (std::find(moving_struts_.begin(), moving_struts_.end(), strut) ==
-                  moving_struts_.end())
-                moving_struts_.push_back(strut);
-        multiplier_.assign(w, 0.0);
-        move_ = Move::RigidMotion;
-        return;
-      }
-    }
+    if (free_basis.cols() == 0) continue;
+    Eigen::VectorXd rg(cm);
+    for (int k = 0; k < cm; ++k)
+      rg(k) = Rg(part.modes[k]);
+    const Eigen::VectorXd h = free_basis.transpose() * rg;
+    if (h.lpNorm<Eigen::Infinity>() > options_.tolerance * f_scale_) pushed = true;
+    const Eigen::VectorXd a = -(free_basis * h);
+    for (int k = 0; k < cm; ++k)
+      amplitudes(part.modes[k]) = a(k);
+  }
+  if (pushed) {
+    // Unheld and pushed: move as a rigid body down the load (zero curvature).
+    p_ = R * amplitudes;
+    moving_struts_.clear();
+    for (int j = 0; j < modes; ++j)
+      if (std::abs(amplitudes(j)) > 1e-12 * amplitudes.lpNorm<Eigen::Infinity>())
+        for (int strut : problem_.kernel_struts()[j])
+          if (std::find(moving_struts_.begin(), moving_struts_.end(), strut) ==
+              moving_struts_.end())
+            moving_struts_.push_back(strut);
+    multiplier_.assign(w, 0.0);
+    move_ = Move::RigidMotion;
+    return;
   }
 
-  // Saddle system [S_W -C~; -C~' 0][mu; beta] = [-A_W K^+ g; R~'g], C~ = A_W R~.
-  const int r = static_cast<int>(held_basis.cols());
+  // Per component, the saddle system [S_W -C~; -C~' 0][mu; beta] = [-A_W K^+ g; R~'g],
+  // C~ = A_W R~ with R~ the held modes.
   Eigen::VectorXd v;
   problem_.apply_pseudo_inverse(g_, v);
-  Eigen::MatrixXd M = Eigen::MatrixXd::Zero(w + r, w + r);
-  Eigen::VectorXd rhs(w + r);
-  for (int j = 0; j < w; ++j) {
-    for (SparseMatrix::InnerIterator it(S_, working_[j]); it; ++it)
-      if (position[it.row()] >= 0) M(position[it.row()], j) = it.value();
-    rhs(j) = -A.row(working_[j]).dot(v);
+  std::vector<int> position(A.rows(), -1);
+  multiplier_.assign(w, 0.0);
+  Eigen::VectorXd beta_modes = Eigen::VectorXd::Zero(modes);  // R~ beta, in mode amplitudes
+  for (size_t c = 0; c < parts.size(); ++c) {
+    const Component& part = parts[c];
+    const int cw = static_cast<int>(part.rows.size());
+    const int r = static_cast<int>(held[c].cols());
+    if (cw + r == 0) continue;
+    for (int i = 0; i < cw; ++i)
+      position[working_[part.rows[i]]] = i;
+    Eigen::MatrixXd M = Eigen::MatrixXd::Zero(cw + r, cw + r);
+    Eigen::VectorXd rhs(cw + r);
+    for (int j = 0; j < cw; ++j) {
+      const int row = working_[part.rows[j]];
+      for (SparseMatrix::InnerIterator it(S_, row); it; ++it)
+        if (position[it.row()] >= 0) M(position[it.row()], j) = it.value();
+      rhs(j) = -A.row(row).dot(v);
+    }
+    if (r > 0) {
+      const int cm = static_cast<int>(part.modes.size());
+      Eigen::MatrixXd C = Eigen::MatrixXd::Zero(cw, cm);
+      Eigen::VectorXd rg(cm);
+      for (int k = 0; k < cm; ++k) {
+        rg(k) = Rg(part.modes[k]);
+        for (int i = 0; i < cw; ++i)
+          C(i, k) = AR_.coeff(working_[part.rows[i]], part.modes[k]);
+      }
+      const Eigen::MatrixXd Ct = C * held[c];
+      M.topRightCorner(cw, r) = -Ct;
+      M.bottomLeftCorner(r, cw) = -Ct.transpose();
+      rhs.tail(r) = held[c].transpose() * rg;
+    }
+    const Eigen::VectorXd solution = M.partialPivLu().solve(rhs);
+    for (int i = 0; i < cw; ++i) {
+      multiplier_[part.rows[i]] = solution(i);
+      position[working_[part.rows[i]]] = -1;
+    }
+    if (r > 0) {
+      const Eigen::VectorXd b = held[c] * solution.tail(r);
+      for (size_t k = 0; k < part.modes.size(); ++k)
+        beta_modes(part.modes[k]) = b(static_cast<int>(k));
+    }
   }
-  if (r > 0) {
-    const Eigen::MatrixXd Ct = C * held_basis;
-    M.topRightCorner(w, r) = -Ct;
-    M.bottomLeftCorner(r, w) = -Ct.transpose();
-    rhs.tail(r) = held_basis.transpose() * (R.transpose() * g_);
-  }
-  Eigen::VectorXd solution =
-      w + r > 0 ? Eigen::VectorXd(M.partialPivLu().solve(rhs)) : Eigen::VectorXd(0);
-  multiplier_.assign(solution.data(), solution.data() + w);
   Eigen::VectorXd load_on_free = g_;
   for (int j = 0; j < w; ++j)
-    load_on_free += solution(j) * A.row(working_[j]).transpose();
+    load_on_free += multiplier_[j] * A.row(working_[j]).transpose();
   problem_.apply_pseudo_inverse(load_on_free, p_);
   p_ = -p_;
-  if (r > 0) p_ += R * (held_basis * solution.tail(r));
+  if (modes > 0) p_ += R * beta_modes;
 
   if (p_.lpNorm<Eigen::Infinity>() > options_.tolerance * u_scale_) {
     move_ = Move::Step;
@@ -252,7 +348,8 @@ void ActiveSet::advance() {
 
 std::vector<char> ActiveSet::working_set() const {
   std::vector<char> in(model_.pairs.size(), 0);
-  for (int row : working_) in[row] = 1;
+  for (int row : working_)
+    in[row] = 1;
   return in;
 }
 

@@ -7,8 +7,9 @@
 //   p = -K^+(g + A_W' mu) + R beta,   A_W p = 0,   R'(g + A_W' mu) = 0.
 // A floating strut the working set does not hold moves as a rigid body along its load
 // until a contact blocks it; with nothing to block it the scene is unbounded.
-// The working set changes by one row per iteration. Residual of an iteration: the size
-// of the step to the subproblem minimizer relative to the displacement scale, or of the
+// The working set changes by one row per iteration; the subproblem is solved per group of
+// strut blocks the working set links (rows of S and C couple no others). Residual of an iteration:
+// the size of the step to the subproblem minimizer relative to the displacement scale, or of the
 // most negative multiplier relative to the load when the step is zero.
 
 #include <vector>
@@ -33,6 +34,12 @@ class ActiveSet final : public Method {
 
  private:
   enum class Move { Step, RigidMotion, Drop, Done };
+  // Rows of W (positions in working_) and rigid-body modes of blocks that W links.
+  struct Component {
+    std::vector<int> rows;
+    std::vector<int> modes;
+  };
+  std::vector<Component> components() const;
 
   void solve_subproblem();
   void record_move();
@@ -42,8 +49,10 @@ class ActiveSet final : public Method {
   double ratio_test(double limit);
 
   PrimalProblem problem_;
-  SparseMatrix S_;   // A K^+ A'
-  SparseMatrix AR_;  // A R
+  SparseMatrix S_;                            // A K^+ A'
+  SparseMatrix AR_;                           // A R
+  std::vector<std::vector<int>> row_blocks_;  // per contact row: the blocks it touches
+  std::vector<int> mode_block_;               // per rigid-body mode: its block
   double u_scale_ = 1.0;
   double f_scale_ = 1.0;
 
