@@ -393,7 +393,8 @@ int run(const Args& args) {
   // 1. comparison: ~10k, ~100k and (full) ~1M unknowns; square elements, ~square subdomains.
   std::vector<scenes::GenerateOptions> sizes{plane(4, 40, 10, 4, 1), plane(5, 100, 24, 5, 1)};
   // ~100k is where the issue sets the Ipopt target; above ~200k the active-set method
-  // (one contact per iteration, dense Schur updates) and Ipopt take too long to be useful.
+  // (one contact per iteration, each a pass over the whole problem) and Ipopt take too
+  // long to be useful.
   if (full) sizes.push_back(plane(10, 100, 24, 5, 1));
   if (full) sizes.push_back(plane(25, 200, 48, 10, 2));
   if (args.runs("comparison"))
