@@ -93,6 +93,33 @@ CholmodFactor::Result CholmodFactor::numeric(const SparseMatrix& A) {
   return Result::Ok;
 }
 
+CholmodFactor::Result CholmodFactor::update(const SparseMatrix& C, bool add) {
+  if (!impl_->factor || static_cast<int>(C.rows()) != size_) return Result::Failed;
+  if (C.cols() == 0) return Result::Ok;
+  if (!C.isCompressed()) throw std::logic_error("CholmodFactor: matrix must be compressed");
+  failed_column_ = -1;
+  cholmod_common& c = impl_->common;
+  cholmod_sparse view = view_of(C);
+  view.stype = 0;  // C itself, not a symmetric matrix
+  // CHOLMOD updates P A P' = L D L': C must be given in the factor's permutation.
+  cholmod_sparse* permuted =
+      cholmod_submatrix(&view, static_cast<int*>(impl_->factor->Perm),
+                        static_cast<SuiteSparse_long>(size_), nullptr, -1, 1, 1, &c);
+  if (!permuted) {
+    if (c.status == CHOLMOD_OUT_OF_MEMORY) throw std::bad_alloc();
+    return Result::Failed;
+  }
+  const int ok = cholmod_updown(add ? 1 : 0, permuted, impl_->factor, &c);
+  cholmod_free_sparse(&permuted, &c);
+  if (c.status == CHOLMOD_OUT_OF_MEMORY) throw std::bad_alloc();
+  if (!ok || c.status < CHOLMOD_OK) return Result::Failed;
+  if (c.status == CHOLMOD_NOT_POSDEF || impl_->factor->minor < impl_->factor->n) {
+    failed_column_ = static_cast<int>(impl_->factor->minor);
+    return Result::NotPositiveDefinite;
+  }
+  return Result::Ok;
+}
+
 double CholmodFactor::rcond() const {
   if (!impl_->factor || size_ == 0) return 1.0;
   return cholmod_rcond(impl_->factor, &impl_->common);

@@ -28,6 +28,11 @@ class CholmodFactor {
   // reducing ordering and symbolic analysis are kept, only the numbers are factorized
   // again (a working-set change in FETI-C changes values of G G', not its pattern).
   Result refactorize(const SparseMatrix& A);
+  // The factor of A + C C' (add) or A - C C' (remove) from that of A, for a C of few
+  // columns (CHOLMOD's multiple-rank update/downdate, Davis & Hager 2001): the factor
+  // becomes a simplicial LDL', whose pattern the update may not leave (C C' within the
+  // analysed pattern). NotPositiveDefinite when a removal leaves A singular.
+  Result update(const SparseMatrix& C, bool add);
   // Column where factorization broke down (valid after NotPositiveDefinite).
   int failed_column() const { return failed_column_; }
   // CHOLMOD's cheap estimate min(diag L) / max(diag L), squared for an LL' factor.

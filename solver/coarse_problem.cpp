@@ -10,6 +10,13 @@
 #include "solver/stopwatch.hpp"
 
 namespace fetic::solver {
+namespace {
+
+// Rows a factor may be updated by before it is factorized from scratch (rounding of the
+// updates accumulates; a full factorization resets it).
+constexpr int kRowsBetweenFactorizations = 64;
+
+}  // namespace
 
 CoarseProblem::CoarseProblem(const FetiSystem& system) : system_(system) {
   const Decomposition& d = system.decomposition();
@@ -112,7 +119,58 @@ bool CoarseProblem::set_active_rows(const std::vector<char>& active) {
   for (int r = 0; r < space.rows(); ++r)
     active_[r] = row_active(space.global_row(r)) ? 1 : 0;
   if (all.empty() && factorized_) return false;
-  factorize();
+  if (!factorized_ || !update_factor(changes, all.size())) factorize();
+  return true;
+}
+
+// The factor of the new G^ G^' from the old one: + g g' for each row that entered, - g g'
+// for each that left, g its column of G (from the row's owner). False, with nothing
+// changed, when the factor cannot be updated; false after a failed update too (the
+// caller then factorizes from scratch, which reanalyses).
+bool CoarseProblem::update_factor(const std::vector<int>& own_changes, std::size_t all_changes) {
+  if (!updatable_ || rows_updated_ + static_cast<int>(all_changes) > kRowsBetweenFactorizations)
+    return false;
+  find_unheld_groups();
+  if (!unheld_.empty() || !pinned_.empty()) return false;
+  Stopwatch watch(system_.times().coarse);
+  const FetiSystem& s = system_;
+  const DualSpace& space = s.space();
+  const SparseMatrix& G = s.G();
+  const int first_contact = s.decomposition().equality_rows;
+  // Per changed owned row: its signed change, its number of entries, then (mode, value).
+  std::vector<double> own;
+  for (int change : own_changes) {
+    const int local = space.local_row(first_contact + std::abs(change) - 1);
+    own.push_back(change);
+    own.push_back(static_cast<double>(G.col(local).nonZeros()));
+    for (SparseMatrix::InnerIterator it(G, local); it; ++it) {
+      own.push_back(static_cast<double>(it.row()));
+      own.push_back(it.value());
+    }
+  }
+  const std::vector<double> all = s.communicator().all_gather(own);
+  std::vector<Eigen::Triplet<double>> entered, left;
+  int entered_columns = 0, left_columns = 0;
+  for (std::size_t at = 0; at < all.size();) {
+    const bool enters = all[at] > 0.0;
+    const int count = static_cast<int>(all[at + 1]);
+    at += 2;
+    const int column = enters ? entered_columns++ : left_columns++;
+    for (int e = 0; e < count; ++e, at += 2)
+      (enters ? entered : left).emplace_back(static_cast<int>(all[at]), column, all[at + 1]);
+  }
+  const int n = system_.modes();
+  SparseMatrix add(n, entered_columns), remove(n, left_columns);
+  add.setFromTriplets(entered.begin(), entered.end());
+  remove.setFromTriplets(left.begin(), left.end());
+  add.makeCompressed();
+  remove.makeCompressed();
+  reanalyse_ = true;  // the factor is a simplicial LDL' from here on
+  // Rows in first, so that every intermediate matrix stays positive definite.
+  if (factor_.update(add, true) != CholmodFactor::Result::Ok) return false;
+  if (factor_.update(remove, false) != CholmodFactor::Result::Ok) return false;
+  rows_updated_ += static_cast<int>(all_changes);
+  ++updates_;
   return true;
 }
 
@@ -138,8 +196,10 @@ void CoarseProblem::factorize() {
   if (pins.empty()) {
     // The analysis of the fixed pattern is kept unless the last factor had extra entries.
     const CholmodFactor::Result result =
-        pattern_extended_ ? factor_.factorize(matrix_) : factor_.refactorize(matrix_);
-    pattern_extended_ = false;
+        reanalyse_ ? factor_.factorize(matrix_) : factor_.refactorize(matrix_);
+    reanalyse_ = false;
+    updatable_ = true;
+    rows_updated_ = 0;
     if (result == CholmodFactor::Result::Ok) return;
   } else {
     // Pin each free direction: G^ G^' + z z' (outside the fixed pattern, so analysed anew).
@@ -162,7 +222,8 @@ void CoarseProblem::factorize() {
     Z.setFromTriplets(extra.begin(), extra.end());
     SparseMatrix A = matrix_ + Z;
     A.makeCompressed();
-    pattern_extended_ = true;
+    reanalyse_ = true;
+    updatable_ = false;
     if (factor_.factorize(A) == CholmodFactor::Result::Ok) return;
   }
   throw SolverError(

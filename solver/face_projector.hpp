@@ -4,9 +4,10 @@
 //
 //   P_F v = v - G_F'(G_F G_F')^+ G_F v.
 //
-// G_F G_F' is FETI-C's coarse matrix for the working set F (CoarseProblem): its pattern is
-// that of all rows, so a new face refactorizes numerically with CHOLMOD's kept ordering and
-// symbolic analysis - milliseconds for thousands of modes - and nothing is dense. (An
+// G_F G_F' is FETI-C's coarse matrix for the working set F (CoarseProblem): a face change
+// of a few rows updates its factor by those rows' columns of G (rank-k update/downdate),
+// a bigger one refactorizes numerically with CHOLMOD's kept ordering and symbolic
+// analysis, and nothing is dense. (An
 // earlier version updated the equality rows' factor by Woodbury with a dense matrix over
 // the modes next to contacts: a few hundred on plane scenes, but 4,000 on a 2,000-pair bar
 // scene, where each face change cost a dense 4,000 x 4,000 LU: 96 s for 7 iterations.)
@@ -41,6 +42,8 @@ class FaceProjector {
   void set_face(const std::vector<char>& face) { coarse_.set_active_rows(face); }
   // v <- P_F v; v must vanish outside the face (so does the result).
   void project(Eigen::VectorXd& v) const { coarse_.project(v); }
+  // See CoarseProblem::forget_updates.
+  void forget_updates() { coarse_.forget_updates(); }
   // How often a face change refactorized G_F G_F'.
   int factorizations() const { return coarse_.factorizations(); }
 

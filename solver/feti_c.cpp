@@ -8,8 +8,7 @@ namespace fetic::solver {
 
 FetiC::FetiC(const Model& model, const SolveOptions& options, const Communicator& communicator)
     : FetiMethod(model, options, 0, communicator) {
-  if (options.max_iterations <= 0)
-    max_iterations_ = 10 * system_.space().global_rows() + 1000;
+  if (options.max_iterations <= 0) max_iterations_ = 10 * system_.space().global_rows() + 1000;
 }
 
 void FetiC::set_working_set(const std::vector<char>& active) {
@@ -118,6 +117,7 @@ void FetiC::begin(const Snapshot* warm) {
     for (int k = first_contact; k < rows; ++k)
       active[k] = warm->dual(k) > 0.0;
   active_.clear();
+  coarse_.forget_updates();
   set_working_set(active);
   lambda_ = use_warm ? warm->dual : coarse_.particular(e_);
   restart_ = true;

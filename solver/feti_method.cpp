@@ -80,6 +80,7 @@ ProcessProfile FetiMethod::profile() const {
   p.coarse_size = coarse_.size();
   p.coarse_nonzeros = static_cast<long long>(coarse_.matrix_nonzeros());
   p.coarse_factorizations = coarse_.factorizations();
+  p.coarse_updates = coarse_.updates();
   p.coarse_memory = coarse_.factor_memory();
   p.factor_memory = system_.factor_memory() + preconditioner_.factor_memory();
   return p;

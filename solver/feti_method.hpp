@@ -33,6 +33,7 @@ struct ProcessProfile {
   int coarse_size = 0;
   long long coarse_nonzeros = 0;
   int coarse_factorizations = 0;
+  int coarse_updates = 0;         // working-set changes that updated the factor instead
   std::size_t coarse_memory = 0;  // CHOLMOD's peak for the replicated coarse factor
   std::size_t factor_memory = 0;  // own subdomain and preconditioner factors
 };

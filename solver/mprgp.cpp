@@ -186,6 +186,7 @@ void Mprgp::begin(const Snapshot* warm) {
   const int rows = space().rows();
   counts_ = {};
   reset_watch();
+  face_->forget_updates();
 
   // lambda0: balances the loads through the equality rows, and through the contact rows
   // of the groups they leave free: w = sum_z beta_z c_z with c_y'w = z_y'e.
