@@ -145,7 +145,7 @@ class App {
   std::string pick_text(const Pickable& item) const;
   void picking(float view_x, float view_width, float view_height);  // tooltip, pins
   void toggle_pin(const Pickable& item);
-  void pinned_window(float view_x, float view_width);
+  void pinned_window(float view_x, float view_width, float view_height);
   void locate(const std::string& what);
   // window_shot.cpp
   void capture_window(int width, int height);

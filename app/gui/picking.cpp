@@ -15,6 +15,7 @@
 
 #include "app/gui/app.hpp"
 #include "render/frame_sequence.hpp"
+#include "render/overlay.hpp"
 #include "render/scene_framing.hpp"
 #include "solver/method.hpp"
 
@@ -203,7 +204,7 @@ void App::picking(float view_x, float view_width, float view_height) {
         ImGui::GetMouseDragDelta(ImGuiMouseButton_Left, 0.0f).y == 0.0f)
       toggle_pin(*hovered_);
   }
-  pinned_window(view_x, view_width);
+  pinned_window(view_x, view_width, view_height);
 }
 
 void App::toggle_pin(const Pickable& item) {
@@ -218,9 +219,15 @@ void App::toggle_pin(const Pickable& item) {
   log_.write(event);
 }
 
-void App::pinned_window(float view_x, float view_width) {
+void App::pinned_window(float view_x, float view_width, float view_height) {
   if (pinned_.empty()) return;
-  ImGui::SetNextWindowPos(ImVec2(view_x + view_width - 300.0f, 10.0f), ImGuiCond_FirstUseEver);
+  // First shown at the top right of the scene, left of the plots (not over them).
+  float right = view_width;
+  if (show_overlay_)
+    right =
+        render::overlay_panel(view(static_cast<int>(view_width), static_cast<int>(view_height))).x0;
+  ImGui::SetNextWindowPos(ImVec2(view_x + std::max(0.0f, right - 300.0f), 10.0f),
+                          ImGuiCond_FirstUseEver);
   ImGui::SetNextWindowSize(ImVec2(290.0f, 0.0f), ImGuiCond_FirstUseEver);
   ImGui::Begin("Picked", nullptr, ImGuiWindowFlags_NoSavedSettings);
   std::string all;
