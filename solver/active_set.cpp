@@ -111,7 +111,7 @@ void ActiveSet::begin(const Snapshot* warm) {
 // modes, form one component; S = A K^+ A' and C = A_W R have no entries between
 // components, so the subproblem splits into one small dense system per component (and
 // blocks no row of W touches, whose modes are all free). One system over all of W cost
-// O(|W|^3) per iteration: 200 s on 2,000 bar pairs.
+// O(|W|^3) per iteration: 67 s on 2,000 bar pairs, against 7.9 s per component.
 std::vector<ActiveSet::Component> ActiveSet::components() const {
   const int blocks = static_cast<int>(problem_.blocks().size());
   std::vector<int> parent(blocks);
@@ -151,24 +151,30 @@ void ActiveSet::solve_subproblem() {
   const Eigen::VectorXd Rg = R.transpose() * g_;
 
   // Rigid-body modes the working set does not hold: per component, the null space of
-  // C = A_W R (rows of W x modes of the component).
-  std::vector<Eigen::MatrixXd> held(parts.size());
+  // C = A_W R (rows of W x modes of the component). C and R'g of each component are kept
+  // for its saddle system below.
+  std::vector<Eigen::MatrixXd> held(parts.size()), C(parts.size());
+  std::vector<Eigen::VectorXd> rg(parts.size());
   Eigen::VectorXd amplitudes = Eigen::VectorXd::Zero(modes);  // of a rigid motion
   bool pushed = false;
   for (size_t c = 0; c < parts.size(); ++c) {
     const Component& part = parts[c];
+    const int cw = static_cast<int>(part.rows.size());
     const int cm = static_cast<int>(part.modes.size());
     held[c].resize(cm, 0);
     if (cm == 0) continue;
+    C[c].resize(cw, cm);
+    rg[c].resize(cm);
+    for (int k = 0; k < cm; ++k) {
+      rg[c](k) = Rg(part.modes[k]);
+      for (int i = 0; i < cw; ++i)
+        C[c](i, k) = AR_.coeff(working_[part.rows[i]], part.modes[k]);
+    }
     Eigen::MatrixXd free_basis;
-    if (part.rows.empty()) {
+    if (cw == 0) {
       free_basis = Eigen::MatrixXd::Identity(cm, cm);
     } else {
-      Eigen::MatrixXd C = Eigen::MatrixXd::Zero(static_cast<int>(part.rows.size()), cm);
-      for (size_t i = 0; i < part.rows.size(); ++i)
-        for (int k = 0; k < cm; ++k)
-          C(static_cast<int>(i), k) = AR_.coeff(working_[part.rows[i]], part.modes[k]);
-      Eigen::JacobiSVD<Eigen::MatrixXd> svd(C, Eigen::ComputeFullV);
+      Eigen::JacobiSVD<Eigen::MatrixXd> svd(C[c], Eigen::ComputeFullV);
       const Eigen::VectorXd& sigma = svd.singularValues();
       const double threshold = 1e-10 * (sigma.size() ? sigma(0) : 0.0);
       int rank = 0;
@@ -178,10 +184,7 @@ void ActiveSet::solve_subproblem() {
       held[c] = svd.matrixV().leftCols(rank);
     }
     if (free_basis.cols() == 0) continue;
-    Eigen::VectorXd rg(cm);
-    for (int k = 0; k < cm; ++k)
-      rg(k) = Rg(part.modes[k]);
-    const Eigen::VectorXd h = free_basis.transpose() * rg;
+    const Eigen::VectorXd h = free_basis.transpose() * rg[c];
     if (h.lpNorm<Eigen::Infinity>() > options_.tolerance * f_scale_) pushed = true;
     const Eigen::VectorXd a = -(free_basis * h);
     for (int k = 0; k < cm; ++k)
@@ -225,18 +228,10 @@ void ActiveSet::solve_subproblem() {
       rhs(j) = -A.row(row).dot(v);
     }
     if (r > 0) {
-      const int cm = static_cast<int>(part.modes.size());
-      Eigen::MatrixXd C = Eigen::MatrixXd::Zero(cw, cm);
-      Eigen::VectorXd rg(cm);
-      for (int k = 0; k < cm; ++k) {
-        rg(k) = Rg(part.modes[k]);
-        for (int i = 0; i < cw; ++i)
-          C(i, k) = AR_.coeff(working_[part.rows[i]], part.modes[k]);
-      }
-      const Eigen::MatrixXd Ct = C * held[c];
+      const Eigen::MatrixXd Ct = C[c] * held[c];
       M.topRightCorner(cw, r) = -Ct;
       M.bottomLeftCorner(r, cw) = -Ct.transpose();
-      rhs.tail(r) = held[c].transpose() * rg;
+      rhs.tail(r) = held[c].transpose() * rg[c];
     }
     const Eigen::VectorXd solution = M.partialPivLu().solve(rhs);
     for (int i = 0; i < cw; ++i) {

@@ -8,9 +8,10 @@
 // A floating strut the working set does not hold moves as a rigid body along its load
 // until a contact blocks it; with nothing to block it the scene is unbounded.
 // The working set changes by one row per iteration; the subproblem is solved per group of
-// strut blocks the working set links (rows of S and C couple no others). Residual of an iteration:
-// the size of the step to the subproblem minimizer relative to the displacement scale, or of the
-// most negative multiplier relative to the load when the step is zero.
+// strut blocks the working set links (rows of S and C couple no others). Residual of an
+// iteration: the size of the step to the subproblem minimizer relative to the
+// displacement scale, or of the most negative multiplier relative to the load when the
+// step is zero.
 
 #include <vector>
 

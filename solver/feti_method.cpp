@@ -155,9 +155,8 @@ Snapshot FetiMethod::gathered_snapshot() const {
   const Communicator& comm = system_.communicator();
   if (!comm.distributed()) return s;
   // Pieces as numbers: subdomain, then per node (ux, uy) and in the frame model its
-  // rotation; per owned pair row the pair,
-  // its force and its working-set flag (FETI-C knows every pair's flag, MPRGP only its
-  // own rows').
+  // rotation; per owned pair row the pair, its force and its working-set flag (FETI-C
+  // knows every pair's flag, MPRGP only its own rows').
   const Decomposition& d = system_.decomposition();
   const DualSpace& space = system_.space();
   std::vector<double> pieces, forces;

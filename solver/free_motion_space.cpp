@@ -106,11 +106,10 @@ FreeMotionSpace::FreeMotionSpace(const FetiSystem& system) : system_(system) {
   }
 }
 
-std::vector<UnheldGroup> FreeMotionSpace::unheld(const std::vector<char>& contact_active) const {
+std::vector<UnheldGroup> FreeMotionSpace::unheld(const std::vector<char>& active) const {
   const Decomposition& d = system_.decomposition();
-  if (static_cast<int>(contact_active.size()) != d.contact_rows())
+  if (static_cast<int>(active.size()) != d.contact_rows())
     throw std::logic_error("FreeMotionSpace: one flag per contact row expected");
-  const std::vector<char>& active = contact_active;
   std::vector<UnheldGroup> groups;
   for (const Cluster& cluster : clusters_) {
     const int k = static_cast<int>(cluster.motions.size());

@@ -25,10 +25,10 @@ class FreeMotionSpace {
   explicit FreeMotionSpace(const FetiSystem& system);
 
   // Orthonormal directions over all modes that no active contact row stops (the equality
-  // rows never do), one group each (with the subdomains it moves). `contact_active`: one
-  // flag per contact row of the decomposition, in global order (replicated, so that
-  // every process finds the same directions).
-  std::vector<UnheldGroup> unheld(const std::vector<char>& contact_active) const;
+  // rows never do), one group each (with the subdomains it moves). `active`: one flag per
+  // contact row of the decomposition, in global order (replicated, so that every process
+  // finds the same directions).
+  std::vector<UnheldGroup> unheld(const std::vector<char>& active) const;
 
  private:
   struct Cluster {
