@@ -81,6 +81,8 @@ std::vector<Variant> variants_for(const solver::Model& model) {
   }
   for (Preconditioner p : {Preconditioner::Dirichlet, Preconditioner::Lumped, Preconditioner::None})
     variants.push_back({MethodKind::Mprgp, p});
+  for (Preconditioner p : {Preconditioner::Dirichlet, Preconditioner::Lumped, Preconditioner::None})
+    variants.push_back({MethodKind::FetiDp, p});
   variants.push_back({MethodKind::FetiC, Preconditioner::Dirichlet, false});
   return variants;
 }
@@ -172,8 +174,8 @@ int run_bench(const BenchArgs& args) {
     if (!memory_suffices(
             *scene, path,
             {{solver::MethodKind::ActiveSet, solver::MethodKind::FetiC, solver::MethodKind::Mprgp,
-              solver::MethodKind::Feti, solver::MethodKind::ConjugateGradient,
-              solver::MethodKind::SteepestDescent},
+              solver::MethodKind::FetiDp, solver::MethodKind::Feti,
+              solver::MethodKind::ConjugateGradient, solver::MethodKind::SteepestDescent},
              false,
              0},
             status))

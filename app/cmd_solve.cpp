@@ -137,7 +137,7 @@ int run_solve(const SolveArgs& args) {
   const solver::Communicator& processes = app::processes();
   if (processes.distributed() && !solver::distributable(args.method.kind())) {
     std::cerr << "fetic solve: --method " << solver::to_string(args.method.kind())
-              << " runs in one process; under mpirun use --method feti, feti-c or mprgp\n";
+              << " runs in one process; under mpirun use --method feti, feti-c, mprgp or feti-dp\n";
     return kExitUsage;
   }
   if (args.monitor_full > 0 && args.monitor.empty()) {
@@ -414,9 +414,10 @@ void register_solve(CLI::App& app, int& exit_code) {
                       "a FIFO or pipe can follow it live; docs/COMMANDS.md)");
   command->add_flag("--progress", args->progress,
                     "Show the progress line on stderr even when it is not a terminal");
-  command->add_option("--profile", args->profile,
-                      "feti, feti-c, mprgp: write what each process did in the solve (time split, "
-                      "messages, bytes, coarse problem, memory) as JSON here");
+  command->add_option(
+      "--profile", args->profile,
+      "feti, feti-c, mprgp, feti-dp: write what each process did in the solve (time split, "
+      "messages, bytes, coarse problem, memory) as JSON here");
   command->callback([args, &exit_code] {
     try {
       exit_code = run_solve(*args);

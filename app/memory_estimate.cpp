@@ -97,7 +97,8 @@ double method_bytes(const Counts& c, solver::MethodKind method) {
       return kBase + kFetiPerUnknown * c.unknowns + kFetiPerStrut * c.struts +
              kFetiPerSubdomain * c.subdomains + kFetiPerFactorEntry * c.subdomain_fill +
              kFetiPerInterfaceRow * c.interface_rows;
-    case solver::MethodKind::Mprgp: {
+    case solver::MethodKind::Mprgp:
+    case solver::MethodKind::FetiDp: {
       const double modes = kModesPerSubdomain * c.subdomains;
       const double correction = std::min(modes, kCorrectionModesPerPair * c.pairs);
       return method_bytes(c, solver::MethodKind::FetiC) +

@@ -16,6 +16,7 @@ solver::SolveOptions MethodArgs::options() const {
   options.max_iterations = max_iterations;
   options.preconditioner = *solver::parse_preconditioner(preconditioner);
   options.scaling = !no_scaling;
+  options.corner_clusters = clusters;
   return options;
 }
 
@@ -111,7 +112,7 @@ CLI::Validator integer_in(long long low, long long high) {
 }
 
 CLI::Validator method_name() {
-  return CLI::IsMember({"sd", "cg", "active-set", "feti", "feti-c", "mprgp"});
+  return CLI::IsMember({"sd", "cg", "active-set", "feti", "feti-c", "mprgp", "feti-dp"});
 }
 
 CLI::Validator preconditioner_name() {
@@ -119,22 +120,34 @@ CLI::Validator preconditioner_name() {
 }
 
 void add_method_options(CLI::App* command, MethodArgs& args) {
-  command->add_option("--method", args.method, "Method: sd, cg, active-set, feti, feti-c, mprgp")
+  command
+      ->add_option("--method", args.method,
+                   "Method: sd, cg, active-set, feti, feti-c, mprgp, feti-dp")
       ->check(method_name())
       ->capture_default_str();
   CLI::Option* preconditioner =
       command
-          ->add_option("--preconditioner", args.preconditioner,
-                       "FETI preconditioner (feti, feti-c, mprgp): none, lumped, dirichlet")
+          ->add_option(
+              "--preconditioner", args.preconditioner,
+              "FETI preconditioner (feti, feti-c, mprgp, feti-dp): none, lumped, dirichlet")
           ->check(preconditioner_name())
           ->capture_default_str();
+  CLI::Option* clusters =
+      command
+          ->add_option("--clusters", args.clusters,
+                       "feti-dp: join the subdomains by their corners into clusters of about N "
+                       "(hybrid FETI-DP; 1 is FETI-1); default: as large as the corners join them")
+          ->check(integer_in(1, 1'000'000'000));
   // A preconditioner asked for a method that has none would be silently ignored.
-  command->parse_complete_callback([&args, preconditioner] {
+  command->parse_complete_callback([&args, preconditioner, clusters] {
     const auto kind = solver::parse_method(args.method);
     if (preconditioner->count() > 0 && kind && !solver::is_dual(*kind))
       throw CLI::ValidationError("--preconditioner",
-                                 "only feti, feti-c and mprgp have a preconditioner; " +
+                                 "only feti, feti-c, mprgp and feti-dp have a preconditioner; " +
                                      args.method + " does not use one");
+    if (clusters->count() > 0 && args.method != "feti-dp")
+      throw CLI::ValidationError("--clusters", "only feti-dp joins subdomains into clusters; " +
+                                                   args.method + " does not");
   });
   command->add_flag("--no-scaling", args.no_scaling,
                     "FETI preconditioners without stiffness scaling");

@@ -16,6 +16,11 @@ std::vector<std::pair<int, int>> split_nodes(int elements, int parts) {
   return ranges;
 }
 
+std::vector<SubdomainPart> parts_of(const Subdomain& sub, int index) {
+  if (!sub.parts.empty()) return sub.parts;
+  return {SubdomainPart{sub.strut, sub.box, index, {}}};
+}
+
 namespace {
 
 // A node's copies: (subdomain, subdomain-local node), in increasing subdomain order.
@@ -122,6 +127,7 @@ Decomposition decompose(const Model& model) {
         }
   }
   d.equality_rows = static_cast<int>(d.rows.size());
+  d.total_pieces = static_cast<int>(d.subdomains.size());
 
   // Contact rows.
   d.pair_row.assign(model.pairs.size(), -1);

@@ -25,15 +25,32 @@
 
 namespace fetic::solver {
 
-struct Subdomain {
+// One box of one strut inside a subdomain. FETI-DP's subdomains (clusters, corners.hpp)
+// hold several boxes joined by their corners, which they share; FETI-1's hold one.
+struct SubdomainPart {
   int strut = 0;
   NodeBox box;
+  int piece = 0;          // index of the box in decompose()'s order (one Piece each)
+  std::vector<int> dofs;  // box-local DOF -> subdomain DOF (empty: the same)
+};
+
+struct Subdomain {
+  int strut = 0;        // of the first part (for messages)
+  NodeBox box;          // the first part's box
   int dof_count = 0;    // box nodes x DOFs per node
   int dof_offset = 0;   // first DOF in the concatenation of all subdomain vectors
   int mode_offset = 0;  // first rigid-body mode in the coarse space
   int mode_count = 0;
   Eigen::VectorXd load;  // this subdomain's share of the strut's nodal loads (t = 1)
+  // Clusters (corners.hpp): their boxes, and their kernel as amplitudes of the boxes'
+  // rigid-body modes (rows: the parts' modes in order, columns: mode_count). Empty for a
+  // subdomain of one box.
+  std::vector<SubdomainPart> parts;
+  Eigen::MatrixXd part_modes;
 };
+
+// The boxes of a subdomain: its parts, or the subdomain's own box as the only one.
+std::vector<SubdomainPart> parts_of(const Subdomain& sub, int index);
 
 enum class RowKind { Gluing, Dirichlet, Contact };
 
@@ -66,6 +83,7 @@ struct Decomposition {
   std::vector<int> pair_row;  // per contact pair: its row, or -1 (both nodes clamped)
   int total_dofs = 0;
   int total_modes = 0;
+  int total_pieces = 0;  // boxes (decompose()'s subdomains)
   std::vector<RedundantGroup> redundant_groups;
 
   int row_count() const { return static_cast<int>(rows.size()); }

@@ -9,7 +9,7 @@ namespace fetic::solver {
 FetiMethod::FetiMethod(const Model& model, const SolveOptions& options, int default_max_iterations,
                        const Communicator& communicator)
     : Method(model, options, default_max_iterations),
-      system_(model, communicator),
+      system_(model, communicator, options.corner_clusters),
       preconditioner_(system_, options.preconditioner, options.scaling),
       coarse_(system_) {}
 
@@ -154,16 +154,24 @@ Snapshot FetiMethod::gathered_snapshot() const {
   Snapshot s = snapshot();
   const Communicator& comm = system_.communicator();
   if (!comm.distributed()) return s;
-  // Pieces as numbers: subdomain, then per node (ux, uy) and in the frame model its
-  // rotation; per owned pair row the pair, its force and its working-set flag (FETI-C
+  // Pieces as numbers: box index, strut, box, then per node (ux, uy) and in the frame
+  // model its rotation; per owned pair row the pair, its force and its working-set flag (FETI-C
   // knows every pair's flag, MPRGP only its own rows').
   const Decomposition& d = system_.decomposition();
   const DualSpace& space = system_.space();
   std::vector<double> pieces, forces;
   const bool rotations = model_.frame();
+  std::vector<int> piece_index;
+  for (const SubdomainOperator& op : system_.subdomains())
+    for (const SubdomainPart& part : parts_of(d.subdomains[op.index], op.index))
+      piece_index.push_back(part.piece);
+  std::sort(piece_index.begin(), piece_index.end());  // the order of pieces()
   for (size_t i = 0; i < s.pieces.size(); ++i) {
-    pieces.push_back(system_.subdomains()[i].index);
     const Piece& piece = s.pieces[i];
+    pieces.insert(pieces.end(),
+                  {static_cast<double>(piece_index[i]), static_cast<double>(piece.strut),
+                   static_cast<double>(piece.box.i0), static_cast<double>(piece.box.i1),
+                   static_cast<double>(piece.box.k0), static_cast<double>(piece.box.k1)});
     for (size_t n = 0; n < piece.displacement.size(); ++n) {
       pieces.push_back(piece.displacement[n].x());
       pieces.push_back(piece.displacement[n].y());
@@ -184,15 +192,15 @@ Snapshot FetiMethod::gathered_snapshot() const {
   const std::vector<double> all_forces = comm.gather_to_root(forces);
   s.dual.resize(0);  // the multipliers stay distributed
   if (!comm.root()) return s;
-  std::vector<Piece> ordered(d.subdomains.size());
+  std::vector<Piece> ordered(d.total_pieces);
   for (size_t at = 0; at < all_pieces.size();) {
-    const int j = static_cast<int>(all_pieces[at++]);
-    const Subdomain& sub = d.subdomains[j];
-    Piece& piece = ordered[j];
-    piece.strut = sub.strut;
-    piece.box = sub.box;
-    piece.displacement.resize(sub.box.node_count());
-    if (rotations) piece.rotation.resize(sub.box.node_count());
+    Piece& piece = ordered[static_cast<size_t>(all_pieces[at])];
+    piece.strut = static_cast<int>(all_pieces[at + 1]);
+    piece.box = NodeBox{static_cast<int>(all_pieces[at + 2]), static_cast<int>(all_pieces[at + 3]),
+                        static_cast<int>(all_pieces[at + 4]), static_cast<int>(all_pieces[at + 5])};
+    at += 6;
+    piece.displacement.resize(piece.box.node_count());
+    if (rotations) piece.rotation.resize(piece.box.node_count());
     for (size_t n = 0; n < piece.displacement.size(); ++n) {
       piece.displacement[n] = Vec2(all_pieces[at], all_pieces[at + 1]);
       at += 2;

@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <limits>
 #include <map>
-#include <string>
 #include <set>
+#include <string>
 #include <utility>
 
 #include "solver/threads.hpp"
@@ -81,10 +81,16 @@ std::vector<std::vector<double>> FetiPreconditioner::scaling_weights(bool scaled
   for (int r = 0; r < space.rows(); ++r) {
     const Row& row = d.rows[space.global_row(r)];
     // Largest diagonal stiffness per side (a plane contact row has two entries a side).
-    std::map<int, double> side;
+    // A side is a subdomain; a gluing row's two entries are two sides also when both are
+    // in one FETI-DP cluster (corners.hpp).
+    const bool gluing = row.kind == RowKind::Gluing;
+    auto side_of = [&](const RowEntry& entry) {
+      return DofKey{entry.subdomain, gluing ? entry.dof : -1};
+    };
+    std::map<DofKey, double> side;
     for (const RowEntry& entry : row.entries) {
       const double k = scaled ? stiffness.at({entry.subdomain, entry.dof}) : 1.0;
-      auto [it, inserted] = side.emplace(entry.subdomain, k);
+      auto [it, inserted] = side.emplace(side_of(entry), k);
       if (!inserted) it->second = std::max(it->second, k);
     }
     double total = 0.0;
@@ -101,8 +107,8 @@ std::vector<std::vector<double>> FetiPreconditioner::scaling_weights(bool scaled
       double weight = 1.0;
       if (total > 0.0) {
         double others = 0.0;
-        for (const auto& [sub, k] : side)
-          if (sub != entry.subdomain) others += k;
+        for (const auto& [key, k] : side)
+          if (key != side_of(entry)) others += k;
         weight = others / total;
       }
       weights[r].push_back(weight);
@@ -146,8 +152,14 @@ FetiPreconditioner::FetiPreconditioner(const FetiSystem& system, Preconditioner 
     if (kind_ == Preconditioner::Dirichlet && ni > 0) {
       local.K_ib = extract(op.K, i_position, ni, b_position, nb);
       const SparseMatrix K_ii = extract(op.K, i_position, ni, i_position, ni);
-      if (local.K_ii.factorize(K_ii) != CholmodFactor::Result::Ok)
-        failed = std::min(failed, op.index);
+      if (local.K_ii.factorize(K_ii) != CholmodFactor::Result::Ok) {
+        // A FETI-DP cluster whose multipliers do not pin its interior (its corners are
+        // interior DOFs here): lumped for this cluster. A box of FETI-1 cannot float so.
+        if (d.subdomains[op.index].parts.empty())
+          failed = std::min(failed, op.index);
+        else
+          local.K_ii = CholmodFactor();
+      }
     }
     local.offset = offset;
     offset += nb;

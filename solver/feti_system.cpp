@@ -5,6 +5,7 @@
 #include <map>
 #include <string>
 
+#include "solver/corners.hpp"
 #include "solver/primal_problem.hpp"
 #include "solver/rigid_modes.hpp"
 #include "solver/stopwatch.hpp"
@@ -15,11 +16,17 @@ namespace {
 
 constexpr double kSingularRcond = 1e-15;
 
+Decomposition decomposition_for(const Model& model, int corner_clusters) {
+  Decomposition boxes = decompose(model);
+  if (corner_clusters == 0) return boxes;
+  return join_corners(model, boxes, std::max(corner_clusters, 0));
+}
+
 }  // namespace
 
-FetiSystem::FetiSystem(const Model& model, const Communicator& communicator)
+FetiSystem::FetiSystem(const Model& model, const Communicator& communicator, int corner_clusters)
     : model_(model),
-      decomposition_(decompose(model)),
+      decomposition_(decomposition_for(model, corner_clusters)),
       partition_(partition_subdomains(decomposition_, communicator.size())),
       space_(decomposition_, partition_, communicator) {
   const Decomposition& d = decomposition_;
@@ -80,9 +87,8 @@ void FetiSystem::factorize_subdomains() {
   for (int i = 0; i < count; ++i) {
     SubdomainOperator& op = subdomains_[i];
     const Subdomain& sub = d.subdomains[op.index];
-    const StrutMesh& mesh = model_.struts[sub.strut];
-    op.K = assemble_stiffness(mesh, sub.box);
-    op.R = rigid_body_modes(mesh, sub.box);
+    op.K = subdomain_stiffness(model_, sub);
+    op.R = subdomain_modes(model_, sub);
     results[i] = op.K_plus.factorize(op.K, op.R);
     singular[i] = results[i] == CholmodFactor::Result::Ok && op.K_plus.rcond() < kSingularRcond;
   }
@@ -111,8 +117,7 @@ void FetiSystem::build_G() {
     auto found = remote_modes.find(subdomain);
     if (found == remote_modes.end()) {
       const Subdomain& sub = d.subdomains[subdomain];
-      found = remote_modes.emplace(subdomain, rigid_body_modes(model_.struts[sub.strut], sub.box))
-                  .first;
+      found = remote_modes.emplace(subdomain, subdomain_modes(model_, sub)).first;
     }
     return found->second;
   };
@@ -294,19 +299,33 @@ Eigen::VectorXd FetiSystem::subdomain_displacements(const Eigen::VectorXd& lambd
 std::vector<Piece> FetiSystem::pieces(const Eigen::VectorXd& lambda, const Eigen::VectorXd& alpha,
                                       double load_factor) const {
   const Eigen::VectorXd u = subdomain_displacements(lambda, alpha, load_factor);
-  std::vector<Piece> result;
-  result.reserve(subdomains_.size());
+  std::vector<std::pair<int, Piece>> numbered;  // (piece index, piece)
   for (size_t i = 0; i < subdomains_.size(); ++i) {
     const Subdomain& sub = decomposition_.subdomains[subdomains_[i].index];
-    const StrutMesh& mesh = model_.struts[sub.strut];
-    Piece piece;
-    piece.strut = sub.strut;
-    piece.box = sub.box;
-    piece.displacement.reserve(sub.box.node_count());
-    for (int n = 0; n < sub.box.node_count(); ++n)
-      add_node_state(mesh, u.data() + dof_offsets_[i] + n * mesh.dofs_per_node, piece);
-    result.push_back(std::move(piece));
+    for (const SubdomainPart& part : parts_of(sub, subdomains_[i].index)) {
+      const StrutMesh& mesh = model_.struts[part.strut];
+      Piece piece;
+      piece.strut = part.strut;
+      piece.box = part.box;
+      piece.displacement.reserve(part.box.node_count());
+      double node[3];
+      for (int n = 0; n < part.box.node_count(); ++n) {
+        for (int c = 0; c < mesh.dofs_per_node; ++c) {
+          const int local = n * mesh.dofs_per_node + c;
+          node[c] = u(dof_offsets_[i] + (part.dofs.empty() ? local : part.dofs[local]));
+        }
+        add_node_state(mesh, node, piece);
+      }
+      numbered.emplace_back(part.piece, std::move(piece));
+    }
   }
+  // In the order of the boxes (clusters may interleave them).
+  std::stable_sort(numbered.begin(), numbered.end(),
+                   [](const auto& a, const auto& b) { return a.first < b.first; });
+  std::vector<Piece> result;
+  result.reserve(numbered.size());
+  for (auto& item : numbered)
+    result.push_back(std::move(item.second));
   return result;
 }
 

@@ -54,7 +54,11 @@ class FetiSystem {
  public:
   // Builds and factorizes this process' subdomains; throws SolverError naming the strut
   // when a subdomain (of any process) is singular beyond its rigid-body modes.
-  explicit FetiSystem(const Model& model, const Communicator& communicator = Communicator::self());
+  // corner_clusters: 0 FETI-1 (every box a subdomain); otherwise FETI-DP, the boxes joined
+  // by their corners (corners.hpp): -1 into clusters as large as the corners make them,
+  // N > 0 into clusters of about N boxes.
+  explicit FetiSystem(const Model& model, const Communicator& communicator = Communicator::self(),
+                      int corner_clusters = 0);
   FetiSystem(const FetiSystem&) = delete;
   FetiSystem& operator=(const FetiSystem&) = delete;
 

@@ -8,6 +8,7 @@
 #include <Eigen/Dense>
 
 #include "scenes/null_space.hpp"
+#include "solver/corners.hpp"
 #include "solver/rigid_modes.hpp"
 
 namespace fetic::solver {
@@ -31,11 +32,21 @@ FreeMotionSpace::FreeMotionSpace(const FetiSystem& system) : system_(system) {
   for (int m = 0; m < k; ++m) {
     for (int j : subdomains_of[motions[m].group]) {
       const Subdomain& sub = d.subdomains[j];
-      const Vec2 c = box_centre(model.struts[sub.strut], sub.box);
-      const auto u = scenes::motion_at(model.kinematics, motions[m], sub.strut, {c.x(), c.y()});
-      const double values[3] = {u[2], u[0], u[1]};  // the order of rigid_body_modes
-      for (int i = 0; i < 3; ++i)
-        if (values[i] != 0.0) entries.emplace_back(sub.mode_offset + i, m, values[i]);
+      const std::vector<SubdomainPart> parts = parts_of(sub, j);
+      // The motion as amplitudes of each box's modes, then of the subdomain's.
+      Eigen::VectorXd amplitudes(3 * parts.size());
+      for (size_t p = 0; p < parts.size(); ++p) {
+        const Vec2 c = box_centre(model.struts[parts[p].strut], parts[p].box);
+        const auto u =
+            scenes::motion_at(model.kinematics, motions[m], parts[p].strut, {c.x(), c.y()});
+        amplitudes.segment<3>(3 * p) << u[2], u[0], u[1];  // the order of rigid_body_modes
+      }
+      const Eigen::VectorXd values =
+          sub.parts.empty()
+              ? amplitudes
+              : Eigen::VectorXd(sub.part_modes.colPivHouseholderQr().solve(amplitudes));
+      for (int i = 0; i < sub.mode_count; ++i)
+        if (values(i) != 0.0) entries.emplace_back(sub.mode_offset + i, m, values(i));
     }
   }
   Z_.resize(d.total_modes, k);
@@ -53,7 +64,7 @@ FreeMotionSpace::FreeMotionSpace(const FetiSystem& system) : system_(system) {
       Eigen::MatrixXd& RZ = modes_of[entry.subdomain];
       if (RZ.size() == 0) {
         const Subdomain& sub = d.subdomains[entry.subdomain];
-        RZ = rigid_body_modes(model.struts[sub.strut], sub.box) *
+        RZ = subdomain_modes(model, sub) *
              Eigen::MatrixXd(Z_.middleRows(sub.mode_offset, sub.mode_count));
       }
       for (int m = 0; m < k; ++m)

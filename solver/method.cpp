@@ -19,6 +19,8 @@ const char* to_string(MethodKind method) {
       return "feti-c";
     case MethodKind::Mprgp:
       return "mprgp";
+    case MethodKind::FetiDp:
+      return "feti-dp";
   }
   return "?";
 }
@@ -50,7 +52,7 @@ const char* to_string(Status status) {
 std::optional<MethodKind> parse_method(const std::string& name) {
   for (MethodKind kind :
        {MethodKind::SteepestDescent, MethodKind::ConjugateGradient, MethodKind::ActiveSet,
-        MethodKind::Feti, MethodKind::FetiC, MethodKind::Mprgp})
+        MethodKind::Feti, MethodKind::FetiC, MethodKind::Mprgp, MethodKind::FetiDp})
     if (name == to_string(kind)) return kind;
   return std::nullopt;
 }
@@ -62,16 +64,17 @@ std::optional<Preconditioner> parse_preconditioner(const std::string& name) {
 }
 
 bool distributable(MethodKind method) {
-  return method == MethodKind::Feti || method == MethodKind::FetiC || method == MethodKind::Mprgp;
+  return is_dual(method);
 }
 
 bool handles_contact(MethodKind method) {
   return method == MethodKind::ActiveSet || method == MethodKind::FetiC ||
-         method == MethodKind::Mprgp;
+         method == MethodKind::Mprgp || method == MethodKind::FetiDp;
 }
 
 bool is_dual(MethodKind method) {
-  return method == MethodKind::Feti || method == MethodKind::FetiC || method == MethodKind::Mprgp;
+  return method == MethodKind::Feti || method == MethodKind::FetiC || method == MethodKind::Mprgp ||
+         method == MethodKind::FetiDp;
 }
 
 int Snapshot::active_set_size() const {

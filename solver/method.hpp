@@ -21,11 +21,12 @@
 
 namespace fetic::solver {
 
-enum class MethodKind { SteepestDescent, ConjugateGradient, ActiveSet, Feti, FetiC, Mprgp };
+enum class MethodKind { SteepestDescent, ConjugateGradient, ActiveSet, Feti, FetiC, Mprgp, FetiDp };
 enum class Preconditioner { None, Lumped, Dirichlet };
 enum class Status { Running, Converged, Failed };
 
-// Command-line names: "sd", "cg", "active-set", "feti", "feti-c", "mprgp"; "none", "lumped",
+// Command-line names: "sd", "cg", "active-set", "feti", "feti-c", "mprgp", "feti-dp"; "none",
+// "lumped",
 // "dirichlet".
 const char* to_string(MethodKind method);
 const char* to_string(Preconditioner preconditioner);
@@ -41,6 +42,9 @@ struct SolveOptions {
   int max_iterations = 0;    // 0: the method's default cap
   Preconditioner preconditioner = Preconditioner::Dirichlet;
   bool scaling = true;  // stiffness scaling of the FETI preconditioners
+  // The dual methods' subdomains (FetiSystem): 0 FETI-1's boxes; -1 FETI-DP's clusters of
+  // boxes joined by their corners; N > 0 hybrid clusters of about N boxes (corners.hpp).
+  int corner_clusters = 0;
 };
 
 // A problem found while setting a method up (singular strut, unsupported scene, ...).

@@ -66,7 +66,7 @@ void App::load_controls() {
 
 // Method, preconditioner and magnification (automatic or locked).
 void App::solver_controls() {
-  static const char* methods[] = {"feti-c", "mprgp", "active-set", "feti", "cg", "sd"};
+  static const char* methods[] = {"feti-c", "mprgp", "feti-dp", "active-set", "feti", "cg", "sd"};
   constexpr int method_count = static_cast<int>(std::size(methods));
   static const char* preconditioners[] = {"dirichlet", "lumped", "none"};
   int method = 0;
@@ -76,7 +76,8 @@ void App::solver_controls() {
   if (ImGui::Combo("method", &method, methods, method_count))
     push({RequestKind::SetMethod, 0.0, methods[method]});
   // A second method solving the same scene at the same load, drawn beside the first.
-  static const char* compared[] = {"none", "feti-c", "mprgp", "active-set", "feti", "cg", "sd"};
+  static const char* compared[] = {"none",       "feti-c", "mprgp", "feti-dp",
+                                   "active-set", "feti",   "cg",    "sd"};
   constexpr int compared_count = static_cast<int>(std::size(compared));
   int second = 0;
   for (int i = 1; i < compared_count; ++i)

@@ -99,7 +99,7 @@ std::vector<ScriptAction> parse_script(const std::string& text, std::vector<Scri
         errors.push_back({line, "'" + verb + "' needs a name"});
       else if (!known)
         errors.push_back({line, "unknown " + verb + " '" + argument + "' (" +
-                                    (method ? "feti-c, mprgp, active-set, feti, cg or sd"
+                                    (method ? "feti-c, mprgp, feti-dp, active-set, feti, cg or sd"
                                             : "dirichlet, lumped or none") +
                                     ")"});
       r.kind = method ? RequestKind::SetMethod : RequestKind::SetPreconditioner;

@@ -1,0 +1,160 @@
+// FETI-DP (solver/corners.hpp): the boxes joined by their corners, against CGAL's exact QP
+// solver on random bar, plane and frame scenes (floating struts held by contacts
+// included), against FETI-1 on contact-free scenes, the hybrid clusters, and the corner
+// choice of each model.
+
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <random>
+
+#include "solver/corners.hpp"
+#include "solver/feti_system.hpp"
+#include "tests/support/random_frames.hpp"
+#include "tests/support/random_scenes.hpp"
+#include "tests/support/solve_helpers.hpp"
+
+using namespace fetic;
+using fetic::solver::MethodKind;
+using fetic::solver::Preconditioner;
+
+namespace {
+
+constexpr Preconditioner kPreconditioners[] = {Preconditioner::Dirichlet, Preconditioner::Lumped,
+                                               Preconditioner::None};
+
+double rotation_error(const testing::Solved& solved, const testing::ReferenceSolution& reference) {
+  if (!solved.model.frame()) return 0.0;
+  const auto rotations = solver::strut_rotations(solved.model, solved.state);
+  double difference = 0.0, size = 0.0;
+  for (size_t s = 0; s < rotations.size(); ++s)
+    for (size_t n = 0; n < rotations[s].size(); ++n) {
+      difference += std::pow(rotations[s][n] - reference.rotation.at(s).at(n), 2);
+      size += std::pow(reference.rotation[s][n], 2);
+    }
+  return size > 0.0 ? std::sqrt(difference / size) : std::sqrt(difference);
+}
+
+// Solves `text` by FETI-DP (cluster_size as SolveOptions::corner_clusters) and checks it
+// against CGAL; returns the active pairs.
+int check_dp(const std::string& text, int trial, int cluster_size = -1) {
+  INFO("trial " << trial << "\n" << text);
+  const scenes::Scene scene = scenes::parse_scene(text, "random.toml");
+  const testing::ReferenceSolution reference = testing::solve_reference_qp(scene, 1.0);
+  REQUIRE(reference.optimal);
+  solver::SolveOptions options;
+  options.preconditioner = kPreconditioners[trial % 3];
+  options.tolerance = 1e-12;  // as frame_reference_test.cpp: displacements to 1e-8
+  options.corner_clusters = cluster_size;
+  const auto solved = testing::solve(scene, MethodKind::FetiDp, 1.0, options);
+  INFO(solver::to_string(options.preconditioner) << ": " << solved->state.message);
+  REQUIRE(solved->state.status == solver::Status::Converged);
+  CHECK(solved->state.method == MethodKind::FetiDp);
+  CHECK(testing::displacement_error(*solved, reference) <= 1e-8);
+  CHECK(rotation_error(*solved, reference) <= 1e-8);
+  CHECK(testing::force_error(*solved, reference, 1e-12 * testing::load_scale(solved->model)) <=
+        1e-8);
+  return solved->state.active_set_size();
+}
+
+}  // namespace
+
+TEST_CASE("FETI-DP agrees with CGAL on 100 random bar scenes") {
+  std::mt19937 rng(2424);
+  int active = 0;
+  for (int trial = 0; trial < 100; ++trial)
+    active += check_dp(testing::random_bar_scene(rng), trial);
+  CHECK(active > 0);
+}
+
+TEST_CASE("FETI-DP agrees with CGAL on 100 random plane scenes") {
+  std::mt19937 rng(2425);
+  int active = 0;
+  for (int trial = 0; trial < 100; ++trial)
+    active += check_dp(testing::random_plane_pairs(rng, 1 + trial % 2), trial);
+  CHECK(active > 0);
+}
+
+TEST_CASE("FETI-DP agrees with CGAL on 100 random frame scenes of four kinds") {
+  std::mt19937 rng(2426);
+  const testing::FrameKind kinds[] = {
+      testing::FrameKind::PostOnBeam, testing::FrameKind::ApexOnStop,
+      testing::FrameKind::PortalOnStop, testing::FrameKind::FloatingBeam};
+  int active = 0;
+  for (int trial = 0; trial < 100; ++trial)
+    active += check_dp(testing::random_frame_scene(rng, kinds[trial % 4]), trial);
+  CHECK(active > 0);
+}
+
+TEST_CASE("hybrid FETI-DP (clusters of 2 boxes) agrees with CGAL on random bar and plane scenes") {
+  std::mt19937 rng(2427);
+  for (int trial = 0; trial < 30; ++trial)
+    check_dp(trial % 2 ? testing::random_bar_scene(rng) : testing::random_plane_pairs(rng, 1),
+             trial, 2);
+}
+
+TEST_CASE("FETI-DP agrees with FETI-1 on random contact-free scenes") {
+  std::mt19937 rng(2428);
+  for (int trial = 0; trial < 30; ++trial) {
+    const std::string text = testing::random_contact_free_scene(rng);
+    INFO("trial " << trial << "\n" << text);
+    solver::SolveOptions options;
+    options.preconditioner = kPreconditioners[trial % 3];
+    const auto feti = testing::solve_text(text, MethodKind::Feti, 1.0, options);
+    const auto dp = testing::solve_text(text, MethodKind::FetiDp, 1.0, options);
+    REQUIRE(feti->state.status == solver::Status::Converged);
+    REQUIRE(dp->state.status == solver::Status::Converged);
+    CHECK(dp->state.method == MethodKind::FetiDp);
+    CHECK(solver::relative_error(solver::strut_displacements(dp->model, dp->state),
+                                 solver::strut_displacements(feti->model, feti->state)) <= 1e-8);
+  }
+}
+
+TEST_CASE("FETI-DP's corners: plane box corners, every interface node of bars and frames") {
+  // A plane strut of 4x2 boxes: 3 x 3 interface box corners (cross points and edge ends)
+  // inside, 3 + 3 edge ends on the long sides, 1 + 1 on the end faces.
+  const std::string plane = R"(
+model = "plane"
+[defaults]
+E = 2.1e11
+thickness = 0.01
+nu = 0.3
+height = 0.1
+elements = 16
+elements_across = 4
+subdomains = 4
+subdomains_across = 2
+[[strut]]
+name = "a"
+from = [0.0, 0.0]
+to = [1.0, 0.0]
+fixed = ["from"]
+[[load]]
+strut = "a"
+at = "to"
+force = [0.0, -1000.0]
+)";
+  const solver::Model model = solver::build_model(scenes::parse_scene(plane, "plane.toml"));
+  const solver::Decomposition boxes = solver::decompose(model);
+  REQUIRE(boxes.subdomains.size() == 8);
+  const auto corners = solver::corner_nodes(model, boxes);
+  // Interface lines i = 4, 8, 12 (5 nodes each, corners k = 0, 2, 4) and k = 2 (corners at
+  // i = 0, 4, 8, 12, 16).
+  CHECK(corners[0].size() == 3 * 3 + 2);
+  const solver::Decomposition dp = solver::join_corners(model, boxes);
+  REQUIRE(dp.subdomains.size() == 1);
+  CHECK(dp.subdomains[0].mode_count == 3);
+  CHECK(dp.subdomains[0].parts.size() == 8);
+  // Each non-corner interface node keeps one gluing row per component.
+  const int interface_nodes = 3 * 5 + 17 - 3;
+  const int dual_nodes = interface_nodes - static_cast<int>(corners[0].size());
+  int gluing = 0;
+  for (const solver::Row& row : dp.rows)
+    gluing += row.kind == solver::RowKind::Gluing ? 1 : 0;
+  CHECK(gluing == 2 * dual_nodes);
+  // The hybrid with clusters of one box is FETI-1 again.
+  const solver::Decomposition one = solver::join_corners(model, boxes, 1);
+  CHECK(one.subdomains.size() == boxes.subdomains.size());
+  CHECK(one.row_count() == boxes.row_count());
+  CHECK(one.total_modes == boxes.total_modes);
+}
