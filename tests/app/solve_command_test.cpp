@@ -161,7 +161,7 @@ TEST_CASE("fetic solve rejects bad command lines with status 1") {
   const Run preconditioned =
       run("solve " + scene("two_bars.toml") + " --method active-set --preconditioner lumped");
   CHECK(preconditioned.status == 1);
-  CHECK(preconditioned.output.find("only feti, feti-c and mprgp have a preconditioner") !=
+  CHECK(preconditioned.output.find("only feti, feti-c, mprgp and feti-dp have a preconditioner") !=
         std::string::npos);
   CHECK(run("solve " + scene("two_bars.toml") + " --method feti-c --preconditioner lumped --quiet")
             .status == 0);

@@ -68,7 +68,8 @@ TEST_CASE("method and preconditioner names are checked, live stepping and cancel
       errors);
   REQUIRE(errors.size() == 4);
   CHECK(errors[0].line == 1);
-  CHECK(errors[0].message == "unknown method 'fetic' (feti-c, mprgp, active-set, feti, cg or sd)");
+  CHECK(errors[0].message ==
+        "unknown method 'fetic' (feti-c, mprgp, feti-dp, active-set, feti, cg or sd)");
   CHECK(errors[1].line == 3);
   CHECK(errors[1].message == "unknown preconditioner 'diriclet' (dirichlet, lumped or none)");
   CHECK(errors[2].message == "'live' needs on or off");
@@ -88,7 +89,8 @@ TEST_CASE("script numbers name their range", "[script]") {
   parse_script("record-sweep 1000000000\nmethod bogus\n1e308 quit\n", errors);
   REQUIRE(errors.size() == 3);
   CHECK(errors[0].message == "'record-sweep' needs a number from 2 to 10000, not '1000000000'");
-  CHECK(errors[1].message == "unknown method 'bogus' (feti-c, mprgp, active-set, feti, cg or sd)");
+  CHECK(errors[1].message ==
+        "unknown method 'bogus' (feti-c, mprgp, feti-dp, active-set, feti, cg or sd)");
   CHECK(errors[2].message == "the time must be from 0 to 3600 seconds, not '1e308'");
 }
 

@@ -43,6 +43,7 @@ struct Case {
   MethodKind method = MethodKind::FetiC;
   fetic::solver::Preconditioner preconditioner = fetic::solver::Preconditioner::Dirichlet;
   std::vector<double> load_factors{1.0};
+  int clusters = 0;  // feti-dp: SolveOptions::corner_clusters (0: plain FETI-DP)
 };
 
 std::string read_file(const std::string& path) {
@@ -88,6 +89,7 @@ struct Outcome {
 Outcome solve(const Case& c, const fetic::solver::Model& model, const Communicator& processes) {
   fetic::solver::SolveOptions options;
   options.preconditioner = c.preconditioner;
+  options.corner_clusters = c.clusters;
   auto method = fetic::solver::make_method(c.method, model, options, processes);
   Outcome outcome;
   std::vector<Snapshot> local;  // for warm starts: this process' own states
@@ -201,6 +203,35 @@ std::vector<Case> cases(const std::string& scenes_dir) {
                     i % 2 == 0 ? MethodKind::FetiC : MethodKind::Mprgp,
                     i % 3 == 0 ? fetic::solver::Preconditioner::Lumped
                                : fetic::solver::Preconditioner::Dirichlet});
+  // FETI-DP: clusters over processes (plain, and hybrid clusters of two boxes so that a
+  // strut's clusters are spread over several processes).
+  for (const char* name : {"thesis.toml", "plane_pair.toml", "frame_scaffold.toml",
+                           "frame_portal_sway.toml", "cantilevers.toml"})
+    for (int clusters : {0, 2})
+      list.push_back({std::string(name) + " (feti-dp, clusters " + std::to_string(clusters) + ")",
+                      read_file(scenes_dir + "/" + name),
+                      MethodKind::FetiDp,
+                      fetic::solver::Preconditioner::Dirichlet,
+                      {1.0},
+                      clusters});
+  for (int i = 0; i < 8; ++i) {
+    list.push_back({"random bar scene (feti-dp) " + std::to_string(i),
+                    fetic::testing::random_bar_scene(rng),
+                    MethodKind::FetiDp,
+                    fetic::solver::Preconditioner::Dirichlet,
+                    {1.0},
+                    i % 2 == 0 ? 0 : 2});
+    list.push_back({"random plane scene (feti-dp) " + std::to_string(i),
+                    fetic::testing::random_plane_pairs(rng, 1 + i % 3),
+                    MethodKind::FetiDp,
+                    fetic::solver::Preconditioner::Dirichlet,
+                    {1.0},
+                    i % 2 == 0 ? 0 : 2});
+    list.push_back({"random frame scene (feti-dp) " + std::to_string(i),
+                    fetic::testing::random_frame_scene(rng, kinds[i % 4]), MethodKind::FetiDp,
+                    i % 3 == 0 ? fetic::solver::Preconditioner::Lumped
+                               : fetic::solver::Preconditioner::Dirichlet});
+  }
   return list;
 }
 

@@ -201,7 +201,7 @@ TEST_CASE("under mpirun every failure gives one message and the same status on e
     const Run r = run_fetic("solve " + scene("thesis.toml") + " --method active-set", 2);
     CHECK(r.status == 1);
     CHECK(occurrences(r.output, "runs in one process") == 1);
-    CHECK(occurrences(r.output, "feti, feti-c or mprgp") == 1);
+    CHECK(occurrences(r.output, "feti, feti-c, mprgp or feti-dp") == 1);
   }
   SECTION("a command that does not run distributed: 1") {
     const Run r = run_fetic("render " + scene("thesis.toml") + " --out " + temporary("frames"), 2);
