@@ -369,6 +369,14 @@ int report_result(const SolveArgs& args, const solver::Model& model,
     // An interrupted solve still writes its outputs, with the current iterate marked
     // "interrupted": true, "converged": false.
     Activity writing("writing the outputs");
+    // Under mpirun a signal to mpirun ends the job (SIGKILL) soon after it reaches the
+    // processes, often before the outputs are written and the last message is forwarded:
+    // say so first. A file appears whole or not at all.
+    if (was_interrupted && processes().distributed() && outputs.writes_anything())
+      std::cerr << scenes::printable(args.scene) << ": interrupted by " << signal_name(signal)
+                << "; writing the outputs marked interrupted (a signal to mpirun may end the "
+                   "job first: then none is written)"
+                << std::endl;
     outputs.finish(steps, info, sweeping);
   } catch (const OutputError& error) {
     return report_output_error(error);
