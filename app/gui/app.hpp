@@ -228,6 +228,10 @@ class App {
   double typed_load_ = 0.0;
   float zoom_ = 1.0f;
   render::Point pan_{0.0f, 0.0f};
+  // The last pan or zoom: pictures are drafts (no multisampling) until the view has rested
+  // this long, then drawn again at full quality.
+  static constexpr std::chrono::milliseconds kViewRest{250};
+  Clock::time_point view_moved_{};
   render::Point base_center_{0.0f, 0.0f};
   int view_width_ = 0, view_height_ = 0;
   std::shared_ptr<const render::RunExtent> axis_survey_;  // the survey longest_history_ is for

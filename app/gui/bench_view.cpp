@@ -68,6 +68,7 @@ void App::view_bench_step() {
   }
   ++b.frame;
   redraw_ = true;
+  view_moved_ = now;
 }
 
 void App::print_view_bench(const render::GlfwWindow& window) const {

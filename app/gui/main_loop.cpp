@@ -84,7 +84,7 @@ int App::run(render::GlfwWindow& window, std::vector<ScriptAction> script) {
   while (!quit_) {
     const double now = seconds_since(start_);
     const bool busy = (worker_.busy() && !worker_.paused()) || playing_ || recording_ || scripted ||
-                      benchmarking() || ImGui::IsAnyMouseDown() || !queue_.empty();
+                      benchmarking() || ImGui::IsAnyMouseDown() || !queue_.empty() || draft_;
     if (busy)
       glfwPollEvents();
     else
@@ -123,8 +123,11 @@ int App::run(render::GlfwWindow& window, std::vector<ScriptAction> script) {
     // the next frame refines it. Screenshots are always taken at full quality.
     const bool fresh = shown_ && shown_->request != drafted_request_ && shown_->finished;
     if (fresh) drafted_request_ = shown_->request;
-    const bool draft = (dragging_slider_ || (args_.bench > 0 && bench_.phase == 0) || fresh) &&
-                       !screenshot_requested_ && !recording_;
+    // So is the picture while it is panned or zoomed, until it has rested for kViewRest.
+    const bool moving = Clock::now() - view_moved_ < kViewRest;
+    const bool draft =
+        (dragging_slider_ || (args_.bench > 0 && bench_.phase == 0) || fresh || moving) &&
+        !screenshot_requested_ && !recording_;
     if (draft != draft_) {
       draft_ = draft;
       renderer.set_samples(draft ? 1 : 4);

@@ -3,7 +3,8 @@
 // and drawn with every element at 8x that size and box-filtered down to the small one -
 // which is what the screen would show if it had the pixels. The two must agree within
 // kMeanTolerance (mean of the largest channel difference per pixel, of 255) and
-// kFarTolerance (share of pixels off by more than kFarLevels), by subdomain and by stress.
+// kFarTolerance (share of pixels off by more than kFarLevels), both over the pixels where
+// either shows a strut, by subdomain and by stress.
 // A control shows the measure is not blind: the same comparison against the unloaded
 // state of the same scene fails it by a wide margin.
 
@@ -14,6 +15,7 @@
 
 #include "render/frame_sequence.hpp"
 #include "render/mesh_detail.hpp"
+#include "render/overlay.hpp"
 #include "render/scene_framing.hpp"
 #include "render/scene_mesh.hpp"
 #include "scenes/generate_scene.hpp"
@@ -25,9 +27,12 @@ using namespace fetic::render;
 namespace {
 
 constexpr int kWidth = 240, kHeight = 135, kScale = 8;
-constexpr double kMeanTolerance = 4.0;
+// Measured: 8.1 (subdomain) and 9.4 (stress) levels, 0% and 0.12% far; the control 19.3
+// and 22.2 levels, 13% and 15% far. The mean is mostly anti-aliased edges (4 samples per
+// pixel against 64 averaged); the far share is what tells a wrong picture.
+constexpr double kMeanTolerance = 12.0;
 constexpr int kFarLevels = 48;
-constexpr double kFarTolerance = 0.02;
+constexpr double kFarTolerance = 0.01;
 
 struct Difference {
   double mean = 0.0;  // largest channel difference per pixel, averaged
@@ -53,21 +58,26 @@ Image downsampled(const Image& big) {
   return small;
 }
 
+// Over the pixels where either picture shows something (not the white background).
 Difference difference(const Image& a, const Image& b) {
   Difference d;
-  long far = 0;
+  long far = 0, pixels = 0;
   double sum = 0.0;
+  const auto white = [](const std::uint8_t* p) {
+    return p[0] == 255 && p[1] == 255 && p[2] == 255;
+  };
   for (int y = 0; y < a.height; ++y)
     for (int x = 0; x < a.width; ++x) {
+      if (white(a.pixel(x, y)) && white(b.pixel(x, y))) continue;
+      ++pixels;
       int largest = 0;
       for (int c = 0; c < 3; ++c)
         largest = std::max(largest, std::abs(a.pixel(x, y)[c] - b.pixel(x, y)[c]));
       sum += largest;
       if (largest > kFarLevels) ++far;
     }
-  const double pixels = static_cast<double>(a.width) * a.height;
-  d.mean = sum / pixels;
-  d.far = static_cast<double>(far) / pixels;
+  d.mean = pixels > 0 ? sum / static_cast<double>(pixels) : 0.0;
+  d.far = pixels > 0 ? static_cast<double>(far) / static_cast<double>(pixels) : 0.0;
   return d;
 }
 
@@ -146,6 +156,7 @@ TEST_CASE("level of detail: merged cells draw what every element drawn finer and
     // The control: the unloaded state drawn with merged cells is far from it.
     const Difference control = difference(picture(s, s.initial, color, false), reference);
     INFO("control: mean " << control.mean << " levels, " << 100.0 * control.far << "%");
-    CHECK(control.mean > 2.0 * kMeanTolerance);
+    CHECK(control.mean > kMeanTolerance);
+    CHECK(control.far > 5.0 * kFarTolerance);
   }
 }

@@ -10,6 +10,7 @@
 
 #include "render/frame_sequence.hpp"
 #include "render/mesh_detail.hpp"
+#include "render/overlay.hpp"
 #include "render/scene_framing.hpp"
 #include "render/scene_mesh.hpp"
 #include "scenes/generate_scene.hpp"
@@ -111,12 +112,14 @@ TEST_CASE("level of detail: elements of a pixel or more are drawn as they are") 
 
 TEST_CASE("level of detail: merged cells carry the mean stress of the elements they cover") {
   const Solved& s = fine_planes();
-  const SceneFraming framing = framing_of(s, 160, 90);
+  // An eighth of the scale at which no element is below a pixel: cells of 2 to 8 elements.
+  const SceneFraming large = framing_of(s, 1280, 720);
+  const SceneFraming framing = zoomed(large, 0.125f, large.pixel_center);
   const MeshDetail detail = mesh_detail(s.model, framing, framing);
   const SceneMesh mesh = build_scene_mesh(s.model, s.final, framing, ColorBy::Stress, detail);
   const SceneMesh full = build_scene_mesh(s.model, s.final, framing, ColorBy::Stress);
   INFO("cells " << mesh.element_count << " of " << full.element_count << " elements");
-  CHECK(mesh.element_count * 8 <= full.element_count);  // far fewer: elements are sub-pixel
+  CHECK(mesh.element_count * 4 <= full.element_count);  // far fewer: elements are sub-pixel
   MeshValues values;
   fill_mesh_values(mesh, s.model, s.final, framing, values);
   const auto stresses = piece_stresses(s.model, s.final);
@@ -162,12 +165,19 @@ TEST_CASE("level of detail: merged cells carry the mean stress of the elements t
 
 TEST_CASE("level of detail: beyond its budget a mesh keeps detail only near the view") {
   const Solved& s = fine_planes();
-  const SceneFraming fitted = framing_of(s, 160, 90);
-  // Zoomed 16x about the middle: a small part of the scene is seen.
-  const SceneFraming placed = zoomed(fitted, 16.0f, fitted.pixel_center);
+  const SceneFraming fitted = framing_of(s, 640, 360);
+  // Zoomed 16x about the middle of the first strut: a small part of the scene is seen.
+  View view;
+  view.zoom = 16.0;
+  view.centered = true;
+  view.center_x = 0.5 * (s.model.struts[0].nodes.front().x() + s.model.struts[0].nodes.back().x());
+  view.center_y = 0.5 * (s.model.struts[0].nodes.front().y() + s.model.struts[0].nodes.back().y());
+  const SceneFraming placed = render::placed(fitted, view);
   const MeshDetail everywhere = mesh_detail(s.model, fitted, placed);
   CHECK(std::isinf(everywhere.keep.high.x()));
   const MeshDetail near = mesh_detail(s.model, fitted, placed, 100.0);
+  INFO("fitted " << fitted.pixels_per_unit << " px/unit, level " << near.pixels_per_unit
+                 << ", keep " << near.keep.low.transpose() << " .. " << near.keep.high.transpose());
   REQUIRE(std::isfinite(near.keep.high.x()));
   CHECK(near.keep.contains(visible_world(placed)));
   const SceneMesh kept = build_scene_mesh(s.model, s.final, fitted, ColorBy::Stress, near);
@@ -182,7 +192,7 @@ TEST_CASE("level of detail: beyond its budget a mesh keeps detail only near the 
   CHECK(kept.element_count < all.element_count);
   // Panning within the margin keeps it; beyond, the mesh is built again.
   const auto pan = [&](float dx) {
-    return zoomed(fitted, 16.0f, {fitted.pixel_center.x + dx, fitted.pixel_center.y});
+    return zoomed(fitted, 16.0f, {placed.pixel_center.x + dx, placed.pixel_center.y});
   };
   CHECK(detail_serves(near, mesh_detail(s.model, fitted, pan(20.0f), 100.0), pan(20.0f)));
   CHECK_FALSE(detail_serves(near, mesh_detail(s.model, fitted, pan(400.0f), 100.0), pan(400.0f)));
