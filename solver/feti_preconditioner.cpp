@@ -7,9 +7,9 @@
 #include <string>
 #include <utility>
 
+#include "solver/interruption.hpp"
 #include "solver/stopwatch.hpp"
 #include "solver/threads.hpp"
-#include "solver/interruption.hpp"
 
 namespace fetic::solver {
 namespace {
@@ -156,8 +156,8 @@ FetiPreconditioner::FetiPreconditioner(const FetiSystem& system, Preconditioner 
   long long work = 0;
   for (const SubdomainOperator& op : ops)
     work += op.K.rows();
-  // Every subdomain's blocks and interior factor on its own (both cores: the factors
-  // are most of the set-up after K_j's).
+    // Every subdomain's blocks and interior factor on its own (both cores: the factors
+    // are most of the set-up after K_j's).
 #pragma omp parallel for schedule(dynamic) num_threads(threads_for(work * 50))
   for (int i = 0; i < count; ++i) {
     if (stop_requested()) continue;  // Ctrl-C: skip the rest (no throw inside OpenMP)
