@@ -5,18 +5,21 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include "app/method_options.hpp"
+#include "app/output_options.hpp"
+
 namespace fetic::app {
 
 void add_monitor_options(CLI::App* command, std::string& path, int& full_every,
                          const std::string& path_help) {
-  command->add_option("--monitor", path, path_help);
+  command->add_option("--monitor", path, path_help)->check(output_name());
   command
       ->add_option("--monitor-full", full_every,
                    "With --monitor: add the state (displacements, contact multipliers) every "
                    "N-th iteration (N = 1 when not given)")
       ->expected(0, 1)
       ->default_str("1")
-      ->check(CLI::PositiveNumber);
+      ->check(integer_in(1, 1'000'000'000));
 }
 
 SolveMonitor::SolveMonitor(const solver::Model& model, int full_every, bool writes)

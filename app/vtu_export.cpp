@@ -113,7 +113,8 @@ VtkGrid contacts_grid(const solver::Model& model, const solver::Snapshot& state)
 VtuSeries::VtuSeries(std::string directory, const solver::Model& model, VtkEncoding encoding)
     : directory_(std::move(directory)), model_(model), encoding_(encoding) {
   std::error_code error;
-  std::filesystem::create_directories(directory_, error);
+  // A link to a folder is followed (a dangling one is refused by check_output_folder).
+  std::filesystem::create_directories(resolved_output_path(directory_), error);
   if (error || !std::filesystem::is_directory(directory_))
     throw OutputError(directory_ + ": cannot create the directory for the ParaView files (" +
                       (error ? error.message() : "not a directory") + ")");
