@@ -9,25 +9,12 @@
 #include <Eigen/Dense>
 
 #include "scenes/null_space.hpp"
+#include "scenes/union_find.hpp"
 
 #include "scenes/scene_geometry.hpp"
 
 namespace fetic::scenes {
 namespace {
-
-class UnionFind {
- public:
-  explicit UnionFind(int n) : parent_(n) { std::iota(parent_.begin(), parent_.end(), 0); }
-  int root(int i) {
-    while (parent_[i] != i)
-      i = parent_[i] = parent_[parent_[i]];
-    return i;
-  }
-  void join(int a, int b) { parent_[root(a)] = root(b); }
-
- private:
-  std::vector<int> parent_;
-};
 
 std::string number_text(double value) {
   char buffer[32];

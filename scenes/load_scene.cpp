@@ -12,6 +12,7 @@
 
 #include <toml++/toml.h>
 
+#include "scenes/message_text.hpp"
 #include "scenes/scene_text.hpp"
 #include "scenes/units.hpp"
 #include "scenes/validate_scene.hpp"
@@ -73,16 +74,6 @@ std::string type_name(const toml::node& node) {
     default:
       return "nothing";
   }
-}
-
-std::string quoted(std::string_view text) {
-  return "'" + std::string(text) + "'";
-}
-
-std::string number_text(double value) {
-  std::ostringstream out;
-  out << value;
-  return out.str();
 }
 
 size_t edit_distance(std::string_view a, std::string_view b) {

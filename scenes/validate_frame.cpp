@@ -12,22 +12,12 @@
 
 #include "scenes/frame_kinematics.hpp"
 #include "scenes/magnitudes.hpp"
+#include "scenes/message_text.hpp"
 #include "scenes/scene_geometry.hpp"
 #include "scenes/units.hpp"
 
 namespace fetic::scenes {
 namespace {
-
-std::string quoted(const std::string& text) {
-  return "'" + text + "'";
-}
-
-std::string number_text(double value) {
-  std::ostringstream out;
-  out.precision(6);
-  out << value;
-  return out.str();
-}
 
 bool outside_magnitude_range(double value) {
   const double magnitude = std::abs(value);

@@ -8,6 +8,8 @@
 
 #include <Eigen/Dense>
 
+#include "scenes/union_find.hpp"
+
 namespace fetic::solver {
 namespace {
 
@@ -131,13 +133,8 @@ std::string frame_unbounded_struts(const Model& model, double load_factor) {
     double value;
   };
   std::vector<Entry> entries;
-  std::vector<int> parent(k);
-  std::iota(parent.begin(), parent.end(), 0);
-  auto root = [&](int i) {
-    while (parent[i] != i)
-      i = parent[i] = parent[parent[i]];
-    return i;
-  };
+  scenes::UnionFind sets(k);
+  const auto root = [&](int i) { return sets.root(i); };
   for (int p = 0; p < static_cast<int>(model.pairs.size()); ++p) {
     const ContactPair& pair = model.pairs[p];
     const int ga = kinematics.group_of_strut[pair.strut_a];
@@ -152,7 +149,7 @@ std::string frame_unbounded_struts(const Model& model, double load_factor) {
       if (std::abs(value) <= 1e-12) continue;
       entries.push_back({p, m, value});
       if (first < 0) first = m;
-      parent[root(m)] = root(first);
+      sets.join(m, first);
     }
   }
   std::vector<std::vector<int>> members_of(k), entries_of(k);

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <map>
 
+#include "scenes/message_text.hpp"
 #include "solver/rigid_modes.hpp"
 #include "solver/threads.hpp"
 
@@ -24,10 +25,24 @@ std::string singular_message(const Model& model, int strut, CholmodFactor::Resul
     case CholmodFactor::Result::Failed:
       return name + ": CHOLMOD failed to factorize the stiffness of " + part;
     default:
-      return name + ": the stiffness of " + part +
-             " is singular beyond its rigid-body modes (check E, area/thickness and the mesh "
-             "proportions)";
+      break;
   }
+  const std::string singular =
+      name + ": the stiffness of " + part + " is singular beyond its rigid-body modes";
+  const StrutMesh& mesh = model.struts[static_cast<size_t>(strut)];
+  if (mesh.dofs_per_node != 3)
+    return singular + " (check E, " + (mesh.ny > 0 ? "thickness" : "area") +
+           " and the mesh proportions)";
+  // A beam element's bending stiffness 12 E I / h^3 against its axial one E A / h: when
+  // the inertia is what makes it vanish, say so.
+  const double h = mesh.length / std::max(mesh.nx, 1);
+  const double bending_over_axial = 12.0 * mesh.inertia / (mesh.area * h * h);
+  if (!(bending_over_axial > 1e-10))
+    return singular + ": its bending stiffness is " + scenes::number_text(bending_over_axial) +
+           " times its axial stiffness (inertia " + scenes::number_text(mesh.inertia) + ", area " +
+           scenes::number_text(mesh.area) + ", element length " + scenes::number_text(h) +
+           "); check inertia";
+  return singular + " (check E, area, inertia and the mesh proportions)";
 }
 
 namespace {

@@ -19,6 +19,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "tests/support/shell_run.hpp"
+
 extern char** environ;
 
 namespace {
@@ -37,9 +39,7 @@ struct Folder {
   std::string operator/(const std::string& name) const { return (path / name).string(); }
 };
 
-std::string scene(const std::string& name) {
-  return std::string(FETIC_BUNDLED_SCENES_DIR) + "/" + name;
-}
+using fetic::test::scene;
 
 int run(const std::string& arguments, const std::string& log) {
   const int raw = std::system(

@@ -48,9 +48,7 @@ Run run_fetic(const std::string& arguments, int processes = 0) {
   return run(launcher + FETIC_EXECUTABLE + " " + arguments);
 }
 
-std::string scene(const std::string& name) {
-  return std::string(FETIC_BUNDLED_SCENES_DIR) + "/" + name;
-}
+using fetic::test::scene;
 
 int occurrences(const std::string& text, const std::string& what) {
   int count = 0;
