@@ -73,15 +73,19 @@ struct RenderBench {
   const std::string& directory;
   Headless& headless;
   ImageSize size;
-  render::FramePlan plan;  // every iteration at load factor 1
-  render::RunExtent extent = render::survey(model, method, plan);
+  render::RunExtent extent = render::survey(model, method, plan());
   render::FrameComposer composer{model, view(size), extent,
                                  render::OverlayInfo{model.title, args.method, {}, {}}};
   int threads = args.threads > 0 ? args.threads : default_encoder_threads();
-  Timing serial, serial_stb, pooled, pooled_stb, streamed;
+  Timing serial{}, serial_stb{}, pooled{}, pooled_stb{}, streamed{};
   std::size_t spng_bytes = 0, stb_bytes = 0;
   bool have_ffmpeg = program_on_path("ffmpeg");
 
+  // Every iteration at load factor 1.
+  static const render::FramePlan& plan() {
+    static const render::FramePlan every_iteration;
+    return every_iteration;
+  }
   static render::View view(ImageSize size) {
     render::View v;
     v.width = size.width;
@@ -92,7 +96,7 @@ struct RenderBench {
   void for_each_frame(const std::function<void(const render::Frame&, int)>& use) {
     int index = 0;
     while (index < args.frames && !interrupted())
-      render::run_frames(method, plan, [&](const render::Frame& frame) {
+      render::run_frames(method, plan(), [&](const render::Frame& frame) {
         if (interrupted()) return false;
         use(frame, index);
         return ++index < args.frames;

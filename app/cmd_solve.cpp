@@ -273,8 +273,9 @@ int set_up(const SolveArgs& args, const solver::Model& model, const RankPolicy& 
 // The monitor: every process observes (a full line gathers the state, a collective), rank
 // 0 alone opens and writes.
 int open_outputs(const SolveArgs& args, const solver::Model& model, const RankPolicy& ranks,
-                 std::unique_ptr<SolveOutputs>& outputs, SolveMonitor& monitor) {
-  SolveOutputArgs output_args = args.outputs;
+                 SolveOutputArgs& output_args, std::unique_ptr<SolveOutputs>& outputs,
+                 SolveMonitor& monitor) {
+  output_args = args.outputs;  // kept by the caller: SolveOutputs refers to it
   if (!ranks.writes()) {
     output_args = SolveOutputArgs{};
     output_args.csv_nodes = args.outputs.csv_nodes;
@@ -483,9 +484,11 @@ int run_solve(const SolveArgs& args) {
   SetUp setup;
   if (const int failed = set_up(args, model, ranks, setup)) return failed;
   PendingOutputs pending;  // every file waits for the commit in write_outputs
+  SolveOutputArgs output_args;
   std::unique_ptr<SolveOutputs> outputs;
   SolveMonitor monitor(model, args.monitor_full, ranks.writes());
-  if (const int failed = open_outputs(args, model, ranks, outputs, monitor)) return failed;
+  if (const int failed = open_outputs(args, model, ranks, output_args, outputs, monitor))
+    return failed;
   // With an output on stdout (-), the report goes to stderr.
   std::ostream& report = outputs->uses_stdout() || is_stdout(args.monitor) ? std::cerr : std::cout;
   Sweep sweep{args, model, setup, ranks, *outputs, monitor, report};

@@ -74,6 +74,13 @@ std::vector<std::map<int, JointOwner>> joint_owners(const Model& model) {
 }  // namespace
 
 PrimalProblem::PrimalProblem(const Model& model, bool factorize_blocks) : model_(model) {
+  number_free_dofs();
+  assemble_blocks(factorize_blocks);
+  build_contact_rows();
+}
+
+void PrimalProblem::number_free_dofs() {
+  const Model& model = model_;
   const int strut_count = static_cast<int>(model.struts.size());
   const std::vector<std::vector<int>> groups = strut_groups(model);
   const auto owners = joint_owners(model);
@@ -110,8 +117,11 @@ PrimalProblem::PrimalProblem(const Model& model, bool factorize_blocks) : model_
     size_ = next;
     blocks_.push_back(std::move(block));
   }
+}
 
-  std::vector<std::vector<int>> motions_of_group(groups.size());
+void PrimalProblem::assemble_blocks(bool factorize_blocks) {
+  const Model& model = model_;
+  std::vector<std::vector<int>> motions_of_group(blocks_.size());
   for (size_t m = 0; m < model.kinematics.motions.size(); ++m)
     motions_of_group[model.kinematics.motions[m].group].push_back(static_cast<int>(m));
   std::vector<Eigen::Triplet<double>> k_entries, r_entries;
@@ -163,8 +173,11 @@ PrimalProblem::PrimalProblem(const Model& model, bool factorize_blocks) : model_
   K_.setFromTriplets(k_entries.begin(), k_entries.end());
   R_.resize(size_, static_cast<int>(kernel_struts_.size()));
   R_.setFromTriplets(r_entries.begin(), r_entries.end());
+}
 
-  // Contact rows: (u_a - u_b) . n <= gap, on the free DOFs of both nodes.
+// Contact rows: (u_a - u_b) . n <= gap, on the free DOFs of both nodes.
+void PrimalProblem::build_contact_rows() {
+  const Model& model = model_;
   const int m = static_cast<int>(model.pairs.size());
   std::vector<Eigen::Triplet<double>> a_entries;
   c_.resize(m);
