@@ -393,14 +393,26 @@ struct Sweep {
 // written; otherwise none replaces what was there.
 int write_outputs(const SolveArgs& args, const std::vector<solver::SweepStep>& steps, SetUp& setup,
                   RankPolicy& ranks, SolveOutputs& outputs, SolveMonitor& monitor,
-                  PendingOutputs& pending) {
+                  PendingOutputs& pending, bool was_interrupted) {
   int status = kExitOk;
+  // Interrupted under mpirun with outputs to write: rank 0 says so before it writes.
+  const int signal = was_interrupted ? ranks.signal() : 0;  // collective
+  const bool announce = was_interrupted && ranks.distributed() && outputs.writes_anything();
   const auto keep_first = [&](const OutputError& error) {
     if (status == kExitOk) status = report_output_error(error);
   };
   if (ranks.writes()) try {
       if (ranks.output_error()) throw *ranks.output_error();
       Activity writing("writing the outputs");
+      // Under mpirun a signal to mpirun ends the job (SIGKILL) soon after it reaches the
+      // processes, often before the outputs are written and the last message is
+      // forwarded: say so first. A file appears whole or not at all.
+      if (announce)
+        std::cerr << scenes::printable(args.scene) << ": interrupted by " << signal_name(signal)
+                  << " at iteration " << (steps.empty() ? 0 : steps.back().state.iteration)
+                  << "; writing the outputs marked interrupted (a signal to mpirun may end the "
+                     "job first: then none is written)"
+                  << std::endl;
       // An interrupted solve still writes its outputs, with the current iterate marked
       // "interrupted": true, "converged": false.
       outputs.finish(steps, setup.info, !args.method.load_steps.empty());
@@ -445,6 +457,11 @@ int report_result(const SolveArgs& args, const solver::Model& model,
   if (was_interrupted) {
     const int signal = ranks.signal();
     if (!ranks.writes()) return kExitInterrupted;
+    if (ranks.distributed() && outputs.writes_anything()) {  // announced before writing
+      std::cerr << scenes::printable(args.scene) << ": written, the current iterate marked "
+                << "interrupted: " << outputs.written_list() << '\n';
+      return kExitInterrupted;
+    }
     const bool cut = steps.empty() || steps.size() < args.method.load_factors().size() ||
                      steps.back().state.status == solver::Status::Running;
     std::cerr << scenes::printable(args.scene) << ": interrupted by " << signal_name(signal);
@@ -502,7 +519,8 @@ int run_solve(const SolveArgs& args) {
     return report_output_error(error);  // one process: nobody waits for it
   }
   const bool was_interrupted = ranks.any(interrupted());
-  if (const int failed = write_outputs(args, steps, setup, ranks, *outputs, monitor, pending))
+  if (const int failed =
+          write_outputs(args, steps, setup, ranks, *outputs, monitor, pending, was_interrupted))
     return failed;
   return ranks.agree(
       report_result(args, model, steps, setup.info, ranks, was_interrupted, *outputs, report));
