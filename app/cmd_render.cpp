@@ -73,8 +73,14 @@ int refused_target(const RenderArgs& args) {
   }
   try {
     if (!args.out.empty()) check_output_folder(args.out);
-    if (!args.movie.empty()) check_output_file(args.movie);
     if (!args.vtu.empty()) check_output_folder(args.vtu);
+  } catch (const OutputError& error) {
+    return report_output_error(error);
+  }
+  // The movie may go into the frames' folder: made first.
+  if (!args.out.empty() && !make_output_directory(args.out)) return kExitOutput;
+  try {
+    if (!args.movie.empty()) check_output_file(args.movie);
   } catch (const OutputError& error) {
     return report_output_error(error);
   }
@@ -231,19 +237,9 @@ struct FrameWriter {
     progress.clear();
   }
 
-  // Every file (frames, movie, ParaView files) waits in its temporary until the commit:
-  // a run that fails replaces none of an earlier run's files. An interrupted run commits
-  // the frames it completed.
+  // Each file appears whole (frames, movie, ParaView files), frame by frame as the run
+  // goes, so that an interrupted run leaves the complete frames it made.
   int run(bool movie_wanted) {
-    PendingOutputs pending;
-    const auto commit = [&]() -> int {
-      try {
-        pending.commit();
-        return kExitOk;
-      } catch (const OutputError& error) {
-        return report_output_error(error);
-      }
-    };
     const bool frames_wanted = !args.out.empty();
     try {
       std::unique_ptr<VtuSeries> vtu;
@@ -260,7 +256,6 @@ struct FrameWriter {
       }
     } catch (const OutputError& error) {
       if (!interrupted()) return report_output_error(error);
-      if (const int failed = commit()) return failed;
       std::cerr << scenes::printable(movie_wanted ? args.movie : args.out) << ": interrupted by "
                 << interrupt_name()
                 << (movie_wanted ? " while streaming frames to ffmpeg; no movie written" : "")
@@ -274,7 +269,6 @@ struct FrameWriter {
                 << ": rendering failed: " << error.what() << '\n';
       return kExitOutput;
     }
-    if (const int failed = commit()) return failed;
     if (interrupted()) {
       std::cerr << scenes::printable(args.out) << ": interrupted by " << interrupt_name()
                 << " after " << written << " complete frames\n";

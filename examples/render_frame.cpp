@@ -42,7 +42,7 @@ int main(int argc, char** argv) {
   render::View view;  // 1280x720, the magnification chosen from the run
   render::FontAtlas font(render::base_text_size(view.width, view.height) * 1.3f);
   render::GlRenderer renderer(*context, font);
-  const render::FrameComposer composer(model, view, extent, {"thesis scene", "feti-c"});
+  const render::FrameComposer composer(model, view, extent, {"thesis scene", "feti-c", {}, {}});
 
   // The render pass: the same run again; the one frame it visits is drawn and encoded.
   render::run_frames(*method, plan, [&](const render::Frame& frame) {
