@@ -296,7 +296,7 @@ void register_render(CLI::App& app, int& exit_code) {
       "render",
       "Render solver states as PNG frames and/or a movie: an iteration movie, the final state "
       "or load steps");
-  command->add_option("scene", args->scene, "Scene file (TOML, see docs/SCENES.md)")->required();
+  look_up_bundled_scenes(command->add_option("scene", args->scene, kSceneArgumentHelp))->required();
   command->add_option("--out", args->out,
                       "Write PNG frames frame_0000.png, frame_0001.png, ... into this directory");
   add_method_options(command, args->method);

@@ -402,7 +402,7 @@ int report_result(const SolveArgs& args, const solver::Model& model,
 void register_solve(CLI::App& app, int& exit_code) {
   auto args = std::make_shared<SolveArgs>();
   CLI::App* command = app.add_subcommand("solve", "Solve a scene and report the result");
-  command->add_option("scene", args->scene, "Scene file (TOML, see docs/SCENES.md)")->required();
+  look_up_bundled_scenes(command->add_option("scene", args->scene, kSceneArgumentHelp))->required();
   add_method_options(command, args->method);
   add_solve_output_options(command, args->outputs);
   command->add_flag("--reference", args->reference,

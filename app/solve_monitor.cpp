@@ -5,6 +5,9 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include "app/version.hpp"
+#include "scenes/units.hpp"
+
 namespace fetic::app {
 
 void add_monitor_options(CLI::App* command, std::string& path, int& full_every,
@@ -95,6 +98,17 @@ void SolveMonitor::observe(const solver::Method& method) {
     lines += line.dump() + '\n';
   }
   working_set_ = working_set;
+  if (!header_written_) {
+    // Written with the first iteration's line, not at open: a FIFO's reader sees both.
+    const nlohmann::ordered_json header = {
+        {"fetic_version", fetic_version()},
+        {"units",
+         {{"length", model_->units.length},
+          {"force", model_->units.force},
+          {"stress", scenes::stress_unit(model_->units)}}}};
+    lines = header.dump() + '\n' + lines;
+    header_written_ = true;
+  }
   out_.write(lines);
 }
 
