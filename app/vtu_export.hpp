@@ -20,8 +20,9 @@ namespace fetic::app {
 VtkGrid struts_grid(const solver::Model& model, const solver::Snapshot& state);
 VtkGrid contacts_grid(const solver::Model& model, const solver::Snapshot& state);
 
-// Frames written one by one; the .pvd files always list the frames written so far
-// (rewritten after each frame, atomically), so an interrupted run leaves a complete
+// Frames written one by one; the .pvd files always list the frames written so far (the
+// first frame writes them whole, atomically; each later one appends its entry in place,
+// so a series costs time linear in its frames), and an interrupted run leaves a complete
 // series. Throws OutputError naming the file on failure.
 class VtuSeries {
  public:
