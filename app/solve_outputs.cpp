@@ -14,7 +14,8 @@ void add_solve_output_options(CLI::App* command, SolveOutputArgs& args) {
                       "Write the iteration history of every load step as CSV here (- for stdout)");
   command->add_option("--csv-steps", args.csv_steps,
                       "Write one CSV row per load step here: load factor, displacements of the "
-                      "--csv-node nodes [m], total force [N] and active pairs of every contact");
+                      "--csv-node nodes, total force and active pairs of every contact (in "
+                      "scene units, named in the header)");
   command->add_option("--csv-node", args.csv_nodes,
                       "A node for --csv-steps: STRUT.from, STRUT.to or STRUT@i (repeatable; "
                       "default: both ends of every contact)");

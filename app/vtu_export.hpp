@@ -7,7 +7,10 @@
 // strut cell data `strut`, `element`, `subdomain`, `stress_axial` (+ `stress_sxx`,
 // `stress_syy`, `stress_sxy`, `stress_von_mises` in the plane model), `axial_force`;
 // contact cell data `contact`, `pair`, `gap`, `force`, `active`, `normal`; field data
-// `load_factor`, `iteration`, `residual`, `converged`.
+// `load_factor`, `iteration`, `residual`, `converged` and the strings `fetic_version`,
+// `length_unit`, `force_unit`, `stress_unit`. Frame model: the ends a joint joins share
+// one point; point data `rotation`; cell data `bending_moment` (middle),
+// `bending_moment_ends` and `end_rotations` (2 components: the element's two ends).
 
 #include <string>
 #include <vector>
