@@ -13,7 +13,8 @@ namespace {
 
 size_t edit_distance(const std::string& a, const std::string& b) {
   std::vector<size_t> row(b.size() + 1);
-  for (size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (size_t j = 0; j <= b.size(); ++j)
+    row[j] = j;
   for (size_t i = 1; i <= a.size(); ++i) {
     size_t diagonal = row[0];
     row[0] = i;
@@ -49,8 +50,8 @@ int run_help(const CLI::App& app, const std::string& topic) {
   std::string commands;
   for (const CLI::App* command : app.get_subcommands({}))
     commands += (commands.empty() ? "" : ", ") + command->get_name();
-  std::cerr << "fetic help: no command '" << scenes::printable(topic) << "' (commands: "
-            << commands << ")\n";
+  std::cerr << "fetic help: no command '" << scenes::printable(topic) << "' (commands: " << commands
+            << ")\n";
   return kExitUsage;
 }
 
@@ -72,8 +73,7 @@ std::string nearest_name(const std::string& word, const std::vector<std::string>
 }
 
 void register_help(CLI::App& app, int& exit_code) {
-  CLI::App* command =
-      app.add_subcommand("help", "Show the help of the program or of one command");
+  CLI::App* command = app.add_subcommand("help", "Show the help of the program or of one command");
   auto topic = std::make_shared<std::string>();
   command->add_option("command", *topic, "The command (solve, render, ...)");
   command->callback([&app, &exit_code, topic] { exit_code = run_help(app, *topic); });
@@ -93,14 +93,13 @@ std::string unknown_option_message(const CLI::App& app, int argc, char** argv) {
     if (argument.size() < 3 || argument.compare(0, 2, "--") != 0) continue;
     const std::string name = argument.substr(0, argument.find('='));
     if (std::find(names.begin(), names.end(), name) != names.end()) continue;
-    message += "fetic " + command->get_name() + ": unknown option '" +
-               scenes::printable(name) + "'";
+    message +=
+        "fetic " + command->get_name() + ": unknown option '" + scenes::printable(name) + "'";
     const std::string suggestion = nearest_name(name, names);
     message += suggestion.empty() ? "" : "; did you mean '" + suggestion + "'?";
     message += "\n";
   }
-  if (!message.empty())
-    message += "(fetic help " + command->get_name() + " lists its options)\n";
+  if (!message.empty()) message += "(fetic help " + command->get_name() + " lists its options)\n";
   return message;
 }
 

@@ -94,7 +94,8 @@ void write_steps_csv(std::ostream& out, const solver::Model& model,
                      const std::vector<solver::SweepStep>& steps,
                      const std::vector<TrackedNode>& nodes) {
   // Quantities with a unit name it, in the scene's units: "ux:left.to [m]".
-  const std::string length = " [" + model.units.length + "]", force = " [" + model.units.force + "]";
+  const std::string length = " [" + model.units.length + "]",
+                    force = " [" + model.units.force + "]";
   out << "load_step,load_factor,status,iterations,residual,active_pairs";
   for (const TrackedNode& node : nodes)
     out << ",ux:" << node.label << length << ",uy:" << node.label << length;

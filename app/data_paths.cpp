@@ -54,11 +54,12 @@ SceneLookup find_scene(const std::string& argument) {
   // "scenes/thesis.toml" names the bundled folder's "thesis.toml"; "thesis" its ".toml".
   fs::path name = given.lexically_normal();
   if (name.empty() || *name.begin() == "..") return lookup;  // not a name in the folder
-  if (auto part = name.begin(); part != name.end() && *part == "scenes" &&
-                                std::next(part) != name.end())
+  if (auto part = name.begin();
+      part != name.end() && *part == "scenes" && std::next(part) != name.end())
     name = name.lexically_relative("scenes");
   std::vector<fs::path> candidates{directory / "scenes" / name};
-  if (name.extension() != ".toml") candidates.push_back(directory / "scenes" / (name.string() + ".toml"));
+  if (name.extension() != ".toml")
+    candidates.push_back(directory / "scenes" / (name.string() + ".toml"));
   for (const fs::path& candidate : candidates) {
     const fs::path normal = candidate.lexically_normal();
     lookup.looked_in.push_back(normal.string());
@@ -71,7 +72,9 @@ SceneLookup find_scene(const std::string& argument) {
   return lookup;
 }
 
-std::string resolve_scene(const std::string& argument) { return find_scene(argument).path; }
+std::string resolve_scene(const std::string& argument) {
+  return find_scene(argument).path;
+}
 
 std::vector<fs::path> bundled_scenes() {
   std::vector<fs::path> scenes;

@@ -80,19 +80,19 @@ std::string help_footer(const std::string& command) {
     return "Example:\n"
            "  fetic generate --model plane --pairs 20 --elements 40,8 --subdomains 4,2 -o "
            "big.toml\n\n" +
-           statuses({0, 1, 5, 7, 130}) + "\nThe scene is in SI units: lengths [m], E [Pa], forces [N].\n";
+           statuses({0, 1, 5, 7, 130}) +
+           "\nThe scene is in SI units: lengths [m], E [Pa], forces [N].\n";
   if (command == "scenes")
     return "Example:\n  fetic scenes             # then: fetic solve thesis --json r.json\n\n" +
-           statuses({0, 1, 2, 5}) +
-           "  Status 2: no bundled scene folder was found.\n";
-  if (command == "help")
-    return "Example:\n  fetic help solve\n\n" + statuses({0, 1, 5});
+           statuses({0, 1, 2, 5}) + "  Status 2: no bundled scene folder was found.\n";
+  if (command == "help") return "Example:\n  fetic help solve\n\n" + statuses({0, 1, 5});
   return {};
 }
 
 void add_help_footers(CLI::App& app) {
   app.footer(
-      "Run `fetic help COMMAND` (or `fetic COMMAND --help`) for a command's options, an example, its exit statuses "
+      "Run `fetic help COMMAND` (or `fetic COMMAND --help`) for a command's options, an example, "
+      "its exit statuses "
       "and units.\nDocumentation: README.md and docs/ (installed in share/doc/fetic).");
   for (CLI::App* command : app.get_subcommands([](CLI::App*) { return true; })) {
     const std::string footer = help_footer(command->get_name());

@@ -100,12 +100,11 @@ void SolveMonitor::observe(const solver::Method& method) {
   working_set_ = working_set;
   if (!header_written_) {
     // Written with the first iteration's line, not at open: a FIFO's reader sees both.
-    const nlohmann::ordered_json header = {
-        {"fetic_version", fetic_version()},
-        {"units",
-         {{"length", model_->units.length},
-          {"force", model_->units.force},
-          {"stress", scenes::stress_unit(model_->units)}}}};
+    const nlohmann::ordered_json header = {{"fetic_version", fetic_version()},
+                                           {"units",
+                                            {{"length", model_->units.length},
+                                             {"force", model_->units.force},
+                                             {"stress", scenes::stress_unit(model_->units)}}}};
     lines = header.dump() + '\n' + lines;
     header_written_ = true;
   }

@@ -2,6 +2,8 @@
 
 namespace fetic::app {
 
-const char* fetic_version() { return FETIC_VERSION; }
+const char* fetic_version() {
+  return FETIC_VERSION;
+}
 
 }  // namespace fetic::app

@@ -3,11 +3,11 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <map>
-#include <utility>
-#include <filesystem>
 #include <system_error>
+#include <utility>
 
 #include "app/output_file.hpp"
 #include "app/version.hpp"
@@ -83,8 +83,8 @@ std::vector<std::vector<std::int64_t>> point_numbers(const solver::Model& model,
     first_end[s].assign(static_cast<size_t>(count), 1);
     for (int n = 0; n < count; ++n) {
       const auto joint = joint_of_end.find({static_cast<int>(s), n});
-      std::int64_t& shared =
-          joint == joint_of_end.end() ? point[s][static_cast<size_t>(n)] : joint_point[joint->second];
+      std::int64_t& shared = joint == joint_of_end.end() ? point[s][static_cast<size_t>(n)]
+                                                         : joint_point[joint->second];
       if (shared < 0)
         shared = next++;
       else
@@ -98,8 +98,7 @@ std::vector<std::vector<std::int64_t>> point_numbers(const solver::Model& model,
 // Frame struts: per element the rotations and bending moments at both of its ends (node
 // i, xi = 0, and node i + 1, xi = 1), so that the ends of a pinned joint keep their own
 // rotations and the moment's linear course along each element is there in full.
-void add_frame_cell_data(const solver::Model& model, const solver::Snapshot& state,
-                         VtkGrid& grid) {
+void add_frame_cell_data(const solver::Model& model, const solver::Snapshot& state, VtkGrid& grid) {
   const auto rotations = solver::strut_rotations(model, state);
   const auto moments = solver::strut_moments(model, state);
   std::vector<double> end_rotations, end_moments;
@@ -124,8 +123,8 @@ VtkGrid struts_grid(const solver::Model& model, const solver::Snapshot& state) {
   const auto u = solver::strut_displacements(model, state);
   const auto elements = solver::element_results(model, state);
   const bool frame = model.frame();
-  const auto rotations = frame ? solver::strut_rotations(model, state)
-                               : std::vector<std::vector<double>>{};
+  const auto rotations =
+      frame ? solver::strut_rotations(model, state) : std::vector<std::vector<double>>{};
   std::vector<std::vector<char>> first_end;
   const auto point_of = point_numbers(model, first_end);
   std::vector<double> displacement, rotation;

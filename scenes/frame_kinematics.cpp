@@ -201,8 +201,7 @@ std::string describe(const Scene& scene, const Bodies& bodies, const Eigen::Vect
                       std::abs(motions.back()[2]) * bodies.size});
   }
   auto same = [&](const std::array<double, 3>& a, const std::array<double, 3>& b) {
-    return std::abs(a[0] - b[0]) + std::abs(a[1] - b[1]) +
-               std::abs(a[2] - b[2]) * bodies.size <=
+    return std::abs(a[0] - b[0]) + std::abs(a[1] - b[1]) + std::abs(a[2] - b[2]) * bodies.size <=
            1e-9 * scale;
   };
   bool one_body = true;
@@ -219,8 +218,7 @@ std::string describe(const Scene& scene, const Bodies& bodies, const Eigen::Vect
     text += "'" + printable(scene.struts[struts[i]].name) + "' " +
             rigid_motion_text(motions[i], bodies.centre, bodies.size, "slides", "turns");
   }
-  if (shown < struts.size())
-    text += " and " + std::to_string(struts.size() - shown) + " more move";
+  if (shown < struts.size()) text += " and " + std::to_string(struts.size() - shown) + " more move";
   return text + ", together";
 }
 

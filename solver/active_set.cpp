@@ -273,8 +273,8 @@ void ActiveSet::solve_subproblem() {
   const double step = p_.lpNorm<Eigen::Infinity>();
   if (step > options_.tolerance * u_scale_ &&
       (step > 1e4 * options_.tolerance * u_scale_ ||
-       step > step_rounding_floor(problem_, x_, load_factor_ * problem_.load(),
-                                  load_on_free - g_))) {
+       step >
+           step_rounding_floor(problem_, x_, load_factor_ * problem_.load(), load_on_free - g_))) {
     move_ = Move::Step;
     return;
   }

@@ -25,8 +25,9 @@ using nlohmann::json;
 
 // fetic run from `directory` (not the source or build tree).
 fetic::test::ShellRun run_in(const TempDir& directory, const std::string& arguments) {
-  return fetic::test::run_shell("cd '" + directory.path().string() + "' && env -u FETIC_DATA_DIR '" +
-                                FETIC_EXECUTABLE + "' " + arguments);
+  return fetic::test::run_shell("cd '" + directory.path().string() +
+                                "' && env -u FETIC_DATA_DIR '" + FETIC_EXECUTABLE + "' " +
+                                arguments);
 }
 
 std::string bundled(const std::string& name) {
@@ -93,9 +94,9 @@ TEST_CASE("fetic scenes lists every bundled scene with its title") {
     const std::string title = title_in_file(entry.path());
     INFO(entry.path());
     REQUIRE_FALSE(title.empty());
-    const std::regex line("\n  " + entry.path().stem().string() + " +" +
-                          std::regex_replace(title, std::regex(R"([.^$|()\[\]{}*+?\\])"), R"(\$&)") +
-                          "\n");
+    const std::regex line(
+        "\n  " + entry.path().stem().string() + " +" +
+        std::regex_replace(title, std::regex(R"([.^$|()\[\]{}*+?\\])"), R"(\$&)") + "\n");
     CHECK(std::regex_search(run.output, line));
   }
   CHECK(count >= 10);
@@ -174,7 +175,8 @@ TEST_CASE("every command's help lists every status it can return") {
     REQUIRE(at != std::string::npos);
     std::set<int> listed;
     const std::regex entry(R"(\n  (\d+) +\S)");
-    for (std::sregex_iterator it(run.output.begin() + static_cast<long>(at), run.output.end(), entry),
+    for (std::sregex_iterator
+             it(run.output.begin() + static_cast<long>(at), run.output.end(), entry),
          end;
          it != end; ++it)
       listed.insert(std::stoi((*it)[1]));

@@ -32,7 +32,8 @@ TEST_CASE("a sweep's .pvd files list every frame once, in order, and end closed"
       std::snprintf(name, sizeof name, "file=\"%s_%04d.vtu\"", dataset.c_str(), k);
       const size_t found = pvd.find(name, at);
       REQUIRE(found != std::string::npos);
-      CHECK(std::filesystem::exists(dir / ("vtu/" + std::string(name).substr(6, dataset.size() + 9))));
+      CHECK(std::filesystem::exists(dir /
+                                    ("vtu/" + std::string(name).substr(6, dataset.size() + 9))));
       at = found + 1;
     }
     CHECK(pvd.find("_0041.vtu") == std::string::npos);

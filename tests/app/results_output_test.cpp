@@ -133,7 +133,8 @@ TEST_CASE("two bars load sweep: contact force and displacement curves match the 
     CHECK(row.at("status") == "converged");
     CHECK(std::abs(std::stod(row.at("force:left.to/right.from [N]")) - closed.force(t)) <=
           1e-8 * force_scale);
-    CHECK(std::abs(std::stod(row.at("ux:right.from [m]")) - closed.right_from_ux(t)) <= 1e-8 * u_scale);
+    CHECK(std::abs(std::stod(row.at("ux:right.from [m]")) - closed.right_from_ux(t)) <=
+          1e-8 * u_scale);
     CHECK(std::abs(std::stod(row.at("ux:left.to [m]")) - closed.left_to_ux(t)) <= 1e-8 * u_scale);
     CHECK(std::stoi(row.at("active_pairs:left.to/right.from")) == (closed.force(t) > 0.0 ? 1 : 0));
   }
