@@ -38,13 +38,14 @@ std::vector<std::string> long_names(const CLI::App& command) {
 }
 
 int run_help(const CLI::App& app, const std::string& topic) {
+  // (App::help() would show the help of the command being run - `help` itself.)
   if (topic.empty()) {
-    std::cout << app.help();
+    std::cout << app.get_formatter()->make_help(&app, app.get_name(), CLI::AppFormatMode::Normal);
     return kExitOk;
   }
   for (const CLI::App* command : app.get_subcommands({}))
     if (command->check_name(topic)) {
-      std::cout << command->help();
+      std::cout << command->help(app.get_name());  // as `fetic COMMAND --help` shows it
       return kExitOk;
     }
   std::string commands;

@@ -95,12 +95,12 @@ void write_steps_csv(std::ostream& out, const solver::Model& model,
                      const std::vector<TrackedNode>& nodes) {
   // Quantities with a unit name it, in the scene's units: "ux:left.to [m]".
   const std::string length = " [" + model.units.length + "]",
-                    force = " [" + model.units.force + "]";
+                    force_unit = " [" + model.units.force + "]";
   out << "load_step,load_factor,status,iterations,residual,active_pairs";
   for (const TrackedNode& node : nodes)
     out << ",ux:" << node.label << length << ",uy:" << node.label << length;
   for (const auto& [a, b] : model.contact_ends)
-    out << ",force:" << a << '/' << b << force << ",active_pairs:" << a << '/' << b;
+    out << ",force:" << a << '/' << b << force_unit << ",active_pairs:" << a << '/' << b;
   out << '\n';
   for (size_t k = 0; k < steps.size(); ++k) {
     const solver::Snapshot& state = steps[k].state;

@@ -45,12 +45,8 @@ void report_where_looked(const std::string& path) {
 }  // namespace
 
 CLI::Option* look_up_bundled_scenes(CLI::Option* option) {
-  return option->transform(
-      [](std::string& argument) {
-        argument = resolve_scene(argument);
-        return std::string();
-      },
-      "", "");
+  // (the transform's result replaces the value)
+  return option->transform([](std::string argument) { return resolve_scene(argument); }, "", "");
 }
 
 std::string memory_problem(const scenes::Scene& scene, const MemoryUse& use) {

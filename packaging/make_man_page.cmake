@@ -11,19 +11,24 @@ function(roff_text text out)
 endfunction()
 
 function(help_of arguments out)
-  execute_process(COMMAND ${FETIC} ${arguments} OUTPUT_VARIABLE text RESULT_VARIABLE status
-                  ENV_MODIFY OMP_WAIT_POLICY=set:passive)
+  execute_process(COMMAND ${FETIC} ${arguments} OUTPUT_VARIABLE text RESULT_VARIABLE status)
   if(NOT status EQUAL 0)
     message(FATAL_ERROR "${FETIC} ${arguments} failed (${status})")
   endif()
+  string(REPLACE "${FETIC}" "fetic" text "${text}")  # the usage line names argv[0]
   roff_text("${text}" text)
   set(${out} "${text}" PARENT_SCOPE)
 endfunction()
 
 help_of("--help" program)
-# The commands: the lines of the SUBCOMMANDS section, "  NAME   description".
-string(REGEX MATCH "SUBCOMMANDS:\n(.*)" commands_block "${program}")
-string(REGEX MATCHALL "\n  ([a-z-]+)" command_lines "\n${CMAKE_MATCH_1}")
+# The commands: the lines of the Subcommands section, "  NAME   description", up to the
+# blank line that ends it.
+string(REGEX MATCH "[Ss][Uu][Bb][Cc][Oo][Mm][Mm][Aa][Nn][Dd][Ss]:\n([^\n]+\n)+" commands_block
+       "${program}")
+string(REGEX MATCHALL "\n  [a-z-]+" command_lines "${commands_block}")
+if(NOT command_lines)
+  message(FATAL_ERROR "no commands found in `${FETIC} --help`")
+endif()
 set(page ".TH FETIC 1 \"\" \"fetic ${VERSION}\" \"User Commands\"\n")
 string(APPEND page ".SH NAME\nfetic \\- frictionless contact of elastic struts (bar, plane stress, frames) by FETI and FETI-C\n")
 string(APPEND page ".SH SYNOPSIS\n.B fetic\n.I COMMAND\n[\n.I OPTIONS\n]\n")

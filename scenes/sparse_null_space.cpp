@@ -1,6 +1,7 @@
 #include "scenes/sparse_null_space.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 #include <Eigen/SPQRSupport>
 
@@ -12,9 +13,12 @@ Eigen::MatrixXd sparse_null_space(const Eigen::SparseMatrix<double>& C, int limi
     const int count = limit < 0 ? columns : std::min(limit, columns);
     return Eigen::MatrixXd::Identity(columns, count);
   }
-  double largest = 1.0;
-  for (int r = 0; r < C.rows(); ++r)
-    largest = std::max(largest, C.row(r).norm());
+  // The largest row norm, in one pass over the nonzeros (C is stored by columns).
+  Eigen::VectorXd squares = Eigen::VectorXd::Zero(C.rows());
+  for (int c = 0; c < C.outerSize(); ++c)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(C, c); it; ++it)
+      squares(it.row()) += it.value() * it.value();
+  const double largest = std::max(1.0, std::sqrt(squares.maxCoeff()));
   Eigen::SparseMatrix<double> transposed = C.transpose();
   transposed.makeCompressed();
   Eigen::SPQR<Eigen::SparseMatrix<double>> qr;
