@@ -209,6 +209,7 @@ int run_solve(const SolveArgs& args) {
   int output_status = kExitOk;
   try {
     outputs = std::make_unique<SolveOutputs>(output_args, model, load_factors);
+    outputs->show_progress(progress_mode(args.progress, args.quiet));
   } catch (const CLI::ValidationError& error) {
     std::cerr << scenes::printable(args.scene) << ": " << error.what() << '\n';
     output_status = kExitUsage;
