@@ -232,7 +232,8 @@ void register_bench(CLI::App& app, int& exit_code) {
   auto args = std::make_shared<BenchArgs>();
   CLI::App* command =
       app.add_subcommand("bench", "Benchmark every method on scenes (default: the bundled ones)");
-  command->add_option("scenes", args->scenes, "Scene files");
+  look_up_bundled_scenes(command->add_option(
+      "scenes", args->scenes, "Scene files (paths, or names of bundled scenes: fetic scenes)"));
   command->add_option("--repeat", args->repeat, "Solves per measurement (median)")
       ->check(CLI::Range(1, 1000))
       ->capture_default_str();

@@ -260,7 +260,9 @@ void register_bench_render(CLI::App& app, int& exit_code) {
   auto args = std::make_shared<BenchArgs>();
   CLI::App* command = app.add_subcommand(
       "bench-render", "Measure frames per second of an iteration movie, including PNG writing");
-  command->add_option("scene", args->scene, "Scene file")->capture_default_str();
+  look_up_bundled_scenes(
+      command->add_option("scene", args->scene, "Scene file or bundled scene name"))
+      ->capture_default_str();
   command->add_option("--method", args->method, "Method")
       ->check(method_name())
       ->capture_default_str();

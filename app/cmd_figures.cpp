@@ -125,7 +125,8 @@ void register_figures(CLI::App& app, int& exit_code) {
     ids.push_back(info.id);
   command->add_option("--figure", args->figures, "Only these figures (repeatable; default all)")
       ->check(CLI::IsMember(ids));
-  command->add_option("--scene", args->scene, "The thesis scene, for figures 9.x")
+  look_up_bundled_scenes(
+      command->add_option("--scene", args->scene, "The thesis scene, for figures 9.x"))
       ->capture_default_str();
   command->callback([args, &exit_code] { exit_code = run_figures(*args); });
 }

@@ -1,12 +1,14 @@
 // fetic render SCENE --out DIR: solver states as PNG frames (an iteration movie, the final
 // state, or a sequence of load steps), optionally assembled into an mp4 by ffmpeg.
 
+#include <chrono>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <functional>
+#include <iomanip>
 #include <iostream>
 #include <memory>
-#include <optional>
 #include <string>
 #include <vector>
 
@@ -63,54 +65,23 @@ render::ColorBy color_by(const std::string& name) {
   return color_from_name(name).value_or(render::ColorBy::Subdomain);
 }
 
-// ---- phase 0: the output targets, before any work ----
-
-int refused_target(const RenderArgs& args) {
-  if (args.out.empty() && args.movie.empty()) {
-    std::cerr << "fetic render: nothing to write: give --out DIR (PNG frames), --movie "
-                 "FILE.mp4, or both\n";
-    return kExitUsage;
-  }
-  try {
-    if (!args.out.empty()) check_output_folder(args.out);
-    if (!args.vtu.empty()) check_output_folder(args.vtu);
-  } catch (const OutputError& error) {
-    return report_output_error(error);
-  }
-  // The movie may go into the frames' folder: made first.
-  if (!args.out.empty() && !make_output_directory(args.out)) return kExitOutput;
-  try {
-    if (!args.movie.empty()) check_output_file(args.movie);
-  } catch (const OutputError& error) {
-    return report_output_error(error);
-  }
-  return kExitOk;
-}
-
-// ---- phase 1: read the view and the scene ----
-
-int read_view(const RenderArgs& args, SavedView& saved) {
-  if (args.view.empty()) return kExitOk;
-  try {
-    saved = read_view_file(args.view);
-  } catch (const ViewFileError& error) {
-    std::cerr << error.what() << '\n';
-    return kExitUsage;
-  }
-  return kExitOk;
-}
-
-std::optional<scenes::Scene> read_scene(const RenderArgs& args, const SavedView& saved,
-                                        int& status) {
-  auto scene = load_scene_or_report(args.scene, status);
-  if (!scene) return std::nullopt;
-  status = kExitUsage;
+int run_render(const RenderArgs& args) {
+  SavedView saved;
+  if (!args.view.empty()) try {
+      saved = read_view_file(args.view);
+    } catch (const ViewFileError& error) {
+      std::cerr << error.what() << '\n';
+      return kExitUsage;
+    }
+  int status = kExitOk;
+  const auto scene = load_scene_or_report(args.scene, status);
+  if (!scene) return status;
   if (const std::string problem =
           load_factor_problem(*scene, args.method.load_factors(),
                               args.method.load_steps.empty() ? "--load-factor" : "--load-steps");
       !problem.empty()) {
     std::cerr << scenes::printable(args.scene) << ": " << problem << '\n';
-    return std::nullopt;
+    return kExitUsage;
   }
   // Only beams carry a bending moment: a picture of bars or plane struts coloured by it
   // would be all grey, so say why rather than draw it.
@@ -120,26 +91,55 @@ std::optional<scenes::Scene> read_scene(const RenderArgs& args, const SavedView&
     std::cerr << scenes::printable(args.scene) << ": colouring by bending moment needs a frame "
               << "scene (model = \"frame\"); this one is a " << scenes::to_string(scene->model)
               << " model, whose struts carry no bending moment\n";
-    return std::nullopt;
+    return kExitUsage;
   }
-  status = kExitOk;
-  if (!memory_suffices(*scene, args.scene, {{args.method.kind()}, false, 0}, status))
-    return std::nullopt;
-  return scene;
-}
+  if (!memory_suffices(*scene, args.scene, {{args.method.kind()}, false, 0}, status)) return status;
+  Activity rendering("rendering");
+  const solver::Model model = solver::build_model(*scene);
+  use_solver_threads_for_pictures(model);
+  ImageSize size = *parse_image_size(args.size);
+  if (saved.width && saved.height && !args.size_given) {
+    size.width = *saved.width;
+    size.height = *saved.height;
+  }
 
-// ---- phase 2: set up the method, the renderer and the survey ----
+  render::FramePlan plan;
+  plan.load_factors = args.method.load_factors();
+  // One frame per load step unless every iteration is asked for; one load factor: every
+  // iteration unless --final.
+  plan.every_iteration = args.method.load_steps.empty() ? !args.final_only : args.every_iteration;
 
-// The survey pass: the same deterministic run, for fixed scales and the frame count.
-int survey_run(const RenderArgs& args, const solver::Model& model, solver::Method& method,
-               const render::FramePlan& plan, render::RunExtent& extent) {
+  const solver::MethodKind kind = args.method.kind();
+  const std::string& method_name = args.method.method;
+  std::unique_ptr<solver::Method> method;
+  try {
+    method = solver::make_method(kind, model, args.method.options());
+  } catch (const solver::SolverError& error) {
+    std::cerr << scenes::printable(args.scene) << ": " << error.what() << '\n';
+    return kExitSolverSetup;
+  }
+  // Before the (possibly long) survey: the output directory and a display must exist.
+  if (args.out.empty() && args.movie.empty()) {
+    std::cerr << "fetic render: nothing to write: give --out DIR (PNG frames), --movie "
+                 "FILE.mp4, or both\n";
+    return kExitUsage;
+  }
+  if (!args.out.empty() && !make_output_directory(args.out)) return kExitOutput;
+  auto headless = open_headless(args.out.empty() ? args.movie : args.out,
+                                render::base_text_size(size.width, size.height));
+  if (!headless) return kExitNoDisplay;
+
   ProgressLine progress(progress_mode(args.progress, args.quiet));
-  extent = render::survey(model, method, plan, [&] {
+  const auto solve_start = std::chrono::steady_clock::now();
+  // Survey pass: the same deterministic run, for fixed scales and the frame count.
+  render::RunExtent extent = render::survey(model, *method, plan, [&] {
     if (progress.due())
-      progress.update("render survey: iteration " + std::to_string(method.iteration()));
+      progress.update("render survey: iteration " + std::to_string(method->iteration()));
     return !interrupted();
   });
   progress.clear();
+  const auto solve_end = std::chrono::steady_clock::now();
+  double first_frame_seconds = -1.0;
   if (interrupted()) {
     std::cerr << scenes::printable(args.scene) << ": interrupted by " << interrupt_name()
               << " before any frame\n";
@@ -147,68 +147,71 @@ int survey_run(const RenderArgs& args, const solver::Model& model, solver::Metho
   }
   if (extent.frame_count > args.max_frames) {
     std::cerr << scenes::printable(args.scene) << ": " << extent.frame_count << " frames ("
-              << args.method.method << " takes " << extent.largest_iteration
+              << method_name << " takes " << extent.largest_iteration
               << " iterations) is more than --max-frames " << args.max_frames
               << "; raise it, or render --final or fewer --load-steps\n";
     return kExitUsage;
   }
-  return kExitOk;
-}
-
-// The view: a saved view's entries, then the options given on the command line.
-render::View make_view(const RenderArgs& args, const SavedView& saved, ImageSize size) {
   render::View view;
+  view.width = size.width;
+  view.height = size.height;
   view.magnification = args.magnification;
   view.color_by = color_by(args.color);
   view.show_overlay = !args.no_overlay;
   view.show_labels = args.labels;
+  // A saved view: its entries, then the options given on the command line.
   apply_view(saved, view);
-  if (saved.width && saved.height && !args.size_given) size = {*saved.width, *saved.height};
   view.width = size.width;
   view.height = size.height;
   if (args.magnification_given) view.magnification = args.magnification;
   if (args.color_given) view.color_by = color_by(args.color);
   if (args.no_overlay) view.show_overlay = false;
   if (args.labels) view.show_labels = true;
-  return view;
-}
-
-render::OverlayInfo overlay_info(const RenderArgs& args, const solver::Model& model) {
+  apply_scales(saved.scales, extent);
   render::OverlayInfo info;
   info.title =
       model.title.empty() ? std::filesystem::path(args.scene).filename().string() : model.title;
-  info.method = args.method.method;
-  if (solver::is_dual(args.method.kind())) info.method += " (" + args.method.preconditioner + ")";
-  return info;
-}
-
-// ---- phase 3: render the frames and write them, all or none ----
-
-struct FrameWriter {
-  const RenderArgs& args;
-  const solver::Model& model;
-  solver::Method& method;
-  const render::FramePlan& plan;
-  const render::RunExtent& extent;
-  const render::FrameComposer& composer;
-  Headless& headless;
-  int written = 0;
+  info.method = method_name;
+  if (solver::is_dual(kind)) info.method += " (" + args.method.preconditioner + ")";
+  const render::FrameComposer composer(model, view, extent, info,
+                                       static_cast<int>(plan.load_factors.size()));
 
   // PNG frames when --out is given, a movie streamed to ffmpeg when --movie is: both
-  // from the same rendered images; the ParaView files beside them with --vtu.
-  void render_frames(MovieStream* stream, VtuSeries* vtu) {
-    const int width = composer.view().width, height = composer.view().height;
-    std::unique_ptr<render::PngEncoderPool> pool;
-    if (!args.out.empty())
-      pool = std::make_unique<render::PngEncoderPool>(args.threads > 0 ? args.threads
-                                                                       : default_encoder_threads());
-    // ParaView's time: the load factor for a rising sweep of one frame per step, else the
-    // frame number.
-    bool time_is_load = !plan.every_iteration;
-    for (size_t k = 1; k < plan.load_factors.size(); ++k)
-      time_is_load = time_is_load && plan.load_factors[k] > plan.load_factors[k - 1];
-    ProgressLine progress(progress_mode(args.progress, args.quiet));
-    render::run_frames(method, plan, [&](const render::Frame& frame) {
+  // from the same rendered images.
+  const bool frames_wanted = !args.out.empty();
+  bool movie_wanted = !args.movie.empty();
+  status = kExitOk;
+  if (movie_wanted && !program_on_path("ffmpeg")) {
+    std::cerr << scenes::printable(args.movie)
+              << ": ffmpeg is not installed, so no movie can be made"
+              << (frames_wanted ? "; writing the PNG frames only" : "")
+              << " (apt-get install ffmpeg)\n";
+    if (!frames_wanted) return kExitOutput;
+    movie_wanted = false;
+    status = kExitOutput;
+  }
+  headless->renderer->set_samples(args.samples);
+  const int threads = args.threads > 0 ? args.threads : default_encoder_threads();
+  std::unique_ptr<render::PngEncoderPool> pool;
+  if (frames_wanted) pool = std::make_unique<render::PngEncoderPool>(threads);
+  int written = 0;
+  // ParaView's time: the load factor for a rising sweep of one frame per step, else the
+  // frame number.
+  bool time_is_load = !plan.every_iteration;
+  for (size_t k = 1; k < plan.load_factors.size(); ++k)
+    time_is_load = time_is_load && plan.load_factors[k] > plan.load_factors[k - 1];
+  std::unique_ptr<VtuSeries> vtu;
+  // The final state of a single solve is the survey's own: drawn from the method as the
+  // survey left it rather than solved again (the same deterministic state).
+  const bool survey_state_suffices = !plan.every_iteration && plan.load_factors.size() == 1;
+  const auto render_frames = [&](MovieStream* stream) {
+    const auto frames = [&](const std::function<bool(const render::Frame&)>& visit) {
+      if (!survey_state_suffices) return render::run_frames(*method, plan, visit);
+      const solver::Snapshot final_state = method->snapshot();
+      visit(render::Frame{0, 0, final_state, method->history()});
+      return 1;
+    };
+    frames([&](const render::Frame& frame) {
       if (interrupted()) return false;
       progress.update("render frame " + std::to_string(frame.index + 1) + " of " +
                       std::to_string(extent.frame_count));
@@ -216,8 +219,9 @@ struct FrameWriter {
         vtu->write(frame.snapshot, time_is_load
                                        ? plan.load_factors[static_cast<size_t>(frame.load_step)]
                                        : frame.index);
-      render::Image image = headless.renderer->render(
-          width, height, composer.compose(frame).layers(), render::palette::background);
+      const render::ComposedFrame composed = composer.compose(frame);
+      render::Image image = headless->renderer->render(size.width, size.height, composed.layers(),
+                                                       render::palette::background);
       if (stream && pool) {
         stream->submit(image);  // a copy: the PNG encoder takes the other
       } else if (stream) {
@@ -230,32 +234,29 @@ struct FrameWriter {
         pool->submit(std::move(image),
                      [path](render::PngBytes png) { write_png_atomically(path, png); });
       }
-      ++written;
+      if (written++ == 0)
+        first_frame_seconds =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - solve_end).count();
       return true;
     });
     if (pool) pool->finish();
     progress.clear();
-  }
-
-  // Each file appears whole (frames, movie, ParaView files), frame by frame as the run
-  // goes, so that an interrupted run leaves the complete frames it made.
-  int run(bool movie_wanted) {
-    const bool frames_wanted = !args.out.empty();
-    try {
-      std::unique_ptr<VtuSeries> vtu;
-      if (!args.vtu.empty())
-        vtu = std::make_unique<VtuSeries>(args.vtu, model, *parse_vtk_encoding(args.vtu_format));
-      if (movie_wanted) {
-        write_output_by(args.movie, [&](const ExternalTarget& target) {
-          MovieStream stream(target, composer.view().width, composer.view().height, args.fps);
-          render_frames(&stream, vtu.get());
-          return stream.finish();
-        });
-      } else {
-        render_frames(nullptr, vtu.get());
-      }
-    } catch (const OutputError& error) {
-      if (!interrupted()) return report_output_error(error);
+  };
+  try {
+    if (!args.vtu.empty())
+      vtu = std::make_unique<VtuSeries>(args.vtu, model, *parse_vtk_encoding(args.vtu_format));
+    if (movie_wanted) {
+      write_output_by(args.movie, [&](const ExternalTarget& target) {
+        MovieStream stream(target, size.width, size.height, args.fps);
+        render_frames(&stream);
+        return stream.finish();
+      });
+    } else {
+      render_frames(nullptr);
+    }
+  } catch (const OutputError& error) {
+    progress.clear();
+    if (interrupted()) {
       std::cerr << scenes::printable(movie_wanted ? args.movie : args.out) << ": interrupted by "
                 << interrupt_name()
                 << (movie_wanted ? " while streaming frames to ffmpeg; no movie written" : "")
@@ -264,104 +265,46 @@ struct FrameWriter {
                         : std::string())
                 << "\n";
       return kExitInterrupted;
-    } catch (const render::RenderError& error) {
-      std::cerr << scenes::printable(frames_wanted ? args.out : args.movie)
-                << ": rendering failed: " << error.what() << '\n';
-      return kExitOutput;
     }
-    if (interrupted()) {
-      std::cerr << scenes::printable(args.out) << ": interrupted by " << interrupt_name()
-                << " after " << written << " complete frames\n";
-      return kExitInterrupted;
-    }
-    return kExitOk;
+    return report_output_error(error);
+  } catch (const render::RenderError& error) {
+    std::cerr << scenes::printable(frames_wanted ? args.out : args.movie)
+              << ": rendering failed: " << error.what() << '\n';
+    return kExitOutput;
   }
-};
+  if (interrupted()) {
+    std::cerr << scenes::printable(args.out) << ": interrupted by " << interrupt_name() << " after "
+              << written << " complete frames\n";
+    return kExitInterrupted;
+  }
 
-// ffmpeg missing: the frames alone when --out is given (status 5 at the end), else 5 now.
-int movie_problem(const RenderArgs& args, bool& movie_wanted) {
-  movie_wanted = !args.movie.empty();
-  if (!movie_wanted || program_on_path("ffmpeg")) return kExitOk;
-  const bool frames_wanted = !args.out.empty();
-  std::cerr << scenes::printable(args.movie) << ": ffmpeg is not installed, so no movie can be made"
-            << (frames_wanted ? "; writing the PNG frames only" : "")
-            << " (apt-get install ffmpeg)\n";
-  movie_wanted = false;
-  return kExitOutput;
-}
-
-// ---- phase 4: report ----
-
-void print_report(const RenderArgs& args, const FrameWriter& frames, bool movie_wanted) {
   // With --movie - the movie goes to stdout: the report goes to stderr then.
   std::ostream& report = is_stdout(args.movie) ? std::cerr : std::cout;
-  const render::View& view = frames.composer.view();
-  const int count = frames.extent.frame_count;
-  const double magnification = frames.composer.framing().magnification;
-  if (!args.out.empty()) {
-    report << "frames       " << frames.written << " in " << args.out << " ("
-           << frame_name(0, count) << " .. " << frame_name(frames.written - 1, count) << "), "
-           << view.width << "x" << view.height << ", magnification " << magnification << "\n";
+  if (frames_wanted) {
+    report << "frames       " << written << " in " << args.out << " ("
+           << frame_name(0, extent.frame_count) << " .. "
+           << frame_name(written - 1, extent.frame_count) << "), " << size.width << "x"
+           << size.height << ", magnification " << composer.framing().magnification << "\n";
     const std::string next =
-        (std::filesystem::path(args.out) / frame_name(frames.written, count)).string();
+        (std::filesystem::path(args.out) / frame_name(written, extent.frame_count)).string();
     if (std::filesystem::exists(next))
       report << "note         " << next
              << " and later frames are from an earlier run; they were left alone\n";
   }
   if (movie_wanted)
-    report << "movie        " << args.movie << " (" << frames.written << " frames at " << args.fps
-           << " per second, " << view.width << "x" << view.height << ", magnification "
-           << magnification << ")\n";
-  report << "renderer     " << frames.headless.context->description() << ", " << args.samples
+    report << "movie        " << args.movie << " (" << written << " frames at " << args.fps
+           << " per second, " << size.width << "x" << size.height << ", magnification "
+           << composer.framing().magnification << ")\n";
+  report << "renderer     " << headless->context->description() << ", " << args.samples
          << (args.samples == 1 ? " sample" : " samples") << " per pixel\n";
-}
+  if (survey_state_suffices && first_frame_seconds >= 0.0)
+    report << "time         solve " << std::fixed << std::setprecision(2)
+           << std::chrono::duration<double>(solve_end - solve_start).count()
+           << " s, first frame rendered " << first_frame_seconds << " s after it\n"
+           << std::defaultfloat;
 
-// The phases: check the targets, read, set up (method, renderer, survey), render and
-// write, report.
-int run_render(const RenderArgs& args) {
-  if (const int status = refused_target(args)) return status;
-  SavedView saved;
-  if (const int status = read_view(args, saved)) return status;
-  int status = kExitOk;
-  const auto scene = read_scene(args, saved, status);
-  if (!scene) return status;
-  Activity rendering("rendering");
-  const solver::Model model = solver::build_model(*scene);
-  use_solver_threads_for_pictures(model);
-  const render::View view = make_view(args, saved, *parse_image_size(args.size));
-
-  render::FramePlan plan;
-  plan.load_factors = args.method.load_factors();
-  // One frame per load step unless every iteration is asked for; one load factor: every
-  // iteration unless --final.
-  plan.every_iteration = args.method.load_steps.empty() ? !args.final_only : args.every_iteration;
-  std::unique_ptr<solver::Method> method;
-  try {
-    method = solver::make_method(args.method.kind(), model, args.method.options());
-  } catch (const solver::SolverError& error) {
-    std::cerr << scenes::printable(args.scene) << ": " << error.what() << '\n';
-    return kExitSolverSetup;
-  }
-  // Before the (possibly long) survey: the output directory and a display must exist.
-  if (!args.out.empty() && !make_output_directory(args.out)) return kExitOutput;
-  auto headless = open_headless(args.out.empty() ? args.movie : args.out,
-                                render::base_text_size(view.width, view.height));
-  if (!headless) return kExitNoDisplay;
-  render::RunExtent extent;
-  if (const int failed = survey_run(args, model, *method, plan, extent)) return failed;
-  apply_scales(saved.scales, extent);
-  const render::FrameComposer composer(model, view, extent, overlay_info(args, model),
-                                       static_cast<int>(plan.load_factors.size()));
-
-  bool movie_wanted = false;
-  status = movie_problem(args, movie_wanted);
-  if (status != kExitOk && args.out.empty()) return status;
-  headless->renderer->set_samples(args.samples);
-  FrameWriter frames{args, model, *method, plan, extent, composer, *headless};
-  if (const int failed = frames.run(movie_wanted)) return failed;
-  print_report(args, frames, movie_wanted);
   if (extent.final_status != solver::Status::Converged) {
-    std::cerr << scenes::printable(args.scene) << ": " << args.method.method
+    std::cerr << scenes::printable(args.scene) << ": " << method_name
               << " did not converge: " << extent.final_message << " (the frames show it)\n";
     if (status == kExitOk) status = kExitNotConverged;
   }
@@ -376,10 +319,9 @@ void register_render(CLI::App& app, int& exit_code) {
       "render",
       "Render solver states as PNG frames and/or a movie: an iteration movie, the final state "
       "or load steps");
-  command->add_option("scene", args->scene, "Scene file (TOML, see docs/SCENES.md)")->required();
-  command
-      ->add_option("--out", args->out,
-                   "Write PNG frames frame_0000.png, frame_0001.png, ... into this directory")
+  look_up_bundled_scenes(command->add_option("scene", args->scene, kSceneArgumentHelp))->required();
+  command->add_option("--out", args->out,
+                      "Write PNG frames frame_0000.png, frame_0001.png, ... into this directory")
       ->check(output_name(OutputKind::Folder));
   add_method_options(command, args->method);
   CLI::Option* size = command->add_option("--size", args->size, "Image size in pixels")
@@ -394,10 +336,9 @@ void register_render(CLI::App& app, int& exit_code) {
   auto* final_only =
       command->add_flag("--final", args->final_only, "Only the final state of each solve");
   every->excludes(final_only);
-  command
-      ->add_option("--movie", args->movie,
-                   "Stream the frames into this H.264 mp4 (ffmpeg; - for stdout; no PNG files "
-                   "unless --out)")
+  command->add_option("--movie", args->movie,
+                      "Stream the frames into this H.264 mp4 (ffmpeg; - for stdout; no PNG files "
+                      "unless --out)")
       ->check(output_name());
   command->add_option("--fps", args->fps, "Frames per second of the movie")
       ->check(CLI::Range(1, 120))
@@ -428,10 +369,9 @@ void register_render(CLI::App& app, int& exit_code) {
                    "Multisampling: samples per pixel (1: none; the GL's maximum at most)")
       ->check(CLI::Range(1, 32))
       ->capture_default_str();
-  command
-      ->add_option("--vtu", args->vtu,
-                   "Also write every frame's state as ParaView files here (struts.pvd, "
-                   "contacts.pvd)")
+  command->add_option("--vtu", args->vtu,
+                      "Also write every frame's state as ParaView files here (struts.pvd, "
+                      "contacts.pvd)")
       ->check(output_name(OutputKind::Folder));
   command->add_option("--vtu-format", args->vtu_format, "Data encoding of the .vtu files")
       ->check(CLI::IsMember({"ascii", "binary", "zlib"}))

@@ -284,6 +284,7 @@ int open_outputs(const SolveArgs& args, const solver::Model& model, const RankPo
   int status = kExitOk;
   try {
     outputs = std::make_unique<SolveOutputs>(output_args, model, args.method.load_factors());
+    outputs->show_progress(progress_mode(args.progress, args.quiet));
     if (!args.monitor.empty()) monitor.open(args.monitor);
   } catch (const CLI::ValidationError& error) {
     std::cerr << scenes::printable(args.scene) << ": " << error.what() << '\n';
@@ -531,7 +532,7 @@ int run_solve(const SolveArgs& args) {
 void register_solve(CLI::App& app, int& exit_code) {
   auto args = std::make_shared<SolveArgs>();
   CLI::App* command = app.add_subcommand("solve", "Solve a scene and report the result");
-  command->add_option("scene", args->scene, "Scene file (TOML, see docs/SCENES.md)")->required();
+  look_up_bundled_scenes(command->add_option("scene", args->scene, kSceneArgumentHelp))->required();
   add_method_options(command, args->method);
   add_solve_output_options(command, args->outputs);
   command->add_flag("--reference", args->reference,

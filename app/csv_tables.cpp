@@ -98,11 +98,14 @@ void write_history_csv(std::ostream& out, const std::vector<solver::SweepStep>& 
 void write_steps_csv(std::ostream& out, const solver::Model& model,
                      const std::vector<solver::SweepStep>& steps,
                      const std::vector<TrackedNode>& nodes) {
+  // Quantities with a unit name it, in the scene's units: "ux:left.to [m]".
+  const std::string length = " [" + model.units.length + "]",
+                    force_unit = " [" + model.units.force + "]";
   out << "load_step,load_factor,status,iterations,residual,active_pairs";
   for (const TrackedNode& node : nodes)
-    out << ",ux:" << node.label << ",uy:" << node.label;
+    out << ",ux:" << node.label << length << ",uy:" << node.label << length;
   for (const auto& [a, b] : model.contact_ends)
-    out << ",force:" << a << '/' << b << ",active_pairs:" << a << '/' << b;
+    out << ",force:" << a << '/' << b << force_unit << ",active_pairs:" << a << '/' << b;
   out << '\n';
   for (size_t k = 0; k < steps.size(); ++k) {
     const solver::Snapshot& state = steps[k].state;

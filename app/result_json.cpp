@@ -1,13 +1,15 @@
 #include "app/result_json.hpp"
 
 #include "app/state_json.hpp"
+#include "app/version.hpp"
 
 namespace fetic::app {
 
 nlohmann::ordered_json result_json(const solver::Model& model, const solver::Snapshot& final_state,
                                    const std::vector<solver::HistoryEntry>& history,
-                                   const RunInfo& info) {
+                                   const RunInfo& info, std::vector<ElementMaker>* makers) {
   nlohmann::ordered_json result;
+  result["fetic_version"] = fetic_version();
   result["scene"] = info.scene_path;
   result["title"] = model.title;
   result["model"] = scenes::to_string(model.kind);
@@ -22,7 +24,7 @@ nlohmann::ordered_json result_json(const solver::Model& model, const solver::Sna
   result["ranks"] = info.ranks;
   if (!info.subdomains_per_rank.empty()) result["subdomains_per_rank"] = info.subdomains_per_rank;
   // load_factor, converged, iterations, struts, contacts, reactions, ...
-  add_state(result, model, final_state);
+  add_state(result, model, final_state, makers);
   result["history"] = history_json(history);
   return result;
 }

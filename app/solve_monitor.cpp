@@ -7,6 +7,8 @@
 
 #include "app/method_options.hpp"
 #include "app/output_options.hpp"
+#include "app/version.hpp"
+#include "scenes/units.hpp"
 
 namespace fetic::app {
 
@@ -98,6 +100,16 @@ void SolveMonitor::observe(const solver::Method& method) {
     lines += line.dump() + '\n';
   }
   working_set_ = working_set;
+  if (!header_written_) {
+    // Written with the first iteration's line, not at open: a FIFO's reader sees both.
+    const nlohmann::ordered_json header = {{"fetic_version", fetic_version()},
+                                           {"units",
+                                            {{"length", model_->units.length},
+                                             {"force", model_->units.force},
+                                             {"stress", scenes::stress_unit(model_->units)}}}};
+    lines = header.dump() + '\n' + lines;
+    header_written_ = true;
+  }
   out_.write(lines);
 }
 

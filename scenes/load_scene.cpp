@@ -12,6 +12,7 @@
 
 #include <toml++/toml.h>
 
+#include "scenes/frame_mechanisms.hpp"
 #include "scenes/message_text.hpp"
 #include "scenes/scene_text.hpp"
 #include "scenes/units.hpp"
@@ -975,7 +976,12 @@ Problem misplaced_non_ascii(std::string_view text) {
 
 }  // namespace
 
-Scene parse_scene(std::string_view text, const std::string& path) {
+namespace {
+
+// parse_scene(), with `stop` asked between the steps of checks that take long on large
+// scenes (the frame mechanism check): then a SceneError says the loading was interrupted.
+Scene parse_scene_text(std::string_view text, const std::string& path,
+                       const std::function<bool()>& stop) {
   // TOML allows no NUL byte anywhere; toml++ 3.3 trips over some (after '[' an internal
   // assertion, found by fuzz/fuzz_scene). Refuse them up front with a clearer message.
   if (const size_t nul = text.find('\0'); nul != std::string_view::npos) {
@@ -998,13 +1004,23 @@ Scene parse_scene(std::string_view text, const std::string& path) {
   scene.path = path;
   std::vector<Problem> problems;
   SceneParser(scene, problems).parse(root);
-  if (problems.empty()) problems = validate_scene(scene);
+  try {
+    if (problems.empty()) problems = validate_scene(scene, stop);
+  } catch (const MechanismCheckStopped&) {
+    throw SceneError(path, {{1, "interrupted while checking the scene"}});
+  }
   if (!problems.empty()) throw SceneError(path, std::move(problems));
   return scene;
 }
 
+}  // namespace
+
+Scene parse_scene(std::string_view text, const std::string& path) {
+  return parse_scene_text(text, path, {});
+}
+
 Scene load_scene_file(const std::string& path, const std::function<bool()>& stop) {
-  return parse_scene(read_scene_text(path, stop), path);
+  return parse_scene_text(read_scene_text(path, stop), path, stop);
 }
 
 }  // namespace fetic::scenes

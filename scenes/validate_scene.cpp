@@ -244,7 +244,7 @@ void check_plane_struts_held(const Scene& scene, std::vector<Problem>& problems)
 
 }  // namespace
 
-std::vector<Problem> validate_scene(Scene& scene) {
+std::vector<Problem> validate_scene(Scene& scene, const std::function<bool()>& stop) {
   std::vector<Problem> problems;
   scene.warnings.clear();
   check_strut_geometry(scene, problems);
@@ -252,7 +252,7 @@ std::vector<Problem> validate_scene(Scene& scene) {
   check_magnitudes(scene, problems);
   if (!problems.empty()) return problems;
   if (scene.model == ModelKind::Frame) {
-    validate_frame(scene, problems);
+    validate_frame(scene, problems, stop);
     return problems;
   }
   check_contacts(scene, problems, scene.warnings);

@@ -121,7 +121,7 @@ void register_gui(CLI::App& app, int& exit_code) {
   auto args = std::make_shared<gui::Options>();
   CLI::App* command = app.add_subcommand(
       "gui", "Interactive window: load slider, live warm-started FETI-C, iteration history");
-  command->add_option("scene", args->scene, "Scene file (TOML, see docs/SCENES.md)")->required();
+  look_up_bundled_scenes(command->add_option("scene", args->scene, kSceneArgumentHelp))->required();
   command->add_option("--method", args->method, "Method to start with")
       ->check(method_name())
       ->capture_default_str();
@@ -167,6 +167,11 @@ void register_gui(CLI::App& app, int& exit_code) {
       ->add_option("--bench", args->bench,
                    "Benchmark: drag the slider over N load changes, then time 30 isolated "
                    "changes; print latency and frame rate, quit")
+      ->check(CLI::Range(2, 100000));
+  command
+      ->add_option("--bench-view", args->bench_view,
+                   "Benchmark: after the first solve, pan and zoom the picture over N frames; "
+                   "print frames and pictures per second, quit")
       ->check(CLI::Range(2, 100000));
   command->callback([args, size, &exit_code] {
     args->size_given = size->count() > 0;

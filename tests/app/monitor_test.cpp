@@ -53,9 +53,16 @@ std::string read_text(const std::string& path) {
   return {std::istreambuf_iterator<char>(in), {}};
 }
 
+// The iteration lines, after checking the first line: the version and units header.
 std::vector<json> lines_of(const std::string& text) {
   std::vector<json> lines;
   std::istringstream in(text);
+  std::string first;
+  REQUIRE(std::getline(in, first));
+  const json header = json::parse(first);
+  CHECK(header["fetic_version"].get<std::string>() == FETIC_VERSION);
+  CHECK(header["units"]["length"].is_string());
+  CHECK_FALSE(header.contains("iteration"));
   for (std::string line; std::getline(in, line);)
     lines.push_back(json::parse(line));
   return lines;

@@ -123,10 +123,11 @@ TEST_CASE("two bars load sweep: contact force and displacement curves match the 
   for (const auto& row : rows) {
     const double t = std::stod(row.at("load_factor"));
     CHECK(row.at("status") == "converged");
-    CHECK(std::abs(std::stod(row.at("force:left.to/right.from")) - closed.force(t)) <=
+    CHECK(std::abs(std::stod(row.at("force:left.to/right.from [N]")) - closed.force(t)) <=
           1e-8 * force_scale);
-    CHECK(std::abs(std::stod(row.at("ux:right.from")) - closed.right_from_ux(t)) <= 1e-8 * u_scale);
-    CHECK(std::abs(std::stod(row.at("ux:left.to")) - closed.left_to_ux(t)) <= 1e-8 * u_scale);
+    CHECK(std::abs(std::stod(row.at("ux:right.from [m]")) - closed.right_from_ux(t)) <=
+          1e-8 * u_scale);
+    CHECK(std::abs(std::stod(row.at("ux:left.to [m]")) - closed.left_to_ux(t)) <= 1e-8 * u_scale);
     CHECK(std::stoi(row.at("active_pairs:left.to/right.from")) == (closed.force(t) > 0.0 ? 1 : 0));
   }
   // The history table: one row per history entry of every step.

@@ -419,6 +419,8 @@ std::vector<json> json_lines(const fs::path& path) {
   std::ifstream in(path);
   for (std::string line; std::getline(in, line);)
     lines.push_back(json::parse(line));  // every line whole: a torn one throws
+  // The first line is the stream's header (version, units), not an iteration.
+  if (!lines.empty() && lines.front().contains("fetic_version")) lines.erase(lines.begin());
   return lines;
 }
 

@@ -353,6 +353,8 @@ std::vector<nlohmann::json> monitor_lines(const std::string& path) {
   std::vector<nlohmann::json> lines;
   for (std::string line; std::getline(in, line);)
     lines.push_back(nlohmann::json::parse(line));
+  // The first line is the stream's header (version, units), not an iteration.
+  if (!lines.empty() && lines.front().contains("fetic_version")) lines.erase(lines.begin());
   return lines;
 }
 
