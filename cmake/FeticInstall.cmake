@@ -51,7 +51,7 @@ string(TIMESTAMP fetic_changelog_date "%a, %d %b %Y %H:%M:%S +0000" UTC)
 file(WRITE ${PROJECT_BINARY_DIR}/changelog.Debian
      "fetic (${PROJECT_VERSION}) unstable; urgency=medium\n\n"
      "  * Package built from the fetic source tree (see README.md).\n\n"
-     " -- fetic developers <fetic@localhost>  ${fetic_changelog_date}\n")
+     " -- fetic developers <fetic@example.org>  ${fetic_changelog_date}\n")
 add_custom_command(
   OUTPUT ${PROJECT_BINARY_DIR}/changelog.Debian.gz
   COMMAND gzip -9nkf ${PROJECT_BINARY_DIR}/changelog.Debian
@@ -75,10 +75,11 @@ string(CONCAT CPACK_PACKAGE_DESCRIPTION
     "shows a solve live in a window.")
 set(CPACK_PACKAGING_INSTALL_PREFIX /usr)
 set(CPACK_DEBIAN_FILE_NAME DEB-DEFAULT)
-set(CPACK_DEBIAN_PACKAGE_MAINTAINER "fetic developers <fetic@localhost>")
+set(CPACK_DEBIAN_PACKAGE_MAINTAINER "fetic developers <fetic@example.org>")
 set(CPACK_DEBIAN_PACKAGE_SECTION science)
 set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS ON)
-set(CPACK_DEBIAN_PACKAGE_DEPENDS "libegl-mesa0, libgl1-mesa-dri")
+# python3: the installed helper script vtu_picture.py is a python3 program (lintian)
+set(CPACK_DEBIAN_PACKAGE_DEPENDS "libegl-mesa0, libgl1-mesa-dri, python3")
 set(CPACK_DEBIAN_PACKAGE_RECOMMENDS "ffmpeg")
 set(CPACK_STRIP_FILES ON)
 include(CPack)
