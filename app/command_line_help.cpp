@@ -6,26 +6,11 @@
 #include <vector>
 
 #include "app/exit_codes.hpp"
+#include "scenes/message_text.hpp"
 #include "scenes/scene_error.hpp"
 
 namespace fetic::app {
 namespace {
-
-size_t edit_distance(const std::string& a, const std::string& b) {
-  std::vector<size_t> row(b.size() + 1);
-  for (size_t j = 0; j <= b.size(); ++j)
-    row[j] = j;
-  for (size_t i = 1; i <= a.size(); ++i) {
-    size_t diagonal = row[0];
-    row[0] = i;
-    for (size_t j = 1; j <= b.size(); ++j) {
-      const size_t above = row[j];
-      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
-      diagonal = above;
-    }
-  }
-  return row[b.size()];
-}
 
 // Every "--name" the command accepts (its own and the program's).
 std::vector<std::string> long_names(const CLI::App& command) {
@@ -64,7 +49,8 @@ std::string nearest_name(const std::string& word, const std::vector<std::string>
   for (const std::string& name : names) {
     // A prefix of one name only ("--meth") is as good as a typo.
     const bool prefix = name.size() > word.size() && name.compare(0, word.size(), word) == 0;
-    const size_t distance = prefix ? 1 : edit_distance(word, name);
+    const size_t distance =
+        prefix ? 1 : scenes::edit_distance(word, name, scenes::LetterCase::Exact);
     if (distance < best_distance) {
       best = name;
       best_distance = distance;

@@ -77,30 +77,12 @@ std::string type_name(const toml::node& node) {
   }
 }
 
-size_t edit_distance(std::string_view a, std::string_view b) {
-  std::vector<size_t> row(b.size() + 1);
-  for (size_t j = 0; j <= b.size(); ++j)
-    row[j] = j;
-  for (size_t i = 1; i <= a.size(); ++i) {
-    size_t diagonal = row[0];
-    row[0] = i;
-    for (size_t j = 1; j <= b.size(); ++j) {
-      const size_t above = row[j];
-      const bool same = std::tolower(static_cast<unsigned char>(a[i - 1])) ==
-                        std::tolower(static_cast<unsigned char>(b[j - 1]));
-      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (same ? 0 : 1)});
-      diagonal = above;
-    }
-  }
-  return row[b.size()];
-}
-
 // " (did you mean 'area'?)" when a known key is close to the unknown one.
 std::string suggestion(std::string_view key, const std::vector<std::string>& known) {
   std::string best;
   size_t best_distance = 3;
   for (const std::string& candidate : known) {
-    const size_t d = edit_distance(key, candidate);
+    const size_t d = edit_distance(key, candidate, LetterCase::Ignored);
     if (d < best_distance) {
       best_distance = d;
       best = candidate;

@@ -4,9 +4,12 @@
 // characters, so that a message stays one readable line whatever the input held (a
 // 10 MB name, a NUL byte, a BOM).
 
+#include <algorithm>
+#include <cctype>
 #include <cstdio>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "scenes/scene_error.hpp"
 
@@ -45,6 +48,32 @@ inline std::string number_text(double value) {
   char buffer[32];
   std::snprintf(buffer, sizeof buffer, "%g", value);
   return buffer;
+}
+
+enum class LetterCase { Exact, Ignored };
+
+// Levenshtein distance, for "did you mean" suggestions (scene keys ignore case, command
+// line options do not).
+inline size_t edit_distance(std::string_view a, std::string_view b, LetterCase letter_case) {
+  const auto same = [letter_case](char x, char y) {
+    if (letter_case == LetterCase::Exact) return x == y;
+    return std::tolower(static_cast<unsigned char>(x)) ==
+           std::tolower(static_cast<unsigned char>(y));
+  };
+  std::vector<size_t> row(b.size() + 1);
+  for (size_t j = 0; j <= b.size(); ++j)
+    row[j] = j;
+  for (size_t i = 1; i <= a.size(); ++i) {
+    size_t diagonal = row[0];
+    row[0] = i;
+    for (size_t j = 1; j <= b.size(); ++j) {
+      const size_t above = row[j];
+      row[j] =
+          std::min({row[j] + 1, row[j - 1] + 1, diagonal + (same(a[i - 1], b[j - 1]) ? 0 : 1)});
+      diagonal = above;
+    }
+  }
+  return row[b.size()];
 }
 
 }  // namespace fetic::scenes
