@@ -41,16 +41,6 @@ std::optional<LoadSteps> parse_load_steps(const std::string& text) {
   return LoadSteps{*first, *last, static_cast<int>(n)};
 }
 
-std::optional<double> parse_number(const std::string& text) {
-  if (text.empty() || std::isspace(static_cast<unsigned char>(text[0]))) return std::nullopt;
-  char* end = nullptr;
-  errno = 0;
-  const double value = std::strtod(text.c_str(), &end);
-  // strtod flags a subnormal result (1e-320) with ERANGE too: that one is a number.
-  if (end != text.c_str() + text.size() || !std::isfinite(value)) return std::nullopt;
-  return value;
-}
-
 namespace {
 
 std::string short_number(double value) {
@@ -132,9 +122,9 @@ void add_method_options(CLI::App* command, MethodArgs& args) {
   command->parse_complete_callback([&args, preconditioner] {
     const auto kind = solver::parse_method(args.method);
     if (preconditioner->count() > 0 && kind && !solver::is_dual(*kind))
-      throw CLI::ValidationError("--preconditioner",
-                                 "only feti, feti-c and mprgp have a preconditioner; " +
-                                     args.method + " does not use one");
+      throw CLI::ValidationError(
+          "--preconditioner", "only feti, feti-c and mprgp have a preconditioner; " + args.method +
+                                  " does not use one");
   });
   command->add_flag("--no-scaling", args.no_scaling,
                     "FETI preconditioners without stiffness scaling");

@@ -20,8 +20,8 @@
 #include "app/exit_codes.hpp"
 #include "app/interrupt.hpp"
 #include "app/output_file.hpp"
-#include "solver/threads.hpp"
 #include "scenes/scene_error.hpp"
+#include "solver/threads.hpp"
 
 extern char** environ;
 
@@ -32,7 +32,9 @@ std::optional<ImageSize> parse_image_size(const std::string& text) {
   if (std::sscanf(text.c_str(), "%d%c%d%c", &width, &x, &height, &extra) != 3 ||
       (x != 'x' && x != 'X'))
     return std::nullopt;
-  if (width < 16 || height < 16 || width > 8192 || height > 8192) return std::nullopt;
+  if (width < kMinImageSide || height < kMinImageSide || width > kMaxImageSide ||
+      height > kMaxImageSide)
+    return std::nullopt;
   return ImageSize{width, height};
 }
 
@@ -80,8 +82,8 @@ std::optional<Headless> open_headless(const std::string& output, float text_size
     std::cerr << scenes::printable(output) << ": cannot render: " << error.what() << '\n';
     return std::nullopt;
   }
-  headless.font = std::make_unique<render::FontAtlas>(
-      1.3f * text_size, font_file("DejaVuSans.ttf"), font_file("DejaVuSans-Bold.ttf"));
+  headless.font = std::make_unique<render::FontAtlas>(1.3f * text_size, font_file("DejaVuSans.ttf"),
+                                                      font_file("DejaVuSans-Bold.ttf"));
   if (!headless.font->note().empty()) std::cerr << "note: " << headless.font->note() << '\n';
   try {
     headless.renderer = std::make_unique<render::GlRenderer>(*headless.context, *headless.font);

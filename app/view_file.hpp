@@ -39,8 +39,10 @@ class ViewFileError : public std::runtime_error {
 const char* color_name(render::ColorBy color);
 std::optional<render::ColorBy> color_from_name(const std::string& name);
 
+// Reads the file through app/json_input.hpp (8 MiB, FIFOs, signals); throws ViewFileError.
 SavedView read_view_file(const std::string& path);
-std::string view_json(const SavedView& view);  // the file's text
+SavedView parse_view(const std::string& text, const std::string& path);  // the file's text
+std::string view_json(const SavedView& view);                            // the file's text
 // Writes atomically through the output targets (throws OutputError).
 void write_view_file(const std::string& path, const SavedView& view);
 
