@@ -35,9 +35,11 @@ PairValues pair_values(const solver::Model& model, const solver::Snapshot& snaps
 }
 
 // One strip: axes over pairs 0 .. n-1 and a bar from 0 to each value.
+// `inner_left`: where the plot box should start (the strips line up their pairs); 0: where
+// the frame and its tick labels put it.
 PlotArea draw_strip(DrawList& list, const Rect& frame, float text, const std::string& title,
                     const std::string& x_label, const std::vector<double>& values, double divisor,
-                    Color color) {
+                    Color color, float inner_left = 0.0f) {
   PlotSpec spec;
   spec.frame = frame;
   spec.text_size = text;
@@ -52,6 +54,10 @@ PlotArea draw_strip(DrawList& list, const Rect& frame, float text, const std::st
   range.width = 0.0f;
   spec.series.push_back(range);
   spec.legend = Corner::TopRight;
+  if (inner_left > 0.0f) {  // measured without drawing, then moved to start there
+    DrawList scratch;
+    spec.frame.x0 += std::max(0.0f, inner_left - draw_axes(scratch, spec).inner().x0);
+  }
   const PlotArea area = draw_axes(list, spec);
   const Rect& box = area.inner();
   const float bar = std::max(1.0f, 0.8f * box.width() / static_cast<float>(values.size()));
@@ -105,13 +111,24 @@ DrawList draw_contact_chart(const solver::Model& model, const solver::Snapshot& 
   const float half = 0.5f * (region.height() - marks - 2.0f * pad);
   const Rect force_frame{region.x0 + pad, region.y0 + pad, region.x1 - pad, region.y0 + pad + half};
   const Rect gap_frame{region.x0 + pad, force_frame.y1 + marks, region.x1 - pad, region.y1 - pad};
-  const PlotArea forces =
-      draw_strip(list, force_frame, t, "contact force per pair [" + force_unit.name + "]", "",
-                 values.force, force_unit.divisor, palette::force);
-  draw_strip(list, gap_frame, t,
-             "current gap [" + gap_unit.name + "]; active (red): " + std::to_string(active) +
-                 " of " + pairs,
-             "pair (result file order)", values.gap, gap_unit.divisor, palette::gap);
+  // Both strips' boxes start where the wider tick labels need, so a pair's bars line up.
+  const std::string force_title = "contact force per pair [" + force_unit.name + "]";
+  const std::string gap_title = "current gap [" + gap_unit.name +
+                                "]; active (red): " + std::to_string(active) + " of " + pairs;
+  const std::string x_label = "pair (result file order)";
+  DrawList scratch;
+  const float left = std::max(draw_strip(scratch, force_frame, t, force_title, "", values.force,
+                                         force_unit.divisor, palette::force)
+                                  .inner()
+                                  .x0,
+                              draw_strip(scratch, gap_frame, t, gap_title, x_label, values.gap,
+                                         gap_unit.divisor, palette::gap)
+                                  .inner()
+                                  .x0);
+  const PlotArea forces = draw_strip(list, force_frame, t, force_title, "", values.force,
+                                     force_unit.divisor, palette::force, left);
+  draw_strip(list, gap_frame, t, gap_title, x_label, values.gap, gap_unit.divisor, palette::gap,
+             left);
   // The active pairs: a red tick per pair under the force strip, at the x of its bar.
   const float y0 = force_frame.y1 + 0.1f * marks, y1 = force_frame.y1 + 0.8f * marks;
   const float tick =

@@ -523,12 +523,13 @@ struct ValueLegend {
   double scale;
   const char* name;
   double now = 0.0;
+  bool keep_name = false;  // drawn even past x1
 };
 
 std::string quantity(double value, scenes::Quantity kind, const scenes::Units& units);
 
 // What a scale is: "largest 16.8 kN" (the state shown's), or for a fixed one "scale 78.7 kN:
-// largest in the solve at load 2, the slider's top; now 16.8 kN" (issue 23, item 4).
+// largest over loads 0-2; now 16.8 kN" (issue 23, item 4).
 std::string scale_note(double scale, double now, const std::string& basis, scenes::Quantity kind,
                        const scenes::Units& units) {
   if (basis.empty()) return "largest " + quantity(scale, kind, units);
@@ -591,12 +592,15 @@ void draw_value_legend(DrawList& list, const SceneFraming& framing, const scenes
       basis.empty() ? "largest shown"
                     : "largest " + basis + "; now " + quantity(legend.now, legend.quantity, units);
   const float at = bar0 + width + 0.3f * text;
-  std::string shown = end;
-  for (const std::string& candidate : {named + " (" + what + ")", end + " (" + what + ")", named})
-    if (at + estimated_text_width(candidate, label) <= x1) {
-      shown = candidate;
-      break;
-    }
+  // What fits before x1: the name and what the scale is, the name alone, the end alone;
+  // the stress legend always keeps its name (as pictures and tests of it have it).
+  const auto fits = [&](const std::string& candidate) {
+    return at + estimated_text_width(candidate, label) <= x1;
+  };
+  const std::string full = named + " (" + what + ")";
+  const std::string shown = fits(full)                        ? full
+                            : fits(named) || legend.keep_name ? named
+                                                              : end;
   list.text(shown, {at, y}, label, palette::ink, HAlign::Left, VAlign::Middle);
 }
 
@@ -868,7 +872,7 @@ DrawList draw_glyphs(const solver::Model& model, const solver::Snapshot& snapsho
   if (view.color_by == ColorBy::Stress)
     draw_value_legend(list, framing, model.units,
                       {scenes::Quantity::Stress, framing.stress_scale, "axial stress",
-                       largest_value_now(model, snapshot, ColorBy::Stress)},
+                       largest_value_now(model, snapshot, ColorBy::Stress), true},
                       view.scale_basis, region.x0 + t, legend_end, bottom_row);
   if (view.color_by == ColorBy::Moment && model.frame())
     draw_value_legend(list, framing, model.units,

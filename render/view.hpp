@@ -47,7 +47,7 @@ struct View {
   bool centered = false;
   double center_x = 0.0, center_y = 0.0;
   // Where the colour map's and the force glyphs' scales come from when they are fixed
-  // beyond the state shown ("the solve at load 2, the slider's top", "all 14 frames"):
+  // beyond the state shown ("over loads 0-2", "over all 14 frames"):
   // the legends then say "scale X: largest in/over <basis>; now Y". Empty: the scales are
   // the largest values of the state shown, and the legends say "largest X".
   std::string scale_basis;

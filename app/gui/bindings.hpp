@@ -3,6 +3,7 @@
 // here, and the help overlay (H, F1) lists these rows, so the two cannot disagree.
 
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "app/gui/requests.hpp"

@@ -66,7 +66,9 @@ void App::run_script(std::vector<ScriptAction>& script, std::size_t& next, doubl
       // newest iterate is on screen.
       const bool settled_live = live_ && worker_.paused() && shown_ && shown_ == worker_.latest() &&
                                 shown_index() == last_index();
-      const bool settled = (solved_on_screen_ && !worker_.busy()) || settled_live;
+      // On screen: with the picture's scales (the survey at the slider's top) too.
+      const bool pictured = !shown_ || shown_->extent != nullptr;
+      const bool settled = (solved_on_screen_ && !worker_.busy() && pictured) || settled_live;
       if (!settled || recording_ || !queue_.empty()) {
         if (now - wait_started_ > 120.0) {
           std::cerr << scenes::printable(args_.script) << ":" << action.line

@@ -137,7 +137,8 @@ int App::run(render::GlfwWindow& window, std::vector<ScriptAction> script) {
     // software renderer) is redrawn at most every other such period, so the panels and
     // the slider keep answering between pictures.
     const bool picture_due =
-        last_picture_ms_ < 16.0 || screenshot_requested_ || recording_ || !after_picture_.empty() ||
+        last_picture_ms_ < 16.0 || screenshot_requested_ || window_shot_requested_ || recording_ ||
+        !after_picture_.empty() ||
         std::chrono::duration<double, std::milli>(Clock::now() - last_picture_end_).count() >=
             last_picture_ms_;
     if (redraw_ && picture_due) {

@@ -36,7 +36,7 @@ render::View App::view(int width, int height) const {
   v.min_text_size = std::ceil(kSmallestText / 0.68f * ui_scale_);
   // The scales are fixed for the whole slider (the survey at its top) or by a loaded view.
   char basis[96];
-  std::snprintf(basis, sizeof basis, "in the solve at load %g, the slider's top", slider_max_);
+  std::snprintf(basis, sizeof basis, "over loads 0-%g", slider_max_);
   v.scale_basis = scales_ ? "of the loaded view" : basis;
   return v;
 }

@@ -820,7 +820,7 @@ TEST_CASE("view files and script values are refused before the window opens", "[
   const fs::path dir = fresh_directory("fetic_gui_bad_inputs");
   const std::string fetic = FETIC_EXECUTABLE;
   std::ofstream(dir / "huge.json") << R"({"zoom": 1e400})";
-  for (const std::string command : {"render " + scene("two_bars.toml") + " --final --out " +
+  for (const std::string& command : {"render " + scene("two_bars.toml") + " --final --out " +
                                         (dir / "out").string() + " --view ",
                                     "gui " + scene("two_bars.toml") + " --view "}) {
     const auto [status, output] = shell(fetic + " " + command + (dir / "huge.json").string());
@@ -833,7 +833,7 @@ TEST_CASE("view files and script values are refused before the window opens", "[
     CHECK_THAT(folder_output, Catch::Contains("is a folder, not a view file"));
   }
   // Script loads are held to the scene's range, like --load.
-  for (const std::string load : {"1e300", "1e-320"}) {
+  for (const char* load : {"1e300", "1e-320"}) {
     std::ofstream(dir / "load.txt") << "wait\nload " << load << "\n";
     const auto [status, output] =
         shell("env -u DISPLAY -u WAYLAND_DISPLAY " + fetic + " gui " + scene("two_bars.toml") +

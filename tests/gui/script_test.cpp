@@ -8,6 +8,7 @@
 using fetic::app::gui::parse_script;
 using fetic::app::gui::RequestKind;
 using fetic::app::gui::ScriptError;
+using namespace std::string_literals;
 
 TEST_CASE("script lines become timed requests", "[script]") {
   std::vector<ScriptError> errors;
@@ -113,7 +114,7 @@ TEST_CASE("script values: beyond the range, control characters and a byte order 
   std::vector<ScriptError> errors;
   const auto actions = parse_script(
       "\xEF\xBB\xBFwait\nload 1e400\nmagnification 1e300\nscrub 1e10\nload 1e300\n"
-      "jump\x01\nload 0x\x00\n",
+      "jump\x01\nload 0x\x00\n"s,
       errors);
   REQUIRE(actions.size() == 2);  // the BOM is not part of the first action's name
   CHECK(actions[0].wait);
