@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -21,6 +22,7 @@
 #include "app/output_file.hpp"
 #include "app/scene_input.hpp"
 #include "scenes/scene_error.hpp"
+#include "solver/load_sweep.hpp"
 #include "solver/method.hpp"
 
 namespace fetic::app {
@@ -98,10 +100,11 @@ Measurement measure(const solver::Model& model, const std::string& scene, const 
   auto method = solver::make_method(variant.method, model, options);
   m.setup_ms = milliseconds(std::chrono::steady_clock::now() - setup_start);
   std::vector<double> times;
+  std::optional<solver::SweepDriver> driver;
   for (int r = 0; r < repeat; ++r) {
     const auto start = std::chrono::steady_clock::now();
-    method->start(1.0);
-    solver::run_to_end(*method);
+    driver.emplace(*method);  // cold
+    driver->solve(1.0);
     times.push_back(milliseconds(std::chrono::steady_clock::now() - start));
   }
   m.solve_ms = median(times);
@@ -109,13 +112,9 @@ Measurement measure(const solver::Model& model, const std::string& scene, const 
   if (!method->history().empty()) m.f_applications = method->history().back().f_applications;
   m.converged = method->status() == solver::Status::Converged;
   if (m.converged && solver::handles_contact(variant.method)) {
-    const solver::Snapshot previous = method->snapshot();
-    method->start(1.05, &previous);
-    solver::run_to_end(*method);
-    m.warm_iterations = method->iteration();
-    method->start(1.05);
-    solver::run_to_end(*method);
-    m.cold_iterations = method->iteration();
+    // A load step as fetic solve --load-steps takes it, and the same solve cold.
+    m.warm_iterations = driver->solve(1.05).state.iteration;
+    m.cold_iterations = solver::SweepDriver(*method).solve(1.05).state.iteration;
   }
   return m;
 }

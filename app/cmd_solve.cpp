@@ -26,6 +26,7 @@
 #include "app/solve_profile.hpp"
 #include "scenes/scene_error.hpp"
 #include "solver/feti_method.hpp"
+#include "solver/interruption.hpp"
 #include "solver/load_sweep.hpp"
 #include "solver/method.hpp"
 
@@ -381,7 +382,9 @@ int report_result(const SolveArgs& args, const solver::Model& model,
     else
       std::cerr << " at iteration " << (steps.empty() ? 0 : steps.back().state.iteration);
     if (cut && outputs.writes_anything())
-      std::cerr << "; the current iterate, marked interrupted, is in " << outputs.written_list();
+      std::cerr << (steps.empty() ? "; no outputs were written"
+                                  : "; the current iterate, marked interrupted, is in " +
+                                        outputs.written_list());
     std::cerr << '\n';
     return kExitInterrupted;
   }
@@ -420,6 +423,19 @@ void register_solve(CLI::App& app, int& exit_code) {
   command->callback([args, &exit_code] {
     try {
       exit_code = run_solve(*args);
+    } catch (const solver::SetupInterrupted& stop) {
+      // Ctrl-C during the set-up: no output has been opened yet.
+      const std::string message = scenes::printable(args->scene) + ": interrupted by " +
+                                  interrupt_name() + " while " + stop.during() +
+                                  "; no outputs were written";
+      if (!processes().distributed()) {
+        std::cerr << message << '\n';
+        exit_code = kExitInterrupted;
+        return;
+      }
+      // The other processes may wait in an exchange this one left: end them all.
+      report_from_any_rank(message);
+      solver::mpi_abort(kExitInterrupted);
     } catch (const std::bad_alloc&) {
       // Distributed, a failure that only this process met would leave the others
       // waiting in the next exchange: end them all (mpirun reports the status).

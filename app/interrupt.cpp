@@ -2,6 +2,8 @@
 
 #include <csignal>
 
+#include "solver/interruption.hpp"
+
 namespace fetic::app {
 namespace {
 
@@ -18,6 +20,8 @@ void install_interrupt_handlers() {
   action.sa_flags = 0;
   sigaction(SIGINT, &action, nullptr);
   sigaction(SIGTERM, &action, nullptr);
+  // The solver's long set-up loops ask the same flag (solver/interruption.hpp).
+  solver::set_stop_check([] { return received != 0; });
 }
 
 bool interrupted() { return received != 0; }

@@ -19,6 +19,7 @@
 #include "app/processes.hpp"
 #include "app/standard_streams.hpp"
 #include "scenes/scene_error.hpp"
+#include "solver/interruption.hpp"
 
 namespace {
 
@@ -110,6 +111,11 @@ int fetic::app::run_command_line(int argc, char** argv) {
     return finish_standard_output(code == 0 ? kExitOk : kExitUsage);
   } catch (const std::bad_alloc&) {
     return finish_standard_output(report_out_of_memory());
+  } catch (const solver::SetupInterrupted& stop) {
+    // Ctrl-C in a set-up step (solver/interruption.hpp): before any output was opened.
+    std::cerr << "fetic: interrupted by " << interrupt_name() << " while " << stop.during()
+              << "; nothing was written\n";
+    return finish_standard_output(kExitInterrupted);
   }
   return finish_standard_output(exit_code);
 }

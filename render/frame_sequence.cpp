@@ -4,34 +4,33 @@
 #include <cmath>
 
 #include "solver/element_results.hpp"
+#include "solver/load_sweep.hpp"
 #include "solver/stiffness.hpp"
 
 namespace fetic::render {
 
 int run_frames(solver::Method& method, const FramePlan& plan,
                const std::function<bool(const Frame&)>& visit) {
+  // The sweep of `fetic solve` (solver::sweep): the same warm starts, so the same
+  // iterations; a frame per iterate (iteration 0 of each solve included) or per step.
   int index = 0;
-  solver::Snapshot warm;
-  bool have_warm = false;
-  for (std::size_t step = 0; step < plan.load_factors.size(); ++step) {
-    method.start(plan.load_factors[step], have_warm ? &warm : nullptr);
-    const auto emit = [&](const solver::Snapshot& snapshot) {
-      return visit(Frame{index++, static_cast<int>(step), snapshot, method.history()});
+  int step = 0;
+  bool stop = false;
+  solver::SweepHooks hooks;
+  hooks.keep_going = [&] { return !stop; };
+  hooks.record_stop = false;  // no solve after the last frame wanted
+  if (plan.every_iteration)
+    hooks.on_iteration = [&](double, const solver::Method& running) {
+      if (stop) return;
+      const solver::Snapshot snapshot = running.snapshot();
+      stop = !visit(Frame{index++, step, snapshot, running.history()});
     };
-    if (plan.every_iteration) {
-      if (!emit(method.snapshot())) return index;
-      while (method.status() == solver::Status::Running) {
-        method.step();
-        if (!emit(method.snapshot())) return index;
-      }
-      warm = method.snapshot();
-    } else {
-      solver::run_to_end(method);
-      warm = method.snapshot();
-      if (!emit(warm)) return index;
-    }
-    have_warm = true;
-  }
+  hooks.on_step = [&](const solver::SweepStep& done) {
+    if (!plan.every_iteration && !stop)
+      stop = !visit(Frame{index++, step, done.state, done.history});
+    ++step;
+  };
+  solver::sweep(method, plan.load_factors, hooks);
   return index;
 }
 

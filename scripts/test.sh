@@ -1,7 +1,16 @@
 #!/usr/bin/env bash
-# Builds (if needed) and runs the whole test suite.
+# Builds (if needed) and runs the whole test suite. With FETIC_REQUIRE_ALL=1 (CI) a test
+# that ctest reports skipped fails the run: every check must have run
+# (tests/support/skip.hpp).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 [ -f build/CMakeCache.txt ] || cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release
 cmake --build build -j"$(nproc)"
-ctest --test-dir build --output-on-failure -j"$(nproc)"
+log=$(mktemp)
+trap 'rm -f "$log"' EXIT
+ctest --test-dir build --output-on-failure -j"$(nproc)" | tee "$log"
+if [ "${FETIC_REQUIRE_ALL:-0}" = 1 ] && grep -q '\*\*\*Skipped' "$log"; then
+  echo "FETIC_REQUIRE_ALL=1: these tests were skipped:" >&2
+  grep '\*\*\*Skipped' "$log" >&2
+  exit 1
+fi

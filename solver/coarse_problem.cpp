@@ -8,6 +8,7 @@
 
 #include "solver/free_motion_space.hpp"
 #include "solver/stopwatch.hpp"
+#include "solver/interruption.hpp"
 
 namespace fetic::solver {
 namespace {
@@ -38,6 +39,7 @@ void CoarseProblem::build_pattern() {
   // Per own subdomain: its entries (a, b) and, per local row it touches, the products.
   std::vector<int> pattern;  // (a, b) pairs of this process' values, in value order
   for (const SubdomainOperator& op : s.subdomains()) {
+    throw_if_stopped("assembling the coarse problem");
     const Subdomain& sub = d.subdomains[op.index];
     std::vector<int> rows;
     for (const Incidence& in : op.incidence)

@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "solver/threads.hpp"
+#include "solver/interruption.hpp"
 
 namespace fetic::solver {
 namespace {
@@ -125,6 +126,7 @@ FetiPreconditioner::FetiPreconditioner(const FetiSystem& system, Preconditioner 
   int failed = std::numeric_limits<int>::max();  // lowest own subdomain whose interior failed
   int offset = 0;
   for (int i = 0; i < count; ++i) {
+    throw_if_stopped("setting up the preconditioner");
     Local& local = local_[i];
     const SubdomainOperator& op = ops[i];
     for (const Incidence& in : op.incidence)

@@ -9,6 +9,7 @@
 #include "solver/rigid_modes.hpp"
 #include "solver/stopwatch.hpp"
 #include "solver/threads.hpp"
+#include "solver/interruption.hpp"
 
 namespace fetic::solver {
 namespace {
@@ -78,6 +79,7 @@ void FetiSystem::factorize_subdomains() {
     work += d.subdomains[op.index].dof_count;
 #pragma omp parallel for schedule(dynamic) num_threads(threads_for(work * 50))
   for (int i = 0; i < count; ++i) {
+    if (stop_requested()) continue;  // Ctrl-C: skip the rest (no throw inside OpenMP)
     SubdomainOperator& op = subdomains_[i];
     const Subdomain& sub = d.subdomains[op.index];
     const StrutMesh& mesh = model_.struts[sub.strut];
@@ -86,6 +88,7 @@ void FetiSystem::factorize_subdomains() {
     results[i] = op.K_plus.factorize(op.K, op.R);
     singular[i] = results[i] == CholmodFactor::Result::Ok && op.K_plus.rcond() < kSingularRcond;
   }
+  throw_if_stopped("factorizing the subdomains");
   // The lowest failing subdomain of any process is reported, by every process alike.
   int failed = std::numeric_limits<int>::max();
   std::string message;

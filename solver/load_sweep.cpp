@@ -29,30 +29,50 @@ Snapshot predict_warm_start(const Snapshot* older, const Snapshot& newer, double
   return warm;
 }
 
+std::optional<Snapshot> SweepDriver::warm_start(double load_factor) const {
+  if (!newer_) return std::nullopt;
+  return predict_warm_start(older_ ? &*older_ : nullptr, *newer_, load_factor);
+}
+
+void SweepDriver::forget() {
+  older_.reset();
+  newer_.reset();
+}
+
+SweepStep SweepDriver::solve(double load_factor, const SweepHooks& hooks) {
+  if (hooks.before_start) hooks.before_start(load_factor);
+  if (const std::optional<Snapshot> warm = warm_start(load_factor))
+    method_.start(load_factor, &*warm);
+  else
+    method_.start(load_factor);
+  if (hooks.on_iteration) hooks.on_iteration(load_factor, method_);
+  while (method_.status() == Status::Running && (!hooks.keep_going || hooks.keep_going())) {
+    method_.step();
+    if (hooks.on_iteration) hooks.on_iteration(load_factor, method_);
+  }
+  SweepStep step{load_factor, method_.snapshot(), method_.history()};
+  // A secant needs two converged solves (predict_warm_start checks); any other state
+  // reached is the next start as it is.
+  if (step.state.status == Status::Converged && newer_)
+    older_ = std::move(newer_);
+  else
+    older_.reset();
+  newer_ = step.state;
+  if (hooks.on_step) hooks.on_step(step);
+  return step;
+}
+
 std::vector<SweepStep> sweep(Method& method, const std::vector<double>& load_factors,
                              const SweepHooks& hooks) {
+  SweepDriver driver(method);
   std::vector<SweepStep> steps;
   for (double t : load_factors) {
-    if (hooks.keep_going && !hooks.keep_going()) break;
-    if (hooks.before_start) hooks.before_start(t);
-    if (steps.empty()) {
-      method.start(t);
-    } else {
-      const Snapshot* older = steps.size() >= 2 ? &steps[steps.size() - 2].state : nullptr;
-      const Snapshot warm = predict_warm_start(older, steps.back().state, t);
-      method.start(t, &warm);
-    }
-    if (hooks.on_iteration) {
-      hooks.on_iteration(t, method);
-      while (method.status() == Status::Running && (!hooks.keep_going || hooks.keep_going())) {
-        method.step();
-        hooks.on_iteration(t, method);
-      }
-    } else {
-      run_to_end(method, hooks.keep_going);
-    }
-    steps.push_back({t, method.snapshot(), method.history()});
-    if (hooks.on_step) hooks.on_step(steps.back());
+    // Stopped before this load factor: its start (iteration 0, stopped) is the last
+    // step, so that what the sweep reports says it was interrupted, not converged.
+    const bool stopped = hooks.keep_going && !hooks.keep_going();
+    if (stopped && !hooks.record_stop) break;
+    steps.push_back(driver.solve(t, hooks));
+    if (stopped || steps.back().state.status == Status::Running) break;
   }
   return steps;
 }

@@ -8,6 +8,7 @@
 #include <Eigen/Dense>
 
 #include "solver/boundedness.hpp"
+#include "solver/interruption.hpp"
 
 namespace fetic::solver {
 namespace {
@@ -87,6 +88,7 @@ void Mprgp::estimate_operator_norm() {
   double estimate = 0.0;
   const long long before = system_.f_applications();
   for (int step = 0; step < parameters_.power_iterations; ++step) {
+    throw_if_stopped("estimating the operator's norm (power method)");
     const double size = space().norm(v);
     if (!(size > 0.0)) break;
     v /= size;

@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "app/render_output.hpp"
+#include "solver/interruption.hpp"
 #include "solver/load_sweep.hpp"
 
 namespace fetic::app::gui {
@@ -167,185 +168,170 @@ void SolverWorker::publish_cancelled_survey(const SolverTarget& target) {
   state->cancelled = true;
   state->message = "cancelled while solving at the top of the slider for the picture's scales";
   publish(state);
+  mark_idle();
+}
+
+void SolverWorker::mark_idle() {
   std::lock_guard lock(mutex_);
   if (version_ == seen_) idle_ = true;
 }
 
+// The worker's loop: wait for a request, set the method up (when the model or the method
+// changed), survey the slider's top for the picture's scales (when the range changed),
+// then solve at the requested load factor.
 void SolverWorker::run() {
-  using Clock = std::chrono::steady_clock;
-  std::unique_ptr<solver::Method> method;
-  // What the current method was made for.
-  std::shared_ptr<const solver::Model> made_model;  // keeps the method's model alive
-  std::uint64_t made_generation = 0;
-  solver::MethodKind made_kind{};
-  solver::SolveOptions made_options;
-  double made_max_load = -1.0;
-  std::shared_ptr<const render::RunExtent> extent;
-  double slider_max = 2.0;
-  std::string setup_error;
-  // The last two finished solves (secant warm start), or an abandoned iterate.
-  std::unique_ptr<solver::Snapshot> older, newer;
-
+  Setup setup;
   for (;;) {
     SolverTarget target;
-    {
-      std::unique_lock lock(mutex_);
-      changed_.wait(lock, [&] { return stop_ || version_ != seen_; });
-      if (stop_) return;
-      seen_ = version_;
-      target = target_;
-    }
+    if (!next_target(target)) return;
     if (!target.model) continue;
+    const bool remake = needs_remake(setup, target);
+    if (remake) make_method(setup, target);
+    if (remake || setup.max_load != target.max_load)
+      if (!survey_scales(setup, target)) continue;
+    solve(setup, target);
+  }
+}
 
-    const bool remake = !method && setup_error.empty()
-                            ? true
-                            : made_generation != target.model_generation ||
-                                  made_kind != target.method ||
-                                  made_options.preconditioner != target.options.preconditioner ||
-                                  made_options.scaling != target.options.scaling ||
-                                  made_options.tolerance != target.options.tolerance ||
-                                  made_options.max_iterations != target.options.max_iterations;
-    if (remake || made_max_load != target.max_load) {
-      if (remake) {
-        method.reset();
-        setup_error.clear();
-        older.reset();
-        newer.reset();
-        // Small models solve fastest on one thread: an OpenMP team's start-up and spinning
-        // cost more than the work and take the cores the window renders on (llvmpipe).
-        use_solver_threads_for_pictures(*target.model);
-        try {
-          made_model = target.model;
-          method = solver::make_method(target.method, *made_model, target.options);
-        } catch (const solver::SolverError& error) {
-          setup_error = error.what();
-        }
-        made_generation = target.model_generation;
-        made_kind = target.method;
-        made_options = target.options;
-      }
-      // Fixed scales for the slider range: every iteration of the solve at its top.
-      made_max_load = target.max_load;
-      slider_max = target.max_load > 0.0 ? target.max_load : 2.0;
-      auto survey = std::make_shared<render::RunExtent>();
-      const auto keep_surveying = [&] {
-        WorkerProgress progress;
-        progress.surveying = true;
-        progress.iteration = method->iteration();
-        if (!method->history().empty()) {
-          progress.residual = method->history().back().residual;
-          progress.active_set = method->history().back().active_set;
-        }
-        set_progress(progress);
-        return !superseded() && !cancel_requested();
-      };
-      if (method && target.max_load <= 0.0) {
-        method->start(1.0);
-        solver::run_to_end(*method, keep_surveying);
-        if (!keep_surveying()) {
-          made_max_load = -1.0;
-          if (cancel_requested()) publish_cancelled_survey(target);
-          continue;
-        }
-        slider_max = automatic_max_load(*target.model, method->snapshot());
-      }
-      if (method) {
-        render::FramePlan plan;
-        plan.load_factors = {slider_max};
-        *survey = render::survey(*target.model, *method, plan, keep_surveying);
-        if (!keep_surveying()) {
-          made_max_load = -1.0;  // survey again with the next request
-          if (cancel_requested()) publish_cancelled_survey(target);
-          continue;
-        }
-      }
-      extent = survey;
-    }
+bool SolverWorker::next_target(SolverTarget& target) {
+  std::unique_lock lock(mutex_);
+  changed_.wait(lock, [&] { return stop_ || version_ != seen_; });
+  if (stop_) return false;
+  seen_ = version_;
+  target = target_;
+  return true;
+}
 
-    auto state = std::make_shared<SolveState>();
-    state->model = target.model;
-    state->model_generation = target.model_generation;
-    state->request = target.request;
-    state->load_factor = target.load_factor;
-    state->method = target.method;
-    state->preconditioner = target.options.preconditioner;
-    state->extent = extent;
-    state->max_load = slider_max;
-    target.load_factor = std::min(target.load_factor, slider_max);
-    state->load_factor = target.load_factor;
-    if (!method) {
-      state->finished = true;
-      state->status = solver::Status::Failed;
-      state->error = setup_error;
-      state->message = setup_error;
-      publish(state);
-      std::lock_guard lock(mutex_);
-      if (version_ == seen_) idle_ = true;
-      continue;
-    }
+bool SolverWorker::needs_remake(const Setup& setup, const SolverTarget& target) {
+  if (!setup.method && setup.error.empty()) return true;
+  return setup.generation != target.model_generation || setup.kind != target.method ||
+         setup.options.preconditioner != target.options.preconditioner ||
+         setup.options.scaling != target.options.scaling ||
+         setup.options.tolerance != target.options.tolerance ||
+         setup.options.max_iterations != target.options.max_iterations;
+}
 
-    const auto begin = Clock::now();
-    if (newer) {
-      const solver::Snapshot warm =
-          solver::predict_warm_start(older.get(), *newer, target.load_factor);
-      method->start(target.load_factor, &warm);
-    } else {
-      method->start(target.load_factor);
+void SolverWorker::make_method(Setup& setup, const SolverTarget& target) {
+  setup.driver.reset();
+  setup.method.reset();
+  setup.error.clear();
+  // Small models solve fastest on one thread: an OpenMP team's start-up and spinning
+  // cost more than the work and take the cores the window renders on (llvmpipe).
+  use_solver_threads_for_pictures(*target.model);
+  try {
+    setup.model = target.model;
+    setup.method = solver::make_method(target.method, *setup.model, target.options);
+    setup.driver = std::make_unique<solver::SweepDriver>(*setup.method);
+  } catch (const solver::SolverError& error) {
+    setup.error = error.what();
+  } catch (const solver::SetupInterrupted& stop) {  // the program is being ended
+    setup.method.reset();
+    setup.error = std::string("interrupted while ") + stop.during();
+  }
+  setup.generation = target.model_generation;
+  setup.kind = target.method;
+  setup.options = target.options;
+  setup.max_load = -1.0;
+}
+
+// Fixed scales for the slider range: every iteration of the solve at its top (cold, so
+// that the scales do not depend on the order of the requests). False when superseded or
+// cancelled meanwhile.
+bool SolverWorker::survey_scales(Setup& setup, const SolverTarget& target) {
+  setup.max_load = target.max_load;
+  setup.slider_max = target.max_load > 0.0 ? target.max_load : 2.0;
+  auto survey = std::make_shared<render::RunExtent>();
+  solver::Method* method = setup.method.get();
+  const auto keep_surveying = [&] {
+    WorkerProgress progress;
+    progress.surveying = true;
+    progress.iteration = method->iteration();
+    if (!method->history().empty()) {
+      progress.residual = method->history().back().residual;
+      progress.active_set = method->history().back().active_set;
     }
-    const auto take = [&] {
-      state->iterates.push_back(std::make_shared<const solver::Snapshot>(method->snapshot()));
-      state->history = method->history();
-      state->status = method->status();
-      state->message = method->message();
-      state->solve_seconds = std::chrono::duration<double>(Clock::now() - begin).count();
-      WorkerProgress progress;
-      progress.iteration = method->iteration();
-      if (!state->history.empty()) {
-        progress.residual = state->history.back().residual;
-        progress.active_set = state->history.back().active_set;
-      }
-      set_progress(progress);
-    };
-    take();
-    notify_observer(*target.model, *method, target.load_factor, true);
-    publish(std::make_shared<const SolveState>(*state));
-    bool abandoned = false;
-    while (method->status() == solver::Status::Running) {
-      if (!wait_for_allowance(method->iteration()) || superseded()) {
-        abandoned = true;
-        break;
-      }
-      method->step();
-      take();
-      notify_observer(*target.model, *method, target.load_factor, false);
-      state->finished = method->status() != solver::Status::Running;
-      publish(std::make_shared<const SolveState>(*state));
-    }
-    if (abandoned && cancel_requested() && !superseded()) {
-      state->finished = true;
-      state->cancelled = true;
-      state->message = "cancelled at iteration " + std::to_string(method->iteration());
-      publish(std::make_shared<const SolveState>(*state));
-      newer = std::make_unique<solver::Snapshot>(*state->iterates.back());
-      older.reset();
-      std::lock_guard lock(mutex_);
-      if (version_ == seen_) idle_ = true;
-      continue;
-    }
-    if (abandoned) {
-      // The next solve starts from where this one got to (no secant: not a solution).
-      newer = std::make_unique<solver::Snapshot>(*state->iterates.back());
-      older.reset();
-      continue;
-    }
+    set_progress(progress);
+    return !superseded() && !cancel_requested();
+  };
+  const auto stopped = [&] {
+    if (keep_surveying()) return false;
+    setup.max_load = -1.0;  // survey again with the next request
+    if (cancel_requested()) publish_cancelled_survey(target);
+    return true;
+  };
+  if (method && target.max_load <= 0.0) {
+    method->start(1.0);
+    solver::run_to_end(*method, keep_surveying);
+    if (stopped()) return false;
+    setup.slider_max = automatic_max_load(*target.model, method->snapshot());
+  }
+  if (method) {
+    render::FramePlan plan;
+    plan.load_factors = {setup.slider_max};
+    *survey = render::survey(*target.model, *method, plan, keep_surveying);
+    if (stopped()) return false;
+  }
+  setup.extent = survey;
+  return true;
+}
+
+// The solve at the requested load factor through the sweep driver (the warm starts of
+// `fetic solve --load-steps`), publishing every iterate; a newer request or cancel()
+// stops it between two iterations, and the next solve starts from where it got to.
+void SolverWorker::solve(Setup& setup, SolverTarget target) {
+  using Clock = std::chrono::steady_clock;
+  auto state = std::make_shared<SolveState>();
+  state->model = target.model;
+  state->model_generation = target.model_generation;
+  state->request = target.request;
+  state->method = target.method;
+  state->preconditioner = target.options.preconditioner;
+  state->extent = setup.extent;
+  state->max_load = setup.slider_max;
+  target.load_factor = std::min(target.load_factor, setup.slider_max);
+  state->load_factor = target.load_factor;
+  if (!setup.method) {
     state->finished = true;
-    if (state->iterates.size() == 1) publish(std::make_shared<const SolveState>(*state));
-    if (method->status() == solver::Status::Converged) {
-      older = std::move(newer);
-      newer = std::make_unique<solver::Snapshot>(*state->iterates.back());
+    state->status = solver::Status::Failed;
+    state->error = setup.error;
+    state->message = setup.error;
+    publish(state);
+    mark_idle();
+    return;
+  }
+  const auto begin = Clock::now();
+  bool abandoned = false;
+  solver::SweepHooks hooks;
+  hooks.keep_going = [&] {
+    abandoned = !wait_for_allowance(setup.method->iteration()) || superseded();
+    return !abandoned;
+  };
+  hooks.on_iteration = [&](double t, const solver::Method& method) {
+    state->iterates.push_back(std::make_shared<const solver::Snapshot>(method.snapshot()));
+    state->history = method.history();
+    state->status = method.status();
+    state->message = method.message();
+    state->solve_seconds = std::chrono::duration<double>(Clock::now() - begin).count();
+    state->finished = method.status() != solver::Status::Running;
+    WorkerProgress progress;
+    progress.iteration = method.iteration();
+    if (!state->history.empty()) {
+      progress.residual = state->history.back().residual;
+      progress.active_set = state->history.back().active_set;
     }
-    std::lock_guard lock(mutex_);
-    if (version_ == seen_) idle_ = true;
+    set_progress(progress);
+    notify_observer(*target.model, method, t, state->iterates.size() == 1);
+    publish(std::make_shared<const SolveState>(*state));
+  };
+  setup.driver->solve(target.load_factor, hooks);
+  if (!abandoned) {
+    mark_idle();  // the last publication was finished
+  } else if (cancel_requested() && !superseded()) {
+    state->finished = true;
+    state->cancelled = true;
+    state->message = "cancelled at iteration " + std::to_string(setup.method->iteration());
+    publish(std::make_shared<const SolveState>(*state));
+    mark_idle();
   }
 }
 

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "render/frame_sequence.hpp"
+#include "solver/load_sweep.hpp"
 #include "solver/method.hpp"
 #include "solver/model.hpp"
 
@@ -109,7 +110,26 @@ class SolverWorker {
  private:
   void notify_observer(const solver::Model& model, const solver::Method& method, double load_factor,
                        bool started);
+  // What the worker thread has set up for the current model and method.
+  struct Setup {
+    std::unique_ptr<solver::Method> method;
+    std::unique_ptr<solver::SweepDriver> driver;  // the warm starts of method
+    std::shared_ptr<const solver::Model> model;   // keeps the method's model alive
+    std::uint64_t generation = 0;
+    solver::MethodKind kind{};
+    solver::SolveOptions options;
+    double max_load = -1.0;  // the target's max_load surveyed; -1: none yet
+    double slider_max = 2.0;
+    std::shared_ptr<const render::RunExtent> extent;
+    std::string error;  // the method could not be set up
+  };
   void run();
+  bool next_target(SolverTarget& target);
+  static bool needs_remake(const Setup& setup, const SolverTarget& target);
+  static void make_method(Setup& setup, const SolverTarget& target);
+  bool survey_scales(Setup& setup, const SolverTarget& target);
+  void solve(Setup& setup, SolverTarget target);
+  void mark_idle();
   bool superseded() const;
   void publish(std::shared_ptr<const SolveState> state);
   bool cancel_requested() const;

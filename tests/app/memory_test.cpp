@@ -10,6 +10,7 @@
 #include <string>
 
 #include "tests/support/process.hpp"
+#include "tests/support/skip.hpp"
 
 using namespace fetic::test;
 namespace fs = std::filesystem;
@@ -17,11 +18,7 @@ namespace fs = std::filesystem;
 // AddressSanitizer reserves terabytes of address space for its shadow memory: under
 // scripts/sanitize.sh no ulimit -v would let the program start, so these tests skip.
 #ifdef __SANITIZE_ADDRESS__
-#define SKIP_UNDER_ASAN()                                              \
-  do {                                                                 \
-    WARN("skipped: ulimit -v cannot limit a program built with ASan"); \
-    return;                                                            \
-  } while (false)
+#define SKIP_UNDER_ASAN() FETIC_SKIP("ulimit -v cannot limit a program built with ASan")
 #else
 #define SKIP_UNDER_ASAN() \
   do {                    \

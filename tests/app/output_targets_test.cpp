@@ -17,6 +17,7 @@
 #include <nlohmann/json.hpp>
 
 #include "tests/support/process.hpp"
+#include "tests/support/skip.hpp"
 
 using namespace fetic::test;
 namespace fs = std::filesystem;
@@ -47,11 +48,6 @@ class FifoReader {
   std::thread thread_;
 };
 
-// Catch2 v2 has no SKIP: say so in the output and pass.
-void skipped(const char* why) {
-  WARN("skipped: " << why);
-}
-
 void make_fifo(const std::string& path) {
   REQUIRE(::mkfifo(path.c_str(), 0600) == 0);
 }
@@ -60,7 +56,7 @@ void make_fifo(const std::string& path) {
 
 TEST_CASE("outputs onto a private null device are written to it and leave it a device",
           "[output]") {
-  if (!can_make_devices()) return skipped("mknod needs root");
+  if (!can_make_devices()) FETIC_SKIP("mknod needs root");
   TempDir dir;
   const std::string null = make_char_device(dir, "null", 1, 3);
   for (const std::vector<std::string>& command :
@@ -78,7 +74,7 @@ TEST_CASE("outputs onto a private null device are written to it and leave it a d
 
 TEST_CASE("a full device (ENOSPC) as output, file or stdout, gives status 5 naming it",
           "[output]") {
-  if (!can_make_devices()) return skipped("mknod needs root");
+  if (!can_make_devices()) FETIC_SKIP("mknod needs root");
   TempDir dir;
   const std::string full = make_char_device(dir, "full", 1, 7);
   for (const std::vector<std::string>& command :
@@ -196,7 +192,7 @@ TEST_CASE("a symbolic link is followed: the target is replaced, the link stays",
 }
 
 TEST_CASE("a link to a private device is followed to the device", "[output]") {
-  if (!can_make_devices()) return skipped("mknod needs root");
+  if (!can_make_devices()) FETIC_SKIP("mknod needs root");
   TempDir dir;
   const std::string full = make_char_device(dir, "full", 1, 7);
   fs::create_symlink(full, dir / "link");

@@ -12,12 +12,14 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <optional>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -120,4 +122,103 @@ TEST_CASE("an interrupted solve writes the current iterate, marked interrupted")
       CHECK(entry.path().string().find(".tmp") == std::string::npos);
     fs::remove_all(dir);
   }
+}
+
+namespace {
+
+// Runs `fetic ARGS...` with stdout and stderr into `log`; returns the child's pid.
+pid_t start_fetic(const std::vector<std::string>& args, const fs::path& log) {
+  const pid_t child = ::fork();
+  if (child == 0) {
+    std::FILE* file = std::fopen(log.c_str(), "w");
+    if (file) {
+      ::dup2(::fileno(file), 1);
+      ::dup2(::fileno(file), 2);
+    }
+    std::vector<char*> argv{const_cast<char*>("fetic")};
+    for (const std::string& arg : args)
+      argv.push_back(const_cast<char*>(arg.c_str()));
+    argv.push_back(nullptr);
+    ::execv(FETIC_EXECUTABLE, argv.data());
+    ::_exit(127);
+  }
+  return child;
+}
+
+// Waits until `pid` runs fetic and catches SIGINT (its handler installed: /proc/PID/status,
+// SigCgt), so that the signal tests fetic's handling rather than the default action at
+// start-up (the forked child has the test's handlers until it runs fetic).
+bool wait_for_handler(pid_t pid) {
+  const auto deadline = std::chrono::steady_clock::now() + 30s;
+  const fs::path fetic = fs::canonical(FETIC_EXECUTABLE);
+  while (std::chrono::steady_clock::now() < deadline) {
+    std::error_code error;
+    const fs::path exe = fs::read_symlink("/proc/" + std::to_string(pid) + "/exe", error);
+    std::ifstream status("/proc/" + std::to_string(pid) + "/status");
+    if (error || exe != fetic) status.close();
+    for (std::string line; std::getline(status, line);)
+      if (line.rfind("SigCgt:", 0) == 0 && (std::stoull(line.substr(7), nullptr, 16) & 2u))
+        return true;
+    std::this_thread::sleep_for(2ms);
+  }
+  return false;
+}
+
+}  // namespace
+
+TEST_CASE("interrupted at any moment of a sweep, even the set-up: 130 and only true messages") {
+  // A generated scene whose set-up (the subdomain factorizations) takes a noticeable part
+  // of the run; the signal comes at moments from during the set-up to within the sweep.
+  // Whatever was reached: either "no outputs were written" and there are none, or the
+  // outputs the message names exist, whole, and say interrupted.
+  const fs::path dir =
+      fs::temp_directory_path() / ("fetic_setup_interrupt_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const std::string scene = (dir / "plane.toml").string();
+  REQUIRE(std::system((std::string(FETIC_EXECUTABLE) +
+                       " generate --model plane --pairs 8 --elements 120,20 --subdomains 12,4 -o " +
+                       scene)
+                          .c_str()) == 0);
+  for (const int delay_ms : {0, 100, 400}) {
+    INFO("SIGINT " << delay_ms << " ms after the handler was installed");
+    const fs::path json = dir / "r.json", csv = dir / "steps.csv", vtu = dir / "vtu",
+                   log = dir / "log.txt";
+    fs::remove_all(json);
+    fs::remove_all(csv);
+    fs::remove_all(vtu);
+    const pid_t child =
+        start_fetic({"solve", scene, "--method", "mprgp", "--load-steps", "0.5:1.5:40", "--json",
+                     json.string(), "--csv-steps", csv.string(), "--vtu", vtu.string()},
+                    log);
+    REQUIRE(wait_for_handler(child));
+    std::this_thread::sleep_for(std::chrono::milliseconds(delay_ms));
+    ::kill(child, SIGINT);
+    const auto status = wait_bounded(child, 60s);
+    const std::string output = read_text(log);
+    INFO(output);
+    REQUIRE(status);
+    REQUIRE(WIFEXITED(*status));
+    if (WEXITSTATUS(*status) == 0) continue;  // a fast machine finished first: nothing to say
+    CHECK(WEXITSTATUS(*status) == 130);
+    if (output.find("no outputs were written") != std::string::npos) {
+      CHECK_FALSE(fs::exists(json));
+      CHECK_FALSE(fs::exists(csv));
+      CHECK((!fs::exists(vtu) || fs::is_empty(vtu)));
+      continue;
+    }
+    REQUIRE_THAT(output, Catch::Contains("marked interrupted, is in"));
+    REQUIRE(fs::exists(json));
+    const auto result = nlohmann::json::parse(read_text(json));
+    CHECK(result["interrupted"] == true);
+    CHECK(result["converged"] == false);
+    CHECK(result["steps"].back()["interrupted"] == true);
+    // The load-step table's last row says so too.
+    const std::string table = read_text(csv);
+    CHECK_THAT(table, Catch::Contains(",interrupted,"));
+    CHECK(fs::exists(vtu / "struts.pvd"));
+    for (const auto& entry : fs::recursive_directory_iterator(dir))
+      CHECK(entry.path().string().find(".tmp") == std::string::npos);
+  }
+  fs::remove_all(dir);
 }

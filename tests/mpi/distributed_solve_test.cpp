@@ -90,17 +90,9 @@ Outcome solve(const Case& c, const fetic::solver::Model& model, const Communicat
   options.preconditioner = c.preconditioner;
   auto method = fetic::solver::make_method(c.method, model, options, processes);
   Outcome outcome;
-  std::vector<Snapshot> local;  // for warm starts: this process' own states
+  fetic::solver::SweepDriver driver(*method);  // the warm starts of fetic solve
   for (double t : c.load_factors) {
-    if (local.empty()) {
-      method->start(t);
-    } else {
-      const Snapshot* older = local.size() >= 2 ? &local[local.size() - 2] : nullptr;
-      const Snapshot warm = fetic::solver::predict_warm_start(older, local.back(), t);
-      method->start(t, &warm);
-    }
-    fetic::solver::run_to_end(*method);
-    local.push_back(method->snapshot());
+    driver.solve(t);
     outcome.states.push_back(method->gathered_snapshot());
     outcome.iterations.push_back(method->iteration());
   }

@@ -16,6 +16,7 @@
 #include <thread>
 
 #include "tests/support/process.hpp"
+#include "tests/support/skip.hpp"
 
 using namespace fetic::test;
 namespace fs = std::filesystem;
@@ -43,10 +44,7 @@ bool looks_like_mp4(const std::string& bytes) {
 }  // namespace
 
 TEST_CASE("render --movie onto a FIFO, a link and stdout", "[output]") {
-  if (!has_ffmpeg()) {
-    WARN("skipped: ffmpeg is not installed");
-    return;
-  }
+  if (!has_ffmpeg()) FETIC_SKIP("ffmpeg is not installed");
   TempDir dir;
   const std::string fifo = dir / "movie.fifo";
   REQUIRE(::mkfifo(fifo.c_str(), 0600) == 0);
@@ -73,14 +71,8 @@ TEST_CASE("render --movie onto a FIFO, a link and stdout", "[output]") {
 }
 
 TEST_CASE("render --movie onto a private full device: status 5, the device stays", "[output]") {
-  if (!has_ffmpeg()) {
-    WARN("skipped: ffmpeg is not installed");
-    return;
-  }
-  if (!can_make_devices()) {
-    WARN("skipped: mknod needs root");
-    return;
-  }
+  if (!has_ffmpeg()) FETIC_SKIP("ffmpeg is not installed");
+  if (!can_make_devices()) FETIC_SKIP("mknod needs root");
   TempDir dir;
   const std::string full = make_char_device(dir, "full", 1, 7);
   const Result r = run_fetic(render_to(full));
@@ -90,10 +82,7 @@ TEST_CASE("render --movie onto a private full device: status 5, the device stays
 }
 
 TEST_CASE("SIGTERM while ffmpeg waits for the movie FIFO's reader: 130, ffmpeg ended", "[output]") {
-  if (!has_ffmpeg()) {
-    WARN("skipped: ffmpeg is not installed");
-    return;
-  }
+  if (!has_ffmpeg()) FETIC_SKIP("ffmpeg is not installed");
   TempDir dir;
   const std::string fifo = dir / "movie.fifo";
   REQUIRE(::mkfifo(fifo.c_str(), 0600) == 0);

@@ -17,6 +17,7 @@
 
 #include "scenes/load_scene.hpp"
 #include "scenes/scene_text.hpp"
+#include "tests/support/skip.hpp"
 
 using namespace fetic::scenes;
 namespace fs = std::filesystem;
@@ -170,10 +171,7 @@ TEST_CASE("a stream is read up to the limit, then refused") {
 }
 
 TEST_CASE("a private zero device is read only up to the limit") {
-  if (::geteuid() != 0) {
-    WARN("skipped: mknod needs root");
-    return;
-  }
+  if (::geteuid() != 0) FETIC_SKIP("mknod needs root");
   TempDir dir;
   const std::string zero = dir / "zero";
   REQUIRE(::mknod(zero.c_str(), S_IFCHR | 0600, makedev(1, 5)) == 0);

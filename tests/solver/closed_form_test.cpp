@@ -58,11 +58,11 @@ b = "B.from"
 
 TEST_CASE("two opposing bars: contact force max(0, (P L2/EA2 - g) / (L1/EA1 + L2/EA2))") {
   const double L1 = 0.8, L2 = 1.3, EA1 = 3.0e7, EA2 = 1.2e7;
-  int checked = 0;
+  int case_index = 0, closed = 0;
   for (double gap : {0.0, 1e-4, 1e-3, 5e-3}) {
     for (double P : {-20000.0, 0.0, 5000.0, 20000.0, 80000.0}) {
       for (int elements : {1, 3}) {
-        const double angle = 0.7 * checked;
+        const double angle = 0.7 * case_index++;
         const auto solved = testing::solve_text(
             two_bars(L1, EA1, L2, EA2, gap, P, elements, elements, angle), MethodKind::ActiveSet);
         REQUIRE(solved->state.status == solver::Status::Converged);
@@ -75,11 +75,13 @@ TEST_CASE("two opposing bars: contact force max(0, (P L2/EA2 - g) / (L1/EA1 + L2
         const double tip_a = -expected * L1 / EA1;
         CHECK(u[1][0].norm() == Approx(std::abs(tip_b)).margin(1e-12));
         CHECK(u[0].back().norm() == Approx(std::abs(tip_a)).margin(1e-12));
-        ++checked;
+        closed += solved->state.in_working_set[0] != 0;
       }
     }
   }
-  CHECK(checked == 40);
+  // Both regimes are exercised: the solver closed some contacts and left others open.
+  CHECK(closed > 5);
+  CHECK(closed < 35);
 }
 
 TEST_CASE("bar under a distributed load: nodal displacements are exact") {

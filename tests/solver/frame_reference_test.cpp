@@ -58,7 +58,7 @@ TEST_CASE("frame: active set and FETI-C agree with CGAL on 120 random frame scen
   const solver::Preconditioner preconditioners[] = {solver::Preconditioner::Dirichlet,
                                                     solver::Preconditioner::Lumped,
                                                     solver::Preconditioner::None};
-  int scenes_checked = 0, contacts = 0, active = 0;
+  int contacts = 0, active = 0;
   for (int trial = 0; trial < 120; ++trial) {
     const std::string text = testing::random_frame_scene(rng, kinds[trial % 4]);
     INFO("trial " << trial << "\n" << text);
@@ -72,9 +72,7 @@ TEST_CASE("frame: active set and FETI-C agree with CGAL on 120 random frame scen
     CHECK(active_set == active_feti_c);
     contacts += static_cast<int>(scene.contacts.size());
     active += active_set;
-    ++scenes_checked;
   }
-  CHECK(scenes_checked == 120);
   // The scenes really exercise contact: many pairs close, many stay open.
   CHECK(active > contacts / 3);
   CHECK(active < contacts);

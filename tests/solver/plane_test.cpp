@@ -18,7 +18,7 @@ using fetic::solver::Preconditioner;
 
 TEST_CASE("plane model: active set, FETI-C and MPRGP agree with CGAL on 100 random bent pairs") {
   std::mt19937 rng(2026);
-  int partial = 0, checked = 0;
+  int partial = 0;
   for (int trial = 0; trial < 100; ++trial) {
     const std::string text = testing::random_plane_pairs(rng, 1 + trial % 2);
     const double load_factor = std::uniform_real_distribution<double>(0.5, 1.5)(rng);
@@ -55,9 +55,7 @@ TEST_CASE("plane model: active set, FETI-C and MPRGP agree with CGAL on 100 rand
       partial += active > 0 && active < static_cast<int>(pairs);
       first += pairs;
     }
-    ++checked;
   }
-  CHECK(checked == 100);
   CHECK(partial >= 30);
 }
 

@@ -32,14 +32,12 @@ int compare_with_reference(const std::string& text, MethodKind kind, double load
 
 TEST_CASE("active set agrees with CGAL's exact QP solver on 150 random bar scenes") {
   std::mt19937 rng(4242);
-  int scenes_checked = 0, active = 0;
+  int active = 0;
   for (int trial = 0; trial < 150; ++trial) {
     const std::string text = testing::random_bar_scene(rng);
     const double load_factor = std::uniform_real_distribution<double>(0.2, 1.5)(rng);
     active += compare_with_reference(text, MethodKind::ActiveSet, load_factor);
-    ++scenes_checked;
   }
-  CHECK(scenes_checked == 150);
   CHECK(active > 100);  // the scenes really exercise contact
 }
 
