@@ -1,6 +1,7 @@
 // fetic render SCENE --out DIR: solver states as PNG frames (an iteration movie, the final
 // state, or a sequence of load steps), optionally assembled into an mp4 by ffmpeg.
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -140,7 +141,8 @@ int run_render(const RenderArgs& args) {
   }
   if (!args.out.empty() && !make_output_directory(args.out)) return kExitOutput;
   auto headless = open_headless(args.out.empty() ? args.movie : args.out,
-                                render::base_text_size(size.width, size.height));
+                                std::max(render::base_text_size(size.width, size.height),
+                                         static_cast<float>(saved.text_size.value_or(0.0))));
   if (!headless) return kExitNoDisplay;
 
   ProgressLine progress(progress_mode(args.progress, args.quiet));

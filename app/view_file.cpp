@@ -31,6 +31,7 @@ const NumberRange kRanges[] = {
     {"zoom", 0.01, 1000.0, "from 0.01 to 1000"},
     {"magnification", 1e-12, 1e15, "\"auto\" or a number from 1e-12 to 1e15"},
     {"fetic_view", 1, 1, "1 (the format's version)"},
+    {"text_size", 0, 200, "a number of pixels from 0 to 200"},
     {"scales.displacement", 0, kLargestScale, "a number from 0 to 1e300"},
     {"scales.force", 0, kLargestScale, "a number from 0 to 1e300"},
     {"scales.stress", 0, kLargestScale, "a number from 0 to 1e300"},
@@ -153,7 +154,9 @@ SavedView parse_view(const std::string& text, const std::string& path) {
   if (!root.is_object())
     throw ViewFileError(scenes::printable(path) + ": a view file is a JSON object");
   const Reader r(path);
-  r.only(root, {"fetic_view", "size", "center", "zoom", "magnification", "color", "show", "scales"},
+  r.only(root,
+         {"fetic_view", "size", "center", "zoom", "magnification", "text_size", "color", "show",
+          "scales"},
          "");
   SavedView view;
   r.number(root, "fetic_view", "", true);
@@ -170,6 +173,7 @@ SavedView parse_view(const std::string& text, const std::string& path) {
     view.center_y = r.checked((*center)[1], "center[1]");
   }
   view.zoom = r.number(root, "zoom");
+  view.text_size = r.number(root, "text_size");
   // "auto" (or 0, as older files have it): chosen from the scales, as the window does.
   if (const json* m = r.find(root, "magnification"))
     view.magnification = (m->is_string() && m->get<std::string>() == "auto") ||
@@ -232,6 +236,7 @@ std::string view_json(const SavedView& view) {
     else
       root["magnification"] = "auto";
   }
+  if (view.text_size) root["text_size"] = *view.text_size;
   if (view.color_by) root["color"] = color_name(*view.color_by);
   nlohmann::ordered_json show = nlohmann::ordered_json::object();
   if (view.forces) show["forces"] = *view.forces;
@@ -269,6 +274,7 @@ void apply_view(const SavedView& saved, render::View& view) {
   if (saved.overlay) view.show_overlay = *saved.overlay;
   if (saved.labels) view.show_labels = *saved.labels;
   if (saved.zoom) view.zoom = *saved.zoom;
+  if (saved.text_size) view.min_text_size = static_cast<float>(*saved.text_size);
   if (saved.center_x && saved.center_y) {
     view.centered = true;
     view.center_x = *saved.center_x;

@@ -21,6 +21,7 @@ struct SavedView {
   std::optional<double> center_x, center_y;  // world point at the centre of the scene region
   std::optional<double> zoom;                // 1: the scene fits the region
   std::optional<double> magnification;       // 0: automatic
+  std::optional<double> text_size;           // the smallest base text size (the window's)
   std::optional<render::ColorBy> color_by;
   std::optional<bool> forces, gaps, overlay, labels;
   // The run's scales the picture was drawn with (colour map and glyph ends, axes).

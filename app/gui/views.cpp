@@ -32,6 +32,8 @@ SavedView App::current_view() const {
         (static_cast<double>(middle.y) - placed_.pixel_center.y) / placed_.pixels_per_unit;
   }
   saved.zoom = zoom_;
+  // The window's text is at least this big: `fetic render --view` draws it the same.
+  saved.text_size = view(view_width_, view_height_).min_text_size;
   // 0: automatic, chosen again from the scales (as the window does, with its caption note).
   saved.magnification = magnification_;
   const render::View v = view(view_width_, view_height_);
