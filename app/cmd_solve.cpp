@@ -209,6 +209,7 @@ int run_solve(const SolveArgs& args) {
   int output_status = kExitOk;
   try {
     outputs = std::make_unique<SolveOutputs>(output_args, model, load_factors);
+    outputs->show_progress(progress_mode(args.progress, args.quiet));
   } catch (const CLI::ValidationError& error) {
     std::cerr << scenes::printable(args.scene) << ": " << error.what() << '\n';
     output_status = kExitUsage;
@@ -365,13 +366,29 @@ int report_result(const SolveArgs& args, const solver::Model& model,
                   std::ostream& report) {
   if (output_error) return report_output_error(*output_error);
   const bool sweeping = !args.method.load_steps.empty();
+  const bool announce_first =
+      was_interrupted && processes().distributed() && outputs.writes_anything();
   try {
     // An interrupted solve still writes its outputs, with the current iterate marked
     // "interrupted": true, "converged": false.
     Activity writing("writing the outputs");
+    // Under mpirun a signal to mpirun ends the job (SIGKILL) soon after it reaches the
+    // processes, often before the outputs are written and the last message is forwarded:
+    // say so first. A file appears whole or not at all.
+    if (announce_first)
+      std::cerr << scenes::printable(args.scene) << ": interrupted by " << signal_name(signal)
+                << " at iteration " << (steps.empty() ? 0 : steps.back().state.iteration)
+                << "; writing the outputs marked interrupted (a signal to mpirun may end the "
+                   "job first: then none is written)"
+                << std::endl;
     outputs.finish(steps, info, sweeping);
   } catch (const OutputError& error) {
     return report_output_error(error);
+  }
+  if (was_interrupted && announce_first) {
+    std::cerr << scenes::printable(args.scene) << ": written, the current iterate marked "
+              << "interrupted: " << outputs.written_list() << '\n';
+    return kExitInterrupted;
   }
   if (was_interrupted) {
     const bool cut = steps.empty() || steps.size() < load_factor_count ||

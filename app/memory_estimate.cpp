@@ -17,22 +17,25 @@ namespace {
 // Measured on generated scenes (fetic generate; peak resident memory of `fetic solve`,
 // /usr/bin/time -f %M; docs/RELIABILITY.md): bytes per item, least squares.
 constexpr double kBase = 10e6;  // the program itself
-// FETI and FETI-C: subdomain stiffness, K+ and Dirichlet preconditioner factors, B's rows,
-// the coarse problem, dual vectors.
+// FETI and FETI-C: one factor per subdomain for K+ and the Dirichlet preconditioner (its
+// interior ordered first, so the boundary block is dense: fill + boundary DOFs^2 / 2
+// entries), B's rows, the coarse problem, dual vectors. The factor's cost per entry was
+// refitted when the second (interior) factor and the stored K_j went (docs/BENCHMARKS.md,
+// "Bytes per unknown"): 8.7 bytes per estimated entry on 20x24-element subdomains.
 constexpr double kFetiPerUnknown = 380, kFetiPerStrut = 4500, kFetiPerSubdomain = 5000,
-                 kFetiPerFactorEntry = 13.5, kFetiPerInterfaceRow = 2500;
+                 kFetiPerFactorEntry = 8.7, kFetiPerInterfaceRow = 2500;
 // Active set: K factorized per strut, the contact rows solved against it (dense, per
 // strut), the working-set system (dense, up to every pair: twice, for the LU).
 constexpr double kActivePerUnknown = 320, kActivePerStrut = 3300, kActivePerFactorEntry = 5,
                  kActivePerContactColumn = 23, kActivePerPairSquared = 16;
-// MPRGP: FETI-C's, plus its face projector's dense correction: the coarse solutions for
-// the modes next to contacts (modes x C) and two C x C matrices, C at most 6 per pair
-// (two plane subdomains of three modes each).
-constexpr double kModesPerSubdomain = 3, kCorrectionModesPerPair = 6;
+// MPRGP: FETI-C's, plus its face projector: a second sparse coarse factor (the dense
+// correction over the modes next to contacts it once held is gone: face_projector.hpp).
+constexpr double kModesPerSubdomain = 3, kFaceProjectorPerMode = 2000;
 // CG and SD: K and a few vectors.
 constexpr double kGradientPerUnknown = 600, kGradientPerStrut = 3300;
-// nlohmann::json holds every node's position and displacement, then the text.
-constexpr double kResultFilePerNode = 700;
+// The result file is written streamed (app/json_stream.hpp): the final state's numbers
+// and one strut's JSON at a time.
+constexpr double kResultFilePerNode = 100;
 // A snapshot: the displacement pieces and the dual or primal iterate.
 constexpr double kIteratePerUnknown = 24, kIteratePerRow = 16;
 // toml++'s tree and the text, per byte of the file.
@@ -79,8 +82,12 @@ Counts count(const scenes::Scene& scene) {
     c.subdomains += sx * sy;
     const double box_along = std::ceil(s.elements / sx) + 1.0;
     const double box_across = across > 1 ? std::ceil(s.elements_across / sy) + 1.0 : 1.0;
+    // Boundary DOFs of an inner subdomain (every side an interface), ordered last.
+    const double boundary = per_node * (across > 1 ? 2.0 * (box_along + box_across) : 2.0);
     c.subdomain_fill +=
-        sx * sy * box_along * box_across * per_node * fill_per_dof(box_along, box_across, per_node);
+        sx * sy *
+        (box_along * box_across * per_node * fill_per_dof(box_along, box_across, per_node) +
+         0.5 * boundary * boundary);
     c.strut_fill += dofs * fill_per_dof(along, across, per_node);
     c.interface_rows += ((sx - 1) * across + (sy - 1) * along) * per_node +
                         ((s.fixed_from ? 1 : 0) + (s.fixed_to ? 1 : 0)) * across * per_node;
@@ -97,12 +104,9 @@ double method_bytes(const Counts& c, solver::MethodKind method) {
       return kBase + kFetiPerUnknown * c.unknowns + kFetiPerStrut * c.struts +
              kFetiPerSubdomain * c.subdomains + kFetiPerFactorEntry * c.subdomain_fill +
              kFetiPerInterfaceRow * c.interface_rows;
-    case solver::MethodKind::Mprgp: {
-      const double modes = kModesPerSubdomain * c.subdomains;
-      const double correction = std::min(modes, kCorrectionModesPerPair * c.pairs);
+    case solver::MethodKind::Mprgp:
       return method_bytes(c, solver::MethodKind::FetiC) +
-             8.0 * (modes * correction + 3.0 * correction * correction);
-    }
+             kFaceProjectorPerMode * kModesPerSubdomain * c.subdomains;
     case solver::MethodKind::ActiveSet:
       return kBase + kActivePerUnknown * c.unknowns + kActivePerStrut * c.struts +
              kActivePerFactorEntry * c.strut_fill + kActivePerContactColumn * c.contact_columns +

@@ -220,6 +220,43 @@ int create_temporary(const std::string& path, mode_t mode, std::string& name) {
   throw OutputError(shown(path) + ": cannot create a temporary file beside it");
 }
 
+// An unnamed file in the directory of `path` (O_TMPFILE), so that a process killed while
+// it writes (SIGKILL: mpirun ends its job so soon after forwarding a signal) leaves no
+// temporary file behind; named (name_unnamed) only once written. -1 where the file system
+// has no unnamed files: then create_temporary.
+int create_unnamed(const std::string& path, mode_t mode) {
+  const std::string parent = parent_of(path);
+  int fd = -1;
+  do {
+    fd = ::open(parent.empty() ? "." : parent.c_str(), O_TMPFILE | O_WRONLY | O_CLOEXEC, 0666);
+  } while (fd < 0 && errno == EINTR);
+  if (fd >= 0 && mode != 0) (void)::fchmod(fd, mode);
+  return fd;
+}
+
+// Links the written unnamed file `fd` beside `path` under a temporary name (to be renamed
+// over `path`); false with errno set when it cannot.
+bool name_unnamed(int fd, const std::string& path, std::string& name) {
+  const std::string self = "/proc/self/fd/" + std::to_string(fd);
+  const std::string pid = std::to_string(::getpid());
+  std::string candidate = path + ".tmp" + pid;
+  for (int attempt = 0; attempt < 3; ++attempt) {
+    if (::linkat(AT_FDCWD, self.c_str(), AT_FDCWD, candidate.c_str(), AT_SYMLINK_FOLLOW) == 0) {
+      name = candidate;
+      std::lock_guard lock(temporaries_mutex);
+      temporaries().insert(name);
+      return true;
+    }
+    if (errno == EEXIST)
+      ::unlink(candidate.c_str());  // left by an earlier process that had our PID
+    else if (errno == ENAMETOOLONG)
+      candidate = parent_of(path) + ".fetic.tmp" + pid;
+    else if (errno != EINTR)
+      return false;
+  }
+  return false;
+}
+
 void discard_temporary(const std::string& name) {
   ::unlink(name.c_str());
   forget_temporary(name);
@@ -241,13 +278,16 @@ void write_through(const std::string& given,
   const Target target = classify(given);
   std::string temporary;
   int fd = 1;
+  bool unnamed = false;  // an O_TMPFILE file, named once written
   if (target.kind == Kind::Stdout) {
     std::cout.flush();  // the report printed before stays before the output
     std::fflush(stdout);
   } else if (target.kind == Kind::Stream) {
     fd = open_stream(target, given);
   } else {
-    fd = create_temporary(target.path, target.exists ? target.mode : 0, temporary);
+    fd = create_unnamed(target.path, target.exists ? target.mode : 0);
+    unnamed = fd >= 0;
+    if (!unnamed) fd = create_temporary(target.path, target.exists ? target.mode : 0, temporary);
   }
   std::pair<std::string, bool> result;
   try {
@@ -258,6 +298,8 @@ void write_through(const std::string& given,
     throw;
   }
   auto [error, stopped] = result;
+  if (unnamed && error.empty() && !name_unnamed(fd, target.path, temporary))
+    error = "cannot name the written file beside it: " + reason(errno);
   if (fd != 1 && ::close(fd) != 0 && error.empty()) error = reason(errno);
   if (!error.empty()) {
     if (!temporary.empty()) discard_temporary(temporary);

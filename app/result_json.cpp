@@ -6,7 +6,7 @@ namespace fetic::app {
 
 nlohmann::ordered_json result_json(const solver::Model& model, const solver::Snapshot& final_state,
                                    const std::vector<solver::HistoryEntry>& history,
-                                   const RunInfo& info) {
+                                   const RunInfo& info, std::vector<ElementMaker>* makers) {
   nlohmann::ordered_json result;
   result["scene"] = info.scene_path;
   result["title"] = model.title;
@@ -22,7 +22,7 @@ nlohmann::ordered_json result_json(const solver::Model& model, const solver::Sna
   result["ranks"] = info.ranks;
   if (!info.subdomains_per_rank.empty()) result["subdomains_per_rank"] = info.subdomains_per_rank;
   // load_factor, converged, iterations, struts, contacts, reactions, ...
-  add_state(result, model, final_state);
+  add_state(result, model, final_state, makers);
   result["history"] = history_json(history);
   return result;
 }

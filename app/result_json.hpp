@@ -7,6 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "app/json_stream.hpp"
 #include "solver/method.hpp"
 
 namespace fetic::app {
@@ -23,8 +24,10 @@ struct RunInfo {
 };
 
 // Keys in insertion order; app/json_layout.hpp puts the plain values first when written.
+// With `makers`, the struts are placeholders for write_streamed() (app/state_json.hpp).
 nlohmann::ordered_json result_json(const solver::Model& model, const solver::Snapshot& final_state,
                                    const std::vector<solver::HistoryEntry>& history,
-                                   const RunInfo& info);
+                                   const RunInfo& info,
+                                   std::vector<ElementMaker>* makers = nullptr);
 
 }  // namespace fetic::app

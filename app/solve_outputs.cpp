@@ -84,19 +84,38 @@ void SolveOutputs::finish(const std::vector<solver::SweepStep>& steps, const Run
   if (steps.empty()) return;
   const solver::SweepStep& last = steps.back();
   if (!args_.json.empty()) {
-    nlohmann::ordered_json result = result_json(model_, last.state, last.history, info);
+    // Streamed (app/json_stream.hpp): the final state's struts and every step are made
+    // as they are written.
+    std::vector<ElementMaker> makers;
+    nlohmann::ordered_json result = result_json(model_, last.state, last.history, info, &makers);
     if (sweeping) {
-      nlohmann::ordered_json list = nlohmann::ordered_json::array();
-      for (const solver::SweepStep& step : steps) {
+      const int maker = static_cast<int>(makers.size());
+      makers.push_back([&](int k) {
+        const solver::SweepStep& step = steps[static_cast<size_t>(k)];
         nlohmann::ordered_json entry;
         add_state(entry, model_, step.state);
         entry["history"] = history_json(step.history);
-        list.push_back(std::move(entry));
-      }
+        return entry;
+      });
+      nlohmann::ordered_json list = nlohmann::ordered_json::array();
+      for (size_t k = 0; k < steps.size(); ++k)
+        list.push_back(deferred(maker, static_cast<int>(k)));
       result["steps"] = std::move(list);
     }
+    ProgressLine line(progress_);
+    int made = 0;
+    const int total = static_cast<int>(model_.struts.size() + (sweeping ? steps.size() : 0));
+    for (ElementMaker& maker : makers)
+      maker = [&, make = std::move(maker)](int k) {
+        if (line.elapsed_seconds() > 1.0)
+          line.update("writing " + args_.json + ": " + std::to_string(made) + " of " +
+                      std::to_string(total) + " parts");
+        ++made;
+        return make(k);
+      };
     write_output(args_.json, [&](std::ostream& out) {
-      out << scalars_first(std::move(result)).dump(1) << '\n';
+      write_streamed(out, result, makers);
+      out << '\n';
     });
   }
   if (!args_.csv.empty())

@@ -11,6 +11,7 @@
 #include <CLI/CLI.hpp>
 
 #include "app/csv_tables.hpp"
+#include "app/progress.hpp"
 #include "app/result_json.hpp"
 #include "app/vtu_export.hpp"
 #include "solver/load_sweep.hpp"
@@ -41,6 +42,8 @@ class SolveOutputs {
   // The result file and the CSV tables. Throws OutputError.
   void finish(const std::vector<solver::SweepStep>& steps, const RunInfo& info, bool sweeping);
 
+  // A progress line for the result file when writing it takes over a second.
+  void show_progress(ProgressMode mode) { progress_ = mode; }
   bool writes_anything() const;
   // An output goes to standard output ("-"): the command reports on stderr then.
   bool uses_stdout() const;
@@ -56,6 +59,7 @@ class SolveOutputs {
   std::unique_ptr<VtuSeries> vtu_;
   bool time_is_load_factor_ = false;
   double writing_seconds_ = 0.0;
+  ProgressMode progress_ = ProgressMode::Never;
 };
 
 }  // namespace fetic::app

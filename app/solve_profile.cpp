@@ -43,7 +43,21 @@ std::vector<double> flatten(const ProfileRun& run) {
           static_cast<double>(b.coarse_memory),
           static_cast<double>(b.factor_memory),
           static_cast<double>(usage.ru_maxrss) * 1024.0,
-          b.coarse_seconds};
+          b.coarse_seconds,
+          b.memory.stiffness,
+          b.memory.factor,
+          b.memory.preconditioner_factor,
+          b.memory.preconditioner_blocks,
+          b.memory.incidence,
+          b.memory.rigid_modes,
+          b.memory.index,
+          b.memory.workspaces,
+          b.memory.loads,
+          b.setup.decomposition,
+          b.setup.incidence,
+          b.setup.factorization,
+          b.setup.coarse_space,
+          b.preconditioner_setup_seconds};
 }
 
 const char* const kFields[] = {"subdomains",
@@ -69,7 +83,21 @@ const char* const kFields[] = {"subdomains",
                                "coarse_memory_bytes",
                                "factor_memory_bytes",
                                "peak_resident_bytes",
-                               "coarse_seconds_with_setup"};
+                               "coarse_seconds_with_setup",
+                               "stiffness_bytes",
+                               "subdomain_factor_bytes",
+                               "preconditioner_factor_bytes",
+                               "preconditioner_block_bytes",
+                               "incidence_bytes",
+                               "rigid_mode_bytes",
+                               "index_bytes",
+                               "workspace_bytes",
+                               "load_bytes",
+                               "setup_decomposition_seconds",
+                               "setup_incidence_seconds",
+                               "setup_factorization_seconds",
+                               "setup_coarse_space_seconds",
+                               "setup_preconditioner_seconds"};
 
 }  // namespace
 

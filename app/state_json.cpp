@@ -1,6 +1,7 @@
 #include "app/state_json.hpp"
 
 #include <cmath>
+#include <memory>
 
 #include "solver/element_results.hpp"
 
@@ -97,7 +98,8 @@ std::string end_label(const solver::Model& model, int strut, scenes::StrutEnd en
   return model.strut_names[static_cast<size_t>(strut)] + "." + scenes::to_string(end);
 }
 
-void add_state(OrderedJson& out, const solver::Model& model, const solver::Snapshot& state) {
+void add_state(OrderedJson& out, const solver::Model& model, const solver::Snapshot& state,
+               std::vector<ElementMaker>* makers) {
   const bool interrupted = state.status == solver::Status::Running;
   out["load_factor"] = state.load_factor;
   out["converged"] = state.status == solver::Status::Converged;
@@ -108,15 +110,26 @@ void add_state(OrderedJson& out, const solver::Model& model, const solver::Snaps
   out["residual"] = state.residual;
   out["active_pairs"] = state.active_set_size();
 
-  const auto displacements = solver::strut_displacements(model, state);
-  const auto elements = solver::element_results(model, state);
+  struct Results {
+    std::vector<std::vector<solver::Vec2>> displacements;
+    std::vector<solver::StrutElements> elements;
+    std::vector<std::vector<double>> rotations;  // frame model: one per node
+  };
+  auto results = std::make_shared<Results>();
+  results->displacements = solver::strut_displacements(model, state);
+  results->elements = solver::element_results(model, state);
+  if (model.frame()) results->rotations = solver::strut_rotations(model, state);
+  const auto make = [&model, results](int s) {
+    const auto at = static_cast<size_t>(s);
+    OrderedJson strut = strut_json(model, s, results->displacements[at], results->elements[at]);
+    if (model.frame()) strut["rotations"] = results->rotations[at];
+    return strut;
+  };
   OrderedJson struts = OrderedJson::array();
-  const auto rotations =
-      model.frame() ? solver::strut_rotations(model, state) : std::vector<std::vector<double>>{};
-  for (size_t s = 0; s < model.struts.size(); ++s) {
-    struts.push_back(strut_json(model, static_cast<int>(s), displacements[s], elements[s]));
-    if (model.frame()) struts.back()["rotations"] = rotations[s];  // frame model: one per node
-  }
+  const int maker = makers ? static_cast<int>(makers->size()) : -1;
+  if (makers) makers->push_back(make);
+  for (size_t s = 0; s < model.struts.size(); ++s)
+    struts.push_back(makers ? deferred(maker, static_cast<int>(s)) : make(static_cast<int>(s)));
   out["struts"] = std::move(struts);
 
   OrderedJson contacts = OrderedJson::array();

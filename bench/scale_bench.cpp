@@ -32,6 +32,7 @@
 #include "app/exit_codes.hpp"
 #include "app/output_file.hpp"
 #include "bench/ipopt_qp.hpp"
+#include "bench/local_bytes.hpp"
 #include "scenes/generate_scene.hpp"
 #include "solver/direct_floor.hpp"
 #include "solver/feti_method.hpp"
@@ -400,6 +401,29 @@ int run(const Args& args) {
   if (args.runs("comparison"))
     comparison_table(sizes, 120'000, 200'000).write_csv(args.csv_dir, "comparison.csv");
 
+  // 1b. bytes: memory per unknown by kind, the set-up by part, F against the bandwidth,
+  // on scenes of ~20x24-element subdomains (the H/h of the 1e7 scene).
+  if (args.runs("bytes")) {
+    std::vector<scenes::GenerateOptions> scenes{plane(5, 100, 24, 5, 1)};
+    if (full) scenes.push_back(plane(25, 200, 48, 10, 2));
+    if (full) scenes.push_back(plane(25, 320, 100, 16, 4));
+    std::vector<std::string> names;
+    for (const auto& options : scenes)
+      names.push_back(describe(options));
+    const BytesTables bytes = local_bytes(scenes, names);
+    Table memory{"1b. Bytes per unknown by kind after MPRGP's set-up (Dirichlet preconditioner)",
+                 bytes.memory_header, bytes.memory};
+    memory.print();
+    memory.write_csv(args.csv_dir, "bytes.csv");
+    Table setup{"1c. Set-up seconds by part", bytes.setup_header, bytes.setup};
+    setup.print();
+    setup.write_csv(args.csv_dir, "setup.csv");
+    Table apply{"1d. One application of F: the subdomain factors read twice against a triad",
+                bytes.apply_header, bytes.apply};
+    apply.print();
+    apply.write_csv(args.csv_dir, "apply_F.csv");
+  }
+
   // 2. numerical scalability.
   const int step = full ? 16 : 8;  // elements per subdomain side (H/h)
   // 2x1 subdomains per strut have no cross points and no inner subdomain, an easy start;
@@ -473,10 +497,11 @@ int main(int argc, char** argv) {
   app.add_option("--csv-dir", args.csv_dir, "Write every table as CSV into this directory")
       ->check(CLI::NonexistentPath | CLI::ExistingDirectory);
   app.add_option("--only", args.only,
-                 "Run only these parts: comparison (against the direct floor), subdomains, "
-                 "pressed (2c: the subdomain scenes pressed flat), refinement, memory, frames")
-      ->check(
-          CLI::IsMember({"comparison", "subdomains", "pressed", "refinement", "memory", "frames"}));
+                 "Run only these parts: comparison (against the direct floor), bytes (memory by "
+                 "kind, set-up by part, F against the bandwidth), subdomains, pressed (2c: the "
+                 "subdomain scenes pressed flat), refinement, memory, frames")
+      ->check(CLI::IsMember(
+          {"comparison", "bytes", "subdomains", "pressed", "refinement", "memory", "frames"}));
   CLI11_PARSE(app, argc, argv);
   try {
     return fetic::bench::run(args);

@@ -39,8 +39,9 @@ FrameComposer::FrameComposer(const solver::Model& model, const View& view, const
 ComposedFrame FrameComposer::compose(const Frame& frame) const {
   ComposedFrame composed;
   if (!mesh_ || !mesh_->fits(frame.snapshot))
-    mesh_ = std::make_shared<const SceneMesh>(
-        build_scene_mesh(model_, frame.snapshot, framing_, view_.color_by));
+    // At the detail of the drawn scale: plane elements below a pixel merged.
+    mesh_ = std::make_shared<const SceneMesh>(build_scene_mesh(
+        model_, frame.snapshot, framing_, view_.color_by, mesh_detail(model_, placed_, placed_)));
   composed.mesh = mesh_;
   // The mesh is built for the fitted framing and drawn zoomed and moved, as the window does.
   fill_mesh_values(*mesh_, model_, frame.snapshot, placed_, composed.values);

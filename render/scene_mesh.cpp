@@ -80,6 +80,113 @@ MeshVertex at_node(int row, int element, Color color) {
 
 std::atomic<std::uint64_t> next_id{1};
 
+// The middle of the reference geometry (the mesh's origin).
+Vec2 middle(const solver::Model& model) {
+  Vec2 low = Vec2::Constant(std::numeric_limits<double>::infinity()), high = -low;
+  for (const solver::StrutMesh& strut : model.struts)
+    for (const Vec2& p : strut.nodes) {
+      low = low.cwiseMin(p);
+      high = high.cwiseMax(p);
+    }
+  return low.allFinite() && high.allFinite() ? Vec2(0.5 * (low + high)) : Vec2(0, 0);
+}
+
+// Where a plane piece's triangles go.
+struct PlaneParts {
+  std::vector<MeshVertex>&fills, &lines, &outlines;
+};
+
+// Appends a plane piece of na x nb kept nodes from node row `first` on: its cells (element
+// rows from `element` on; -1 when `valueless`), inner lines when `lines`, and outline.
+// Returns the next element row.
+int plane_piece(PlaneParts out, int first, int na, int nb, int element, bool lines, Color fill,
+                bool valueless) {
+  // Kept node (a, b) is row at(a, b); a cell spans kept nodes a..a+1, b..b+1 (one element
+  // unless merged).
+  const auto at = [&](int a, int b) { return first + a * nb + b; };
+  for (int a = 0; a + 1 < na; ++a)
+    for (int b = 0; b + 1 < nb; ++b, ++element) {
+      const int row = valueless ? -1 : element;
+      quad(out.fills, at_node(at(a, b), row, fill), at_node(at(a + 1, b), row, fill),
+           at_node(at(a + 1, b + 1), row, fill), at_node(at(a, b + 1), row, fill));
+    }
+  // Lines across (fixed i) and along (fixed k); the box's outer ones outline the piece.
+  for (int a = 0; a < na; ++a) {
+    const bool rim = a == 0 || a + 1 == na;
+    if (!rim && !lines) continue;
+    for (int b = 0; b + 1 < nb; ++b)
+      band(rim ? out.outlines : out.lines, at(a, b), at(a, b + 1), {0, 0, rim ? 0.8f : 0.5f}, 0, 0,
+           -1, rim ? kOutline : kMeshLine);
+  }
+  for (int b = 0; b < nb; ++b) {
+    const bool rim = b == 0 || b + 1 == nb;
+    if (!rim && !lines) continue;
+    for (int a = 0; a + 1 < na; ++a)
+      band(rim ? out.outlines : out.lines, at(a, b), at(a + 1, b), {0, 0, rim ? 0.8f : 0.5f}, 0, 0,
+           -1, rim ? kOutline : kMeshLine);
+  }
+  return element;
+}
+
+// Inner mesh lines are drawn where the elements are at least this many pixels.
+constexpr double kLinePixels = 6.0;
+
+// World length of the shorter side of a plane strut's elements.
+double element_side(const solver::StrutMesh& strut) {
+  return std::min(strut.length / strut.nx,
+                  strut.ny > 0 ? strut.height / strut.ny : strut.length / strut.nx);
+}
+
+// Elements merged per cell of a piece, along and across: 1, 1 except for plane pieces
+// drawn at a level of detail; one cell for a piece outside the part kept in detail.
+std::array<int, 2> merge_for(const solver::StrutMesh& strut, const solver::NodeBox& box,
+                             const MeshDetail& detail) {
+  if (strut.dofs_per_node != 2 || !(detail.pixels_per_unit > 0.0)) return {1, 1};
+  const int along = box.i1 - box.i0, across = box.k1 - box.k0;
+  WorldRect piece;
+  piece.low = piece.high = strut.nodes[static_cast<std::size_t>(strut.node(box.i0, box.k0))];
+  for (const auto& [i, k] :
+       {std::pair{box.i1, box.k0}, std::pair{box.i1, box.k1}, std::pair{box.i0, box.k1}}) {
+    const Vec2& corner = strut.nodes[static_cast<std::size_t>(strut.node(i, k))];
+    piece.low = piece.low.cwiseMin(corner);
+    piece.high = piece.high.cwiseMax(corner);
+  }
+  if (!detail.keep.overlaps(piece)) return {std::max(along, 1), std::max(across, 1)};
+  const double ppu = detail.pixels_per_unit;
+  return {merge_stride(strut.length / strut.nx * ppu, along),
+          merge_stride(strut.height / std::max(strut.ny, 1) * ppu, across)};
+}
+
+bool is_merged(const SceneMesh& mesh, std::size_t piece) {
+  return piece < mesh.merged.size() && mesh.merged[piece] != std::array<int, 2>{1, 1};
+}
+
+// Per cell of a merged plane piece (in the order of its element rows), the mean of the
+// values of the elements it holds (`values` per element, along the strut outer).
+std::vector<double> cell_means(const solver::NodeBox& box, const std::array<int, 2>& merged,
+                               const std::vector<double>& values) {
+  const std::vector<int> kept_i = kept_nodes(box.i0, box.i1, merged[0]),
+                         kept_k = kept_nodes(box.k0, box.k1, merged[1]);
+  const int across = box.k1 - box.k0;
+  std::vector<double> means;
+  means.reserve((kept_i.size() - 1) * (kept_k.size() - 1));
+  for (std::size_t a = 0; a + 1 < kept_i.size(); ++a)
+    for (std::size_t b = 0; b + 1 < kept_k.size(); ++b) {
+      double sum = 0.0;
+      int count = 0;
+      for (int i = kept_i[a]; i < kept_i[a + 1]; ++i)
+        for (int k = kept_k[b]; k < kept_k[b + 1]; ++k) {
+          const auto e = static_cast<std::size_t>((i - box.i0) * across + (k - box.k0));
+          if (e < values.size() && std::isfinite(values[e])) {
+            sum += values[e];
+            ++count;
+          }
+        }
+      means.push_back(count > 0 ? sum / count : 0.0);
+    }
+  return means;
+}
+
 }  // namespace
 
 bool SceneMesh::fits(const solver::Snapshot& snapshot) const {
@@ -92,18 +199,13 @@ bool SceneMesh::fits(const solver::Snapshot& snapshot) const {
 }
 
 SceneMesh build_scene_mesh(const solver::Model& model, const solver::Snapshot& snapshot,
-                           const SceneFraming& framing, ColorBy color_by) {
+                           const SceneFraming& framing, ColorBy color_by,
+                           const MeshDetail& detail) {
   SceneMesh mesh;
+  mesh.detail = detail;
   mesh.id = next_id++;
   mesh.color_by = color_by;
-  // Origin: the middle of the reference geometry.
-  Vec2 low = Vec2::Constant(std::numeric_limits<double>::infinity()), high = -low;
-  for (const solver::StrutMesh& strut : model.struts)
-    for (const Vec2& p : strut.nodes) {
-      low = low.cwiseMin(p);
-      high = high.cwiseMax(p);
-    }
-  if (low.allFinite() && high.allFinite()) mesh.origin = 0.5 * (low + high);
+  mesh.origin = middle(model);
   mesh.smallest_element = std::numeric_limits<double>::infinity();
 
   const auto ranks = piece_ranks(snapshot);
@@ -117,8 +219,13 @@ SceneMesh build_scene_mesh(const solver::Model& model, const solver::Snapshot& s
     const int first = static_cast<int>(mesh.nodes.size());
     mesh.first_node.push_back(first);
     mesh.first_element.push_back(mesh.element_count);
-    for (int i = box.i0; i <= box.i1; ++i)
-      for (int k = box.k0; k <= box.k1; ++k) {
+    // A plane piece at a level of detail keeps every merged-th node along and across.
+    const std::array<int, 2> merged = merge_for(strut, box, detail);
+    mesh.merged.push_back(merged);
+    const std::vector<int> kept_i = kept_nodes(box.i0, box.i1, merged[0]),
+                           kept_k = kept_nodes(box.k0, box.k1, merged[1]);
+    for (int i : kept_i)
+      for (int k : kept_k) {
         const auto node = static_cast<std::size_t>(strut.node(i, k));
         const Vec2 x = strut.nodes[node] - mesh.origin;
         const Vec2 q = framing.widening.empty() ? Vec2::Zero() : framing.widening[s][node];
@@ -163,30 +270,15 @@ SceneMesh build_scene_mesh(const solver::Model& model, const solver::Snapshot& s
       mesh.element_count += elements;
       continue;
     }
-    mesh.smallest_element =
-        std::min({mesh.smallest_element, strut.length / strut.nx,
-                  strut.ny > 0 ? strut.height / strut.ny : strut.length / strut.nx});
-    int element = mesh.element_count;
-    for (int i = box.i0; i < box.i1; ++i)
-      for (int k = box.k0; k < box.k1; ++k, ++element)
-        quad(plane_fills, at_node(row(i, k), element_row(element), fill),
-             at_node(row(i + 1, k), element_row(element), fill),
-             at_node(row(i + 1, k + 1), element_row(element), fill),
-             at_node(row(i, k + 1), element_row(element), fill));
-    mesh.element_count = element;
-    // Lines across (fixed i) and along (fixed k); the box's outer ones outline the piece.
-    for (int i = box.i0; i <= box.i1; ++i)
-      for (int k = box.k0; k < box.k1; ++k) {
-        const bool rim = i == box.i0 || i == box.i1;
-        band(rim ? outlines : plane_lines, row(i, k), row(i, k + 1), {0, 0, rim ? 0.8f : 0.5f}, 0,
-             0, -1, rim ? kOutline : kMeshLine);
-      }
-    for (int k = box.k0; k <= box.k1; ++k)
-      for (int i = box.i0; i < box.i1; ++i) {
-        const bool rim = k == box.k0 || k == box.k1;
-        band(rim ? outlines : plane_lines, row(i, k), row(i + 1, k), {0, 0, rim ? 0.8f : 0.5f}, 0,
-             0, -1, rim ? kOutline : kMeshLine);
-      }
+    mesh.smallest_element = std::min(mesh.smallest_element, element_side(strut));
+    // Inner lines only where the elements are whole and can grow large enough on screen
+    // within the level (mesh_uniforms draws them from 6 pixels).
+    const bool lines = merged == std::array<int, 2>{1, 1} &&
+                       (!(detail.pixels_per_unit > 0.0) ||
+                        2.0 * element_side(strut) * detail.pixels_per_unit >= kLinePixels);
+    mesh.element_count =
+        plane_piece({plane_fills, plane_lines, outlines}, first, static_cast<int>(kept_i.size()),
+                    static_cast<int>(kept_k.size()), mesh.element_count, lines, fill, valueless);
   }
   if (!std::isfinite(mesh.smallest_element)) mesh.smallest_element = 0.0;
   const auto append = [&](std::vector<MeshVertex>& part, MeshRange& range) {
@@ -211,14 +303,24 @@ void fill_mesh_values(const SceneMesh& mesh, const solver::Model& model,
   for (std::size_t p = 0; p < snapshot.pieces.size() && p < mesh.first_node.size(); ++p) {
     const solver::Piece& piece = snapshot.pieces[p];
     auto* out = values.nodes.data() + mesh.first_node[p];
-    for (std::size_t l = 0; l < piece.displacement.size(); ++l) {
+    const auto value = [&](std::size_t l) {
       const Vec2& u = piece.displacement[l];
       const double rotation = l < piece.rotation.size() ? piece.rotation[l] : 0.0;
-      out[l] = u.allFinite() && std::isfinite(rotation)
-                   ? std::array<float, 4>{static_cast<float>(u.x()), static_cast<float>(u.y()),
-                                          static_cast<float>(rotation), 0.0f}
-                   : std::array<float, 4>{0, 0, 0, 0};
+      return u.allFinite() && std::isfinite(rotation)
+                 ? std::array<float, 4>{static_cast<float>(u.x()), static_cast<float>(u.y()),
+                                        static_cast<float>(rotation), 0.0f}
+                 : std::array<float, 4>{0, 0, 0, 0};
+    };
+    if (is_merged(mesh, p)) {
+      const solver::NodeBox& box = piece.box;
+      std::size_t row = 0;
+      for (int i : kept_nodes(box.i0, box.i1, mesh.merged[p][0]))
+        for (int k : kept_nodes(box.k0, box.k1, mesh.merged[p][1]))
+          out[row++] = value(static_cast<std::size_t>(box.local(i, k)));
+      continue;
     }
+    for (std::size_t l = 0; l < piece.displacement.size(); ++l)
+      out[l] = value(l);
   }
   values.elements.assign(static_cast<std::size_t>(mesh.element_count), {0.0f, 0.0f});
   const auto scaled = [](double value, double scale) {
@@ -227,11 +329,21 @@ void fill_mesh_values(const SceneMesh& mesh, const solver::Model& model,
   };
   if (mesh.color_by == ColorBy::Stress && framing.stress_scale > 0.0) {
     const auto stresses = piece_stresses(model, snapshot);
-    for (std::size_t p = 0; p < stresses.size() && p < mesh.first_element.size(); ++p)
+    for (std::size_t p = 0; p < stresses.size() && p < mesh.first_element.size(); ++p) {
+      auto* out = values.elements.data() + mesh.first_element[p];
+      if (is_merged(mesh, p)) {
+        const auto means = cell_means(snapshot.pieces[p].box, mesh.merged[p], stresses[p]);
+        for (std::size_t c = 0; c < means.size(); ++c) {
+          const float v = scaled(means[c], framing.stress_scale);
+          out[c] = {v, v};
+        }
+        continue;
+      }
       for (std::size_t e = 0; e < stresses[p].size(); ++e) {
         const float v = scaled(stresses[p][e], framing.stress_scale);
-        values.elements[static_cast<std::size_t>(mesh.first_element[p]) + e] = {v, v};
+        out[e] = {v, v};
       }
+    }
   } else if (mesh.color_by == ColorBy::Moment && framing.moment_scale > 0.0) {
     const auto moments = solver::piece_moments(model, snapshot);
     for (std::size_t p = 0; p < moments.size() && p < mesh.first_element.size(); ++p)

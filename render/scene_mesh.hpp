@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "render/draw_list.hpp"
+#include "render/mesh_detail.hpp"
 #include "render/scene_framing.hpp"
 #include "render/view.hpp"
 #include "solver/method.hpp"
@@ -53,6 +54,10 @@ struct SceneMesh {
   // element row of each piece.
   std::vector<std::pair<int, solver::NodeBox>> layout;
   std::vector<int> first_node, first_element;
+  // Per piece, the elements merged into a cell along and across (1, 1: every element;
+  // render/mesh_detail.hpp), and the detail the mesh was built with.
+  std::vector<std::array<int, 2>> merged;
+  MeshDetail detail;
   ColorBy color_by = ColorBy::Subdomain;
   double smallest_element = 0.0;  // world length of the smallest plane element side
 
@@ -60,16 +65,19 @@ struct SceneMesh {
   bool fits(const solver::Snapshot& snapshot) const;
 };
 
-// The mesh of `model` for the piece layout of `snapshot` (any snapshot of the method).
+// The mesh of `model` for the piece layout of `snapshot` (any snapshot of the method),
+// every element as it is, or at a level of detail (plane elements below a pixel merged).
 SceneMesh build_scene_mesh(const solver::Model& model, const solver::Snapshot& snapshot,
-                           const SceneFraming& framing, ColorBy color_by);
+                           const SceneFraming& framing, ColorBy color_by,
+                           const MeshDetail& detail = {});
 
 // What changes per frame.
 struct MeshValues {
   std::vector<std::array<float, 4>> nodes;  // per node row: ux, uy, rotation, 0
-  // Per element row, the value over its scale at the element's first node (t = 0) and at
-  // its second (t = 1); a vertex at t between them is coloured by the linear blend. Axial
-  // stress is constant over an element (both the same); a beam's moment is linear.
+  // Per element row (a merged cell: the mean of its elements), the value over its scale at the
+  // element's first node (t = 0) and at its second (t = 1); a vertex at t between them is coloured
+  // by the linear blend. Axial stress is constant over an element (both the same); a beam's moment
+  // is linear.
   std::vector<std::array<float, 2>> elements;
 };
 void fill_mesh_values(const SceneMesh& mesh, const solver::Model& model,

@@ -1,5 +1,6 @@
 #include "solver/cholmod_factor.hpp"
 
+#include <algorithm>
 #include <cstring>
 #include <new>
 #include <stdexcept>
@@ -57,9 +58,49 @@ cholmod_sparse view_of(const SparseMatrix& A) {
 
 }  // namespace
 
+CholmodFactor::Result CholmodFactor::factorize(const SparseMatrix& A,
+                                               const std::vector<char>& leading) {
+  if (!A.isCompressed()) throw std::logic_error("CholmodFactor: matrix must be compressed");
+  cholmod_free_factor(&impl_->factor, &impl_->common);
+  size_ = static_cast<int>(A.rows());
+  failed_column_ = -1;
+  leading_ = 0;
+  if (size_ == 0) return Result::Ok;
+  cholmod_sparse view = view_of(A);
+  cholmod_common& c = impl_->common;
+  std::vector<int> member(size_), permutation(size_);
+  int count = 0;
+  for (int i = 0; i < size_; ++i) {
+    member[i] = leading[i] ? 0 : 1;
+    count += leading[i] ? 1 : 0;
+  }
+  if (!cholmod_camd(&view, nullptr, 0, member.data(), permutation.data(), &c)) {
+    if (c.status == CHOLMOD_OUT_OF_MEMORY) throw std::bad_alloc();
+    return Result::Failed;
+  }
+  // Exactly this ordering, not postordered (a postorder may interleave the two sets).
+  const int methods = c.nmethods, ordering = c.method[0].ordering, postorder = c.postorder;
+  c.nmethods = 1;
+  c.method[0].ordering = CHOLMOD_GIVEN;
+  c.postorder = 0;
+  impl_->factor = cholmod_analyze_p(&view, permutation.data(), nullptr, 0, &c);
+  c.nmethods = methods;
+  c.method[0].ordering = ordering;
+  c.postorder = postorder;
+  if (!impl_->factor && c.status == CHOLMOD_OUT_OF_MEMORY) throw std::bad_alloc();
+  if (!impl_->factor) return Result::Failed;
+  const int* perm = static_cast<const int*>(impl_->factor->Perm);
+  bool first = true;
+  for (int k = 0; k < count && first; ++k)
+    first = leading[perm[k]] != 0;
+  leading_ = first ? count : 0;
+  return numeric(A);
+}
+
 CholmodFactor::Result CholmodFactor::factorize(const SparseMatrix& A) {
   if (!A.isCompressed()) throw std::logic_error("CholmodFactor: matrix must be compressed");
   cholmod_free_factor(&impl_->factor, &impl_->common);
+  leading_ = 0;
   size_ = static_cast<int>(A.rows());
   failed_column_ = -1;
   if (size_ == 0) return Result::Ok;
@@ -90,12 +131,16 @@ CholmodFactor::Result CholmodFactor::numeric(const SparseMatrix& A) {
   }
   if (c.status == CHOLMOD_OUT_OF_MEMORY) throw std::bad_alloc();
   if (c.status < CHOLMOD_OK) return Result::Failed;
+  // The factorization's workspace (O(n) per factor, thousands of factors in a FETI
+  // solve) is not needed by a solve; a later factorization or update allocates it again.
+  cholmod_free_work(&c);
   return Result::Ok;
 }
 
 CholmodFactor::Result CholmodFactor::update(const SparseMatrix& C, bool add) {
   if (!impl_->factor || static_cast<int>(C.rows()) != size_) return Result::Failed;
   if (C.cols() == 0) return Result::Ok;
+  leading_ = 0;  // the update changes the block too
   if (!C.isCompressed()) throw std::logic_error("CholmodFactor: matrix must be compressed");
   failed_column_ = -1;
   cholmod_common& c = impl_->common;
@@ -134,6 +179,45 @@ std::size_t CholmodFactor::factor_nonzeros() const {
 
 std::size_t CholmodFactor::peak_memory() const {
   return impl_->common.memory_usage;
+}
+
+void CholmodFactor::solve_system(int system, const double* b) const {
+  cholmod_dense rhs{};
+  rhs.nrow = static_cast<size_t>(size_);
+  rhs.ncol = 1;
+  rhs.nzmax = rhs.nrow;
+  rhs.d = rhs.nrow;
+  rhs.x = const_cast<double*>(b);
+  rhs.xtype = CHOLMOD_REAL;
+  rhs.dtype = CHOLMOD_DOUBLE;
+  if (!cholmod_solve2(system, impl_->factor, &rhs, nullptr, &impl_->x, nullptr, &impl_->y,
+                      &impl_->e, &impl_->common)) {
+    if (impl_->common.status == CHOLMOD_OUT_OF_MEMORY) throw std::bad_alloc();
+    throw std::runtime_error("CHOLMOD solve failed");
+  }
+}
+
+void CholmodFactor::solve_leading(const double* b, double* x) const {
+  if (leading_ == 0) throw std::logic_error("CholmodFactor: no leading block");
+  // P A P' = L D L' (D = I for LL'); with b' = P b zero past the block, L D y = b' then
+  // L' z = [y_l; 0] gives z = [A_ll^-1 b_l; 0] in the factor's order.
+  thread_local std::vector<double> work;
+  work.assign(size_, 0.0);
+  const int* perm = static_cast<const int*>(impl_->factor->Perm);
+  for (int k = 0; k < leading_; ++k)
+    work[k] = b[perm[k]];
+  solve_system(CHOLMOD_LD, work.data());
+  const double* y = static_cast<const double*>(impl_->x->x);
+  std::copy(y, y + leading_, work.begin());
+  std::fill(work.begin() + leading_, work.end(), 0.0);
+  solve_system(CHOLMOD_Lt, work.data());
+  const double* z = static_cast<const double*>(impl_->x->x);
+  for (int k = 0; k < size_; ++k)
+    x[perm[k]] = k < leading_ ? z[k] : 0.0;
+}
+
+std::size_t CholmodFactor::memory_in_use() const {
+  return impl_->common.memory_inuse;
 }
 
 void CholmodFactor::solve(const double* b, double* x, int columns) const {

@@ -5,6 +5,7 @@
 
 #include <cstddef>
 #include <memory>
+#include <vector>
 
 #include "solver/stiffness.hpp"
 
@@ -24,6 +25,16 @@ class CholmodFactor {
   // Factorizes the symmetric matrix A (only its lower triangle is read). Throws
   // std::bad_alloc when CHOLMOD runs out of memory (OutOfMemory is never returned).
   Result factorize(const SparseMatrix& A);
+  // The same with the rows where leading[i] != 0 ordered before all others (CHOLMOD's
+  // constrained minimum degree, CAMD): the factor's leading block is then the factor of
+  // A restricted to those rows, which solve_leading() uses - one factor serves both A
+  // and that block. Without a leading block (none asked, or the ordering did not keep
+  // it first) has_leading() is false.
+  Result factorize(const SparseMatrix& A, const std::vector<char>& leading);
+  bool has_leading() const { return leading_ > 0; }
+  // x = A_ll^-1 b on the leading rows l: b is read and x written over all rows (size()),
+  // x zero off l; b's entries off l are ignored. Not reentrant, like solve().
+  void solve_leading(const double* b, double* x) const;
   // The same for a matrix with the nonzero pattern of the last factorize(): the fill-
   // reducing ordering and symbolic analysis are kept, only the numbers are factorized
   // again (a working-set change in FETI-C changes values of G G', not its pattern).
@@ -41,6 +52,8 @@ class CholmodFactor {
   std::size_t factor_nonzeros() const;
   // Peak bytes CHOLMOD allocated for this factor.
   std::size_t peak_memory() const;
+  // Bytes CHOLMOD holds now for this factor: the factor and the solve's workspaces.
+  std::size_t memory_in_use() const;
 
   // x = A^-1 b for `columns` right-hand sides stored column-major (size() rows each).
   // Not reentrant: one call at a time per factor.
@@ -49,8 +62,10 @@ class CholmodFactor {
  private:
   struct Impl;
   Result numeric(const SparseMatrix& A);
+  void solve_system(int system, const double* b) const;  // into impl_->x
   std::unique_ptr<Impl> impl_;
   int size_ = 0;
+  int leading_ = 0;  // rows of the leading block (0: none)
   int failed_column_ = -1;
 };
 

@@ -9,9 +9,13 @@ namespace fetic::solver {
 FetiMethod::FetiMethod(const Model& model, const SolveOptions& options, int default_max_iterations,
                        const Communicator& communicator)
     : Method(model, options, default_max_iterations),
-      system_(model, communicator),
+      system_(
+          model, communicator,
+          options.preconditioner == Preconditioner::Dirichlet && options.shared_interior_factor),
       preconditioner_(system_, options.preconditioner, options.scaling),
-      coarse_(system_) {}
+      coarse_(system_) {
+  system_.release_stiffness();
+}
 
 Eigen::VectorXd FetiMethod::rigid_amplitudes() const {
   // alpha = (G^G^')^+ G^ (F lambda - d) = -(G^G^')^+ G^ r.
@@ -83,6 +87,10 @@ ProcessProfile FetiMethod::profile() const {
   p.coarse_updates = coarse_.updates();
   p.coarse_memory = coarse_.factor_memory();
   p.factor_memory = system_.factor_memory() + preconditioner_.factor_memory();
+  p.memory = system_.memory();
+  preconditioner_.add_memory(p.memory);
+  p.setup = system_.setup_times();
+  p.preconditioner_setup_seconds = preconditioner_.setup_seconds();
   return p;
 }
 

@@ -36,6 +36,9 @@ struct ProcessProfile {
   int coarse_updates = 0;         // working-set changes that updated the factor instead
   std::size_t coarse_memory = 0;  // CHOLMOD's peak for the replicated coarse factor
   std::size_t factor_memory = 0;  // own subdomain and preconditioner factors
+  LocalMemory memory;             // bytes held for the own subdomains, by kind
+  SetupTimes setup;               // the subdomain operators' set-up, by part
+  double preconditioner_setup_seconds = 0.0;
 };
 
 class FetiMethod : public Method {
@@ -47,6 +50,7 @@ class FetiMethod : public Method {
   // The whole state on rank 0 (collective; the same as snapshot() in one process).
   Snapshot gathered_snapshot() const override;
   const FetiSystem& system() const { return system_; }
+  const FetiPreconditioner& preconditioner() const { return preconditioner_; }
   // Bytes CHOLMOD holds at its peak for the subdomain, preconditioner and coarse factors.
   std::size_t factor_memory() const {
     return system_.factor_memory() + preconditioner_.factor_memory() + coarse_.factor_memory();

@@ -3,12 +3,13 @@
 #include <algorithm>
 #include <limits>
 #include <map>
-#include <string>
 #include <set>
+#include <string>
 #include <utility>
 
-#include "solver/threads.hpp"
 #include "solver/interruption.hpp"
+#include "solver/stopwatch.hpp"
+#include "solver/threads.hpp"
 
 namespace fetic::solver {
 namespace {
@@ -112,8 +113,36 @@ std::vector<std::vector<double>> FetiPreconditioner::scaling_weights(bool scaled
   return weights;
 }
 
+bool FetiPreconditioner::set_up_local(const SubdomainOperator& op, Local& local,
+                                      std::vector<int>& b_position) const {
+  for (const Incidence& in : op.incidence)
+    local.boundary.push_back(in.dof);
+  std::sort(local.boundary.begin(), local.boundary.end());
+  local.boundary.erase(std::unique(local.boundary.begin(), local.boundary.end()),
+                       local.boundary.end());
+  const int n = static_cast<int>(op.K.rows());
+  const int nb = static_cast<int>(local.boundary.size());
+  b_position.assign(n, -1);
+  std::vector<int> i_position(n, -1);
+  for (int p = 0; p < nb; ++p)
+    b_position[local.boundary[p]] = p;
+  int ni = 0;
+  for (int dof = 0; dof < n; ++dof)
+    if (b_position[dof] < 0) i_position[dof] = ni++;
+  local.K_bb = extract(op.K, b_position, nb, b_position, nb);
+  if (kind_ != Preconditioner::Dirichlet || ni == 0) return true;
+  local.K_ib = extract(op.K, i_position, ni, b_position, nb);
+  if (op.K_plus.has_interior_solve()) {
+    local.interior = &op.K_plus;
+    return true;
+  }
+  const SparseMatrix K_ii = extract(op.K, i_position, ni, i_position, ni);
+  return local.K_ii.factorize(K_ii) == CholmodFactor::Result::Ok;
+}
+
 FetiPreconditioner::FetiPreconditioner(const FetiSystem& system, Preconditioner kind, bool scaled)
     : system_(system), kind_(kind) {
+  Stopwatch watch(setup_seconds_);
   if (kind_ == Preconditioner::None) return;
   const Decomposition& d = system.decomposition();
   const DualSpace& space = system.space();
@@ -123,36 +152,24 @@ FetiPreconditioner::FetiPreconditioner(const FetiSystem& system, Preconditioner 
 
   local_.resize(count);
   std::vector<std::vector<int>> position_in_boundary(count);
+  std::vector<char> interior_failed(count, 0);
+  long long work = 0;
+  for (const SubdomainOperator& op : ops)
+    work += op.K.rows();
+    // Every subdomain's blocks and interior factor on its own (both cores: the factors
+    // are most of the set-up after K_j's).
+#pragma omp parallel for schedule(dynamic) num_threads(threads_for(work * 50))
+  for (int i = 0; i < count; ++i) {
+    if (stop_requested()) continue;  // Ctrl-C: skip the rest (no throw inside OpenMP)
+    interior_failed[i] = !set_up_local(ops[i], local_[i], position_in_boundary[i]);
+  }
+  throw_if_stopped("setting up the preconditioner");
   int failed = std::numeric_limits<int>::max();  // lowest own subdomain whose interior failed
   int offset = 0;
   for (int i = 0; i < count; ++i) {
-    throw_if_stopped("setting up the preconditioner");
-    Local& local = local_[i];
-    const SubdomainOperator& op = ops[i];
-    for (const Incidence& in : op.incidence)
-      local.boundary.push_back(in.dof);
-    std::sort(local.boundary.begin(), local.boundary.end());
-    local.boundary.erase(std::unique(local.boundary.begin(), local.boundary.end()),
-                         local.boundary.end());
-    const int n = static_cast<int>(op.K.rows());
-    const int nb = static_cast<int>(local.boundary.size());
-    std::vector<int>& b_position = position_in_boundary[i];
-    b_position.assign(n, -1);
-    std::vector<int> i_position(n, -1);
-    for (int p = 0; p < nb; ++p)
-      b_position[local.boundary[p]] = p;
-    int ni = 0;
-    for (int dof = 0; dof < n; ++dof)
-      if (b_position[dof] < 0) i_position[dof] = ni++;
-    local.K_bb = extract(op.K, b_position, nb, b_position, nb);
-    if (kind_ == Preconditioner::Dirichlet && ni > 0) {
-      local.K_ib = extract(op.K, i_position, ni, b_position, nb);
-      const SparseMatrix K_ii = extract(op.K, i_position, ni, i_position, ni);
-      if (local.K_ii.factorize(K_ii) != CholmodFactor::Result::Ok)
-        failed = std::min(failed, op.index);
-    }
-    local.offset = offset;
-    offset += nb;
+    if (interior_failed[i]) failed = std::min(failed, ops[i].index);
+    local_[i].offset = offset;
+    offset += static_cast<int>(local_[i].boundary.size());
   }
   const std::string error = space.communicator().first_error(
       failed, failed == std::numeric_limits<int>::max()
@@ -189,6 +206,18 @@ FetiPreconditioner::FetiPreconditioner(const FetiSystem& system, Preconditioner 
   y_.resize(offset);
 }
 
+void FetiPreconditioner::add_memory(LocalMemory& m) const {
+  for (const Local& local : local_) {
+    m.preconditioner_factor += static_cast<double>(local.K_ii.memory_in_use());
+    m.preconditioner_blocks += sparse_bytes(local.K_bb) + sparse_bytes(local.K_ib);
+    m.index += static_cast<double>(local.boundary.capacity()) * sizeof(int);
+    m.incidence += static_cast<double>(local.incidence.capacity()) * sizeof(Incidence);
+  }
+  m.incidence += static_cast<double>(row_first_.capacity()) * sizeof(int) +
+                 static_cast<double>(terms_.capacity()) * sizeof(Term);
+  m.workspaces += static_cast<double>(x_.size() + y_.size()) * sizeof(double);
+}
+
 std::size_t FetiPreconditioner::factor_memory() const {
   std::size_t total = 0;
   for (const Local& local : local_)
@@ -217,10 +246,13 @@ void FetiPreconditioner::apply(const Eigen::VectorXd& w, const std::vector<char>
     for (const Incidence& in : local.incidence)
       if (!mask || (*mask)[in.row]) x(in.dof) += in.value * w(in.row);
     y = local.K_bb * x;
-    if (local.K_ii.size() > 0) {
+    if (local.interior || local.K_ii.size() > 0) {
       Eigen::VectorXd interior_rhs = local.K_ib * x;
       Eigen::VectorXd interior(interior_rhs.size());
-      local.K_ii.solve(interior_rhs.data(), interior.data());
+      if (local.interior)
+        local.interior->interior_solve(interior_rhs.data(), interior.data());
+      else
+        local.K_ii.solve(interior_rhs.data(), interior.data());
       y -= local.K_ib.transpose() * interior;
     }
   }

@@ -32,6 +32,9 @@ class FetiPreconditioner {
 
   Preconditioner kind() const { return kind_; }
   std::size_t factor_memory() const;  // CHOLMOD's peak for the interior factors, bytes
+  // Adds the bytes held now for the own subdomains' blocks, by kind.
+  void add_memory(LocalMemory& memory) const;
+  double setup_seconds() const { return setup_seconds_; }
   // z = M^-1 w, using and producing only rows with mask[r] != 0 (all rows without a mask).
   void apply(const Eigen::VectorXd& w, const std::vector<char>* mask, Eigen::VectorXd& z) const;
 
@@ -41,8 +44,9 @@ class FetiPreconditioner {
     std::vector<Incidence> incidence;  // B's entries, dof = position in `boundary`,
                                        // value already scaled
     SparseMatrix K_bb, K_ib;
-    CholmodFactor K_ii;
-    int offset = 0;  // into the workspaces
+    CholmodFactor K_ii;  // own factor only when K_j's factor cannot solve with K_ii
+    const GeneralizedInverse* interior = nullptr;  // K_j's factor, whose leading block is K_ii's
+    int offset = 0;                                // into the workspaces
   };
   // One term of a row's sum: y_(index) * value; `new_subdomain` starts the next partial.
   struct Term {
@@ -51,9 +55,13 @@ class FetiPreconditioner {
     bool new_subdomain = false;
   };
 
+  // The boundary, K_bb and (Dirichlet) K_ib and the factor of K_ii of one subdomain;
+  // false when K_ii is singular. b_position: per DOF its place in the boundary or -1.
+  bool set_up_local(const SubdomainOperator& op, Local& local, std::vector<int>& b_position) const;
   // Per local row and own subdomain entry: the scaling weight of that entry.
   std::vector<std::vector<double>> scaling_weights(bool scaled) const;
 
+  double setup_seconds_ = 0.0;  // before the members whose construction it times
   const FetiSystem& system_;
   Preconditioner kind_;
   std::vector<Local> local_;

@@ -18,12 +18,39 @@ constexpr double kSingularRcond = 1e-15;
 
 }  // namespace
 
-FetiSystem::FetiSystem(const Model& model, const Communicator& communicator)
+namespace {
+
+// Times the construction of a member in the initializer list.
+template <class Build>
+auto timed(double& seconds, Build build) {
+  Stopwatch watch(seconds);
+  return build();
+}
+
+}  // namespace
+
+FetiSystem::FetiSystem(const Model& model, const Communicator& communicator, bool interior_first)
     : model_(model),
-      decomposition_(decompose(model)),
+      decomposition_(timed(setup_times_.decomposition, [&] { return decompose(model); })),
       partition_(partition_subdomains(decomposition_, communicator.size())),
       space_(decomposition_, partition_, communicator) {
+  build_incidence();
+  {
+    Stopwatch watch(setup_times_.factorization);
+    factorize_subdomains(interior_first);
+  }
+  Stopwatch watch(setup_times_.coarse_space);
+  c_ = Eigen::VectorXd::Zero(space_.rows());
+  for (int r = 0; r < space_.rows(); ++r)
+    c_(r) = decomposition_.rows[space_.global_row(r)].rhs;
+  build_G();
+  build_redundant_groups();
+}
+
+void FetiSystem::build_incidence() {
+  Stopwatch watch(setup_times_.incidence);
   const Decomposition& d = decomposition_;
+  const Communicator& communicator = space_.communicator();
   const std::vector<int>& own = partition_.owned[communicator.rank()];
   own_index_.assign(d.subdomains.size(), -1);
   subdomains_.resize(own.size());
@@ -57,19 +84,11 @@ FetiSystem::FetiSystem(const Model& model, const Communicator& communicator)
     }
     row_parts_[r].end = static_cast<int>(part_entries_.size());
   }
-
-  factorize_subdomains();
-
-  c_ = Eigen::VectorXd::Zero(space_.rows());
-  for (int r = 0; r < space_.rows(); ++r)
-    c_(r) = d.rows[space_.global_row(r)].rhs;
-  build_G();
-  build_redundant_groups();
   x_.resize(dofs);
   y_.resize(dofs);
 }
 
-void FetiSystem::factorize_subdomains() {
+void FetiSystem::factorize_subdomains(bool interior_first) {
   const Decomposition& d = decomposition_;
   const int count = static_cast<int>(subdomains_.size());
   std::vector<CholmodFactor::Result> results(count, CholmodFactor::Result::Ok);
@@ -85,7 +104,16 @@ void FetiSystem::factorize_subdomains() {
     const StrutMesh& mesh = model_.struts[sub.strut];
     op.K = assemble_stiffness(mesh, sub.box);
     op.R = rigid_body_modes(mesh, sub.box);
-    results[i] = op.K_plus.factorize(op.K, op.R);
+    if (interior_first) {
+      std::vector<int> boundary;  // as the preconditioner finds it: the DOFs B touches
+      for (const Incidence& in : op.incidence)
+        boundary.push_back(in.dof);
+      std::sort(boundary.begin(), boundary.end());
+      boundary.erase(std::unique(boundary.begin(), boundary.end()), boundary.end());
+      results[i] = op.K_plus.factorize(op.K, op.R, boundary);
+    } else {
+      results[i] = op.K_plus.factorize(op.K, op.R);
+    }
     singular[i] = results[i] == CholmodFactor::Result::Ok && op.K_plus.rcond() < kSingularRcond;
   }
   throw_if_stopped("factorizing the subdomains");
@@ -348,6 +376,31 @@ void FetiSystem::project_onto_range_of_B(Eigen::VectorXd& v) const {
   }
   if (distributed) space_.complete_rows(partial);
   v = partial;
+}
+
+void FetiSystem::release_stiffness() {
+  for (SubdomainOperator& op : subdomains_)
+    op.K = SparseMatrix();
+}
+
+LocalMemory FetiSystem::memory() const {
+  LocalMemory m;
+  for (const SubdomainOperator& op : subdomains_) {
+    m.stiffness += sparse_bytes(op.K);
+    m.factor += static_cast<double>(op.K_plus.factor_memory());
+    m.index += static_cast<double>(op.K_plus.index_memory());
+    m.rigid_modes += static_cast<double>(op.R.size()) * sizeof(double);
+    m.incidence += static_cast<double>(op.incidence.capacity()) * sizeof(Incidence);
+  }
+  for (const SubdomainOperator& op : subdomains_)
+    m.loads +=
+        static_cast<double>(decomposition_.subdomains[op.index].load.size()) * sizeof(double);
+  m.incidence += static_cast<double>(row_parts_.capacity()) * sizeof(RowPart) +
+                 static_cast<double>(part_entries_.capacity()) * sizeof(PartEntry);
+  m.rigid_modes += sparse_bytes(G_) + sparse_bytes(G_abs_);
+  m.index += static_cast<double>(own_index_.capacity() + dof_offsets_.capacity()) * sizeof(int);
+  m.workspaces += static_cast<double>(x_.size() + y_.size()) * sizeof(double);
+  return m;
 }
 
 std::size_t FetiSystem::factor_memory() const {

@@ -25,6 +25,7 @@
 #include "solver/decomposition.hpp"
 #include "solver/dual_space.hpp"
 #include "solver/generalized_inverse.hpp"
+#include "solver/local_memory.hpp"
 #include "solver/method.hpp"
 #include "solver/partition.hpp"
 
@@ -37,8 +38,8 @@ struct Incidence {
 };
 
 struct SubdomainOperator {
-  int index = 0;  // global subdomain index
-  SparseMatrix K;
+  int index = 0;      // global subdomain index
+  SparseMatrix K;     // empty after FetiSystem::release_stiffness()
   Eigen::MatrixXd R;  // rigid-body modes, dof_count x mode_count
   GeneralizedInverse K_plus;
   std::vector<Incidence> incidence;  // the entries of B_j, by row
@@ -50,11 +51,23 @@ struct OperatorTimes {
   double coarse = 0.0;        // coarse problem: factorizations and solves
 };
 
+// Wall time of the set-up's parts (FetiSystem's own; the preconditioner and the coarse
+// problem keep theirs).
+struct SetupTimes {
+  double decomposition = 0.0;  // subdomains, rows of B, the partition and the dual space
+  double incidence = 0.0;      // B's entries per subdomain and per row
+  double factorization = 0.0;  // assembling K_j, R_j and factorizing K_j (all subdomains)
+  double coarse_space = 0.0;   // G, |G| and the redundant rows' groups
+};
+
 class FetiSystem {
  public:
   // Builds and factorizes this process' subdomains; throws SolverError naming the strut
   // when a subdomain (of any process) is singular beyond its rigid-body modes.
-  explicit FetiSystem(const Model& model, const Communicator& communicator = Communicator::self());
+  // `interior_first`: factorize each K_j so that its leading block is the factor of the
+  // interior K_ii that the Dirichlet preconditioner needs (GeneralizedInverse).
+  explicit FetiSystem(const Model& model, const Communicator& communicator = Communicator::self(),
+                      bool interior_first = false);
   FetiSystem(const FetiSystem&) = delete;
   FetiSystem& operator=(const FetiSystem&) = delete;
 
@@ -114,13 +127,20 @@ class FetiSystem {
 
   // Peak memory of this process' subdomain factors in bytes (CHOLMOD's own accounting).
   std::size_t factor_memory() const;
+  // Bytes held now for the own subdomains, by kind (the preconditioner adds its own).
+  LocalMemory memory() const;
+  const SetupTimes& setup_times() const { return setup_times_; }
+  // Frees every K_j: after the preconditioner's set-up nothing reads them (the factors
+  // and the preconditioner's blocks hold what the iterations need).
+  void release_stiffness();
 
  private:
   // Y_j = K_j^+ (t f_j + s B_j' lambda) for every own subdomain, into y_ (concatenated).
   void solve_subdomains(const Eigen::VectorXd* lambda, double s, double load_factor) const;
   // out_r = sum over B's entries of row r of value * y_(subdomain, dof), all processes.
   void gather_rows(Eigen::VectorXd& out) const;
-  void factorize_subdomains();
+  void build_incidence();
+  void factorize_subdomains(bool interior_first);
   // M v over the own subdomains' modes (M: modes x local rows, like G), replicated.
   Eigen::VectorXd own_modes_product(const SparseMatrix& M, const Eigen::VectorXd& v,
                                     const std::vector<char>* mask) const;
@@ -142,13 +162,14 @@ class FetiSystem {
   // A redundant group as this process sees it.
   struct LocalGroup {
     int copies = 0;
-    std::vector<int> own_copies;                  // copy indices whose subdomain is own
-    std::vector<int> rows;                        // local rows of the group (-1: not held)
-    std::vector<std::pair<int, int>> ends;        // (i, j) per row
-    std::vector<char> own_end;                    // per copy: its subdomain is own
+    std::vector<int> own_copies;            // copy indices whose subdomain is own
+    std::vector<int> rows;                  // local rows of the group (-1: not held)
+    std::vector<std::pair<int, int>> ends;  // (i, j) per row
+    std::vector<char> own_end;              // per copy: its subdomain is own
   };
 
   const Model& model_;
+  SetupTimes setup_times_;  // before decomposition_, whose construction it times
   Decomposition decomposition_;
   Partition partition_;
   DualSpace space_;

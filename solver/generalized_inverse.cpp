@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include <Eigen/QR>
+#include <Eigen/SVD>
 
 namespace fetic::solver {
 
@@ -20,10 +21,62 @@ std::vector<int> choose_fixing_dofs(const Eigen::MatrixXd& kernel) {
   return fixed;
 }
 
+double pinning_quality(const Eigen::MatrixXd& kernel, const std::vector<int>& fixed) {
+  const int m = static_cast<int>(kernel.cols());
+  if (m == 0) return 1.0;
+  Eigen::MatrixXd block(static_cast<int>(fixed.size()), m);
+  for (int j = 0; j < m; ++j) {
+    const double norm = kernel.col(j).norm();
+    for (size_t k = 0; k < fixed.size(); ++k)
+      block(static_cast<int>(k), j) = norm > 0.0 ? kernel(fixed[k], j) / norm : 0.0;
+  }
+  const Eigen::VectorXd s = Eigen::JacobiSVD<Eigen::MatrixXd>(block).singularValues();
+  return s.size() == 0 || s(0) == 0.0 ? 0.0 : s(s.size() - 1) / s(0);
+}
+
 CholmodFactor::Result GeneralizedInverse::factorize(const SparseMatrix& K,
                                                     const Eigen::MatrixXd& kernel) {
   size_ = static_cast<int>(K.rows());
   fixed_ = choose_fixing_dofs(kernel);
+  interior_.clear();
+  return factorize_kept(K, nullptr);
+}
+
+CholmodFactor::Result GeneralizedInverse::factorize(const SparseMatrix& K,
+                                                    const Eigen::MatrixXd& kernel,
+                                                    const std::vector<int>& boundary) {
+  size_ = static_cast<int>(K.rows());
+  interior_.clear();
+  fixed_ = choose_fixing_dofs(kernel);
+  // Fixed DOFs on the boundary keep the interior whole; taken when they pin the modes
+  // nearly as well as the best DOFs of all (a tenth of the quality; boundaries span the
+  // subdomain, so they usually pin it better).
+  if (kernel.cols() > 0 && static_cast<int>(boundary.size()) >= kernel.cols()) {
+    Eigen::MatrixXd on_boundary(static_cast<int>(boundary.size()), kernel.cols());
+    for (size_t k = 0; k < boundary.size(); ++k)
+      on_boundary.row(static_cast<int>(k)) = kernel.row(boundary[k]);
+    std::vector<int> chosen;
+    for (int k : choose_fixing_dofs(on_boundary))
+      chosen.push_back(boundary[k]);
+    std::sort(chosen.begin(), chosen.end());
+    if (pinning_quality(kernel, chosen) >= 0.1 * pinning_quality(kernel, fixed_)) fixed_ = chosen;
+  }
+  std::vector<char> is_boundary(size_, 0);
+  for (int dof : boundary)
+    is_boundary[dof] = 1;
+  bool interior_whole = true;
+  for (int dof : fixed_)
+    interior_whole = interior_whole && is_boundary[dof];
+  if (!interior_whole || static_cast<int>(boundary.size()) >= size_)
+    return factorize_kept(K, nullptr);
+  const CholmodFactor::Result result = factorize_kept(K, &is_boundary);
+  for (size_t r = 0; r < kept_.size(); ++r)
+    if (!is_boundary[kept_[r]]) interior_.push_back(static_cast<int>(r));
+  return result;
+}
+
+CholmodFactor::Result GeneralizedInverse::factorize_kept(const SparseMatrix& K,
+                                                         const std::vector<char>* boundary) {
   kept_.clear();
   std::vector<int> position(size_, -1);
   for (int dof = 0, f = 0; dof < size_; ++dof) {
@@ -34,7 +87,12 @@ CholmodFactor::Result GeneralizedInverse::factorize(const SparseMatrix& K,
     position[dof] = static_cast<int>(kept_.size());
     kept_.push_back(dof);
   }
-  if (fixed_.empty()) return factor_.factorize(K);
+  std::vector<char> leading;
+  if (boundary) {
+    for (int dof : kept_)
+      leading.push_back((*boundary)[dof] ? 0 : 1);
+  }
+  if (fixed_.empty()) return boundary ? factor_.factorize(K, leading) : factor_.factorize(K);
   std::vector<Eigen::Triplet<double>> entries;
   entries.reserve(static_cast<size_t>(K.nonZeros()));
   for (int col = 0; col < K.outerSize(); ++col)
@@ -44,7 +102,19 @@ CholmodFactor::Result GeneralizedInverse::factorize(const SparseMatrix& K,
   const int n = static_cast<int>(kept_.size());
   SparseMatrix reduced(n, n);
   reduced.setFromTriplets(entries.begin(), entries.end());
-  return factor_.factorize(reduced);
+  return boundary ? factor_.factorize(reduced, leading) : factor_.factorize(reduced);
+}
+
+void GeneralizedInverse::interior_solve(const double* x, double* y) const {
+  thread_local std::vector<double> in, out;
+  const int n = static_cast<int>(kept_.size());
+  in.assign(n, 0.0);
+  out.resize(n);
+  for (size_t k = 0; k < interior_.size(); ++k)
+    in[interior_[k]] = x[k];
+  factor_.solve_leading(in.data(), out.data());
+  for (size_t k = 0; k < interior_.size(); ++k)
+    y[k] = out[interior_[k]];
 }
 
 int GeneralizedInverse::failed_dof() const {
@@ -58,19 +128,21 @@ void GeneralizedInverse::apply(const double* x, double* y, int columns) const {
     factor_.solve(x, y, columns);
     return;
   }
+  // Per thread, not per subdomain: thousands of subdomains share a thread's workspace.
+  thread_local Eigen::MatrixXd rhs, solution;
   const int n = static_cast<int>(kept_.size());
-  rhs_.resize(n, columns);
-  solution_.resize(n, columns);
+  rhs.resize(n, columns);
+  solution.resize(n, columns);
   for (int c = 0; c < columns; ++c)
     for (int r = 0; r < n; ++r)
-      rhs_(r, c) = x[static_cast<size_t>(c) * size_ + kept_[r]];
-  factor_.solve(rhs_.data(), solution_.data(), columns);
+      rhs(r, c) = x[static_cast<size_t>(c) * size_ + kept_[r]];
+  factor_.solve(rhs.data(), solution.data(), columns);
   for (int c = 0; c < columns; ++c) {
     double* column = y + static_cast<size_t>(c) * size_;
     for (int dof : fixed_)
       column[dof] = 0.0;
     for (int r = 0; r < n; ++r)
-      column[kept_[r]] = solution_(r, c);
+      column[kept_[r]] = solution(r, c);
   }
 }
 

@@ -41,6 +41,9 @@ struct SolveOptions {
   int max_iterations = 0;    // 0: the method's default cap
   Preconditioner preconditioner = Preconditioner::Dirichlet;
   bool scaling = true;  // stiffness scaling of the FETI preconditioners
+  // Dirichlet: solve with K_ii through K_j's factor (its leading block) instead of a
+  // second factor per subdomain; off only to measure the difference (fetic-bench-scale).
+  bool shared_interior_factor = true;
 };
 
 // A problem found while setting a method up (singular strut, unsupported scene, ...).

@@ -38,6 +38,7 @@ Mprgp::Mprgp(const Model& model, const SolveOptions& options, const Communicator
 // involves only contact rows, c = G'z.
 void Mprgp::find_group_constraints() {
   for (const UnheldGroup& group : coarse_.unheld()) {
+    throw_if_stopped("finding MPRGP's group constraints");
     Eigen::VectorXd c = system_.G().transpose() * group.direction;
     for (int k = 0; k < space().rows(); ++k)
       if (!space().is_contact(k)) c(k) = 0.0;

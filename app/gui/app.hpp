@@ -15,8 +15,10 @@
 //   scene_file.cpp     reloading the scene file
 //   state_reports.cpp  the "solved" events of the state file after each swap
 //   bench.cpp          the --bench measurement
+//   bench_view.cpp     the --bench-view measurement (panning and zooming)
 //   paraview_export.cpp  the shown iterate as ParaView files
 
+#include <array>
 #include <atomic>
 #include <chrono>
 #include <cstdint>
@@ -165,6 +167,7 @@ class App {
 
   // picking.cpp
   void index_picture(const solver::Snapshot& snapshot, const render::SceneFraming& framing);
+  void refresh_pick_index();  // index_picture for the last picture, when it is stale
   nlohmann::json pick_values(const Pickable& item) const;
   std::string pick_text(const Pickable& item) const;
   void picking(float view_x, float view_width, float view_height);  // tooltip, pins
@@ -179,6 +182,10 @@ class App {
   // bench.cpp
   void bench_step(double now);
   void print_bench(const render::GlfwWindow& window) const;
+  // bench_view.cpp
+  bool benchmarking() const { return args_.bench > 0 || args_.bench_view > 0; }
+  void view_bench_step();
+  void print_view_bench(const render::GlfwWindow& window) const;
 
   const Options& args_;
   std::string title_;
@@ -224,6 +231,8 @@ class App {
   std::shared_ptr<const render::SceneMesh> mesh_;
   std::shared_ptr<const solver::Model> mesh_model_;
   render::MeshValues mesh_values_;
+  std::shared_ptr<const solver::Snapshot> values_iterate_;  // what mesh_values_ are of
+  std::array<double, 3> values_key_{0, 0, 0};               // mesh id and colour scales
 
   // View settings.
   double magnification_ = 0.0;  // 0: automatic
@@ -244,6 +253,10 @@ class App {
   double typed_load_ = 0.0;
   float zoom_ = 1.0f;
   render::Point pan_{0.0f, 0.0f};
+  // The last pan or zoom: pictures are drafts (no multisampling) until the view has rested
+  // this long, then drawn again at full quality.
+  static constexpr std::chrono::milliseconds kViewRest{250};
+  Clock::time_point view_moved_{};
   render::Point base_center_{0.0f, 0.0f};
   int view_width_ = 0, view_height_ = 0;
   std::shared_ptr<const render::RunExtent> axis_survey_;  // the survey longest_history_ is for
@@ -275,6 +288,8 @@ class App {
   Clock::time_point start_ = Clock::now();
 
   BenchMeasurement bench_;
+  ViewBench view_bench_;
+  int mesh_builds_ = 0;  // the struts' mesh built (scene, pieces, colouring or detail)
 
   // Saved views (views.cpp).
   render::SceneFraming placed_;              // the framing of the last picture
@@ -288,6 +303,9 @@ class App {
 
   // Picking (picking.cpp).
   PickIndex picks_;
+  std::shared_ptr<const SolveState> pick_state_;  // the last picture's state and iterate
+  int pick_iterate_ = 0;
+  bool pick_stale_ = false;  // picks_ is not yet of the last picture
   std::optional<Pickable> hovered_;
   std::vector<Pickable> pinned_;
   double pick_query_ms_ = 0.0;

@@ -28,4 +28,18 @@ struct BenchMeasurement {
   std::chrono::steady_clock::time_point pan_start{};
 };
 
+// What `fetic gui --bench-view N` measures: once the first solve is on screen, N frames
+// of panning (half) then zooming in and out over several powers of two (half), every
+// frame a new picture when it can: frames and pictures per second, frame times, and how
+// often the zoom made the struts' mesh rebuild at another level of detail.
+struct ViewBench {
+  int phase = -1;  // -1 first solve, 0 panning, 1 zooming, 2 done
+  int frame = 0;
+  std::chrono::steady_clock::time_point start{}, last{};
+  double seconds[2] = {0, 0};
+  int frames[2] = {0, 0}, pictures[2] = {0, 0};
+  std::vector<double> frame_ms[2];
+  int mesh_builds = 0;  // during the measurement
+};
+
 }  // namespace fetic::app::gui

@@ -186,6 +186,11 @@ void register_gui(CLI::App& app, int& exit_code) {
                    "Benchmark: drag the slider over N load changes, then time 30 isolated "
                    "changes; print latency and frame rate, quit")
       ->check(CLI::Range(2, 100000));
+  command
+      ->add_option("--bench-view", args->bench_view,
+                   "Benchmark: after the first solve, pan and zoom the picture over N frames; "
+                   "print frames and pictures per second, quit")
+      ->check(CLI::Range(2, 100000));
   command->callback([args, size, &exit_code] {
     args->size_given = size->count() > 0;
     exit_code = run_gui(*args);

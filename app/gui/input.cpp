@@ -41,6 +41,7 @@ void App::mouse(float view_x, float view_width, float view_height) {
     pan_.x += io.MouseDelta.x;
     pan_.y += io.MouseDelta.y;
     redraw_ = true;
+    view_moved_ = Clock::now();
   }
   if (io.MouseWheel != 0.0f) {
     const float factor = std::pow(1.15f, io.MouseWheel);
@@ -52,6 +53,7 @@ void App::mouse(float view_x, float view_width, float view_height) {
     pan_.y = at.y - (at.y - cy) * f - base_center_.y;
     zoom_ = new_zoom;
     redraw_ = true;
+    view_moved_ = Clock::now();
   }
   if (ImGui::IsMouseDoubleClicked(ImGuiMouseButton_Left)) push({RequestKind::ResetView, 0.0, {}});
 }

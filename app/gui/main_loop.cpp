@@ -79,7 +79,7 @@ int App::run(render::GlfwWindow& window, std::vector<ScriptAction> script) {
   glfwSetKeyCallback(window.handle(), &App::key_event);
   ImGui_ImplGlfw_InitForOpenGL(window.handle(), true);
   ImGui_ImplOpenGL3_Init("#version 330 core");
-  glfwSwapInterval(args_.bench > 0 ? 0 : 1);
+  glfwSwapInterval(benchmarking() ? 0 : 1);
 
   send_to_worker();  // the first solve
   std::size_t next_action = 0;
@@ -88,7 +88,7 @@ int App::run(render::GlfwWindow& window, std::vector<ScriptAction> script) {
   while (!quit_) {
     const double now = seconds_since(start_);
     const bool busy = (worker_.busy() && !worker_.paused()) || playing_ || recording_ || scripted ||
-                      args_.bench > 0 || ImGui::IsAnyMouseDown() || !queue_.empty();
+                      benchmarking() || ImGui::IsAnyMouseDown() || !queue_.empty() || draft_;
     if (busy)
       glfwPollEvents();
     else
@@ -111,6 +111,7 @@ int App::run(render::GlfwWindow& window, std::vector<ScriptAction> script) {
             static_cast<float>(view_height));
     if (scripted) run_script(script, next_action, now);
     if (args_.bench > 0) bench_step(now);
+    if (args_.bench_view > 0) view_bench_step();
     panels(static_cast<float>(fb_height));
 
     sync();  // the one place where requests change the state
@@ -126,8 +127,11 @@ int App::run(render::GlfwWindow& window, std::vector<ScriptAction> script) {
     // the next frame refines it. Screenshots are always taken at full quality.
     const bool fresh = shown_ && shown_->request != drafted_request_ && shown_->finished;
     if (fresh) drafted_request_ = shown_->request;
-    const bool draft = (dragging_slider_ || (args_.bench > 0 && bench_.phase == 0) || fresh) &&
-                       !screenshot_requested_ && !recording_;
+    // So is the picture while it is panned or zoomed, until it has rested for kViewRest.
+    const bool moving = Clock::now() - view_moved_ < kViewRest;
+    const bool draft =
+        (dragging_slider_ || (args_.bench > 0 && bench_.phase == 0) || fresh || moving) &&
+        !screenshot_requested_ && !recording_;
     if (draft != draft_) {
       draft_ = draft;
       renderer.set_samples(draft ? 1 : 4);
@@ -144,7 +148,7 @@ int App::run(render::GlfwWindow& window, std::vector<ScriptAction> script) {
     if (redraw_ && picture_due) {
       const auto draw_start = Clock::now();
       draw_picture(view_width_, view_height_);
-      if (last_picture_ms_ >= 16.0 || args_.bench > 0) glFinish();  // true cost, not submission
+      if (last_picture_ms_ >= 16.0 || benchmarking()) glFinish();  // true cost, not submission
       last_picture_end_ = Clock::now();
       last_picture_ms_ =
           std::chrono::duration<double, std::milli>(last_picture_end_ - draw_start).count();
@@ -155,6 +159,8 @@ int App::run(render::GlfwWindow& window, std::vector<ScriptAction> script) {
       }
       redraw_ = false;
       if (args_.bench > 0 && bench_.phase == 3 && bench_.pan_solving) ++bench_.pan_pictures;
+      if (view_bench_.phase == 0 || view_bench_.phase == 1)
+        ++view_bench_.pictures[view_bench_.phase];
     }
     for (const Request& r : after_picture_)  // the picture they read is drawn now
       r.kind == RequestKind::SaveView ? save_view(r.text) : locate(r.text);
@@ -201,6 +207,7 @@ int App::run(render::GlfwWindow& window, std::vector<ScriptAction> script) {
   ImGui::DestroyContext();
 
   if (args_.bench > 0) print_bench(window);
+  if (args_.bench_view > 0) print_view_bench(window);
   const std::string lost_monitor = close_monitor();
   const std::string lost_outputs = log_.lost_outputs();
   if (!lost_outputs.empty()) std::cerr << "fetic gui: " << lost_outputs << '\n';

@@ -25,7 +25,8 @@ struct Options {
   int monitor_full = 0;  // --monitor-full N: the state every N-th iteration
   std::string vtu_dir = "fetic-paraview";  // where "ParaView export" writes
   bool no_overlay = false;
-  int bench = 0;  // load changes of the benchmark drag; 0: no benchmark
+  int bench = 0;       // load changes of the benchmark drag; 0: no benchmark
+  int bench_view = 0;  // frames of the pan-and-zoom benchmark; 0: none
 };
 
 }  // namespace fetic::app::gui

@@ -212,6 +212,12 @@ std::string App::pick_text(const Pickable& item) const {
   return text;
 }
 
+void App::refresh_pick_index() {
+  if (!pick_stale_ || !pick_state_ || pick_state_ != shown_) return;
+  index_picture(*pick_state_->iterates[static_cast<std::size_t>(pick_iterate_)], placed_);
+  pick_stale_ = false;
+}
+
 void App::picking(float view_x, float view_width, float view_height) {
   const ImGuiIO& io = ImGui::GetIO();
   const render::Point at{io.MousePos.x - view_x, io.MousePos.y};
@@ -220,6 +226,8 @@ void App::picking(float view_x, float view_width, float view_height) {
   hovered_.reset();
   // Two methods side by side: the pick index knows the single picture only (its framing),
   // so the comparison has no hover; pinned items stay listed.
+  if ((over_picture && !ImGui::IsMouseDragging(ImGuiMouseButton_Left)) || !pinned_.empty())
+    refresh_pick_index();
   if (over_picture && shown_ && !comparing() && !ImGui::IsMouseDragging(ImGuiMouseButton_Left)) {
     const auto start = Clock::now();
     hovered_ = picks_.nearest(at, kPickRadius);
@@ -319,6 +327,7 @@ void App::locate(const std::string& what) {
     item.kind = Pickable::Kind::Node;
     in >> item.a >> item.b;
   }
+  refresh_pick_index();
   const auto at = picks_.position(item);
   nlohmann::json event{{"event", "located"}, {"what", what}, {"found", at.has_value()}};
   if (at) {

@@ -91,15 +91,31 @@ void App::draw_picture(int width, int height) {
       render::zoomed(framing_, zoom_, {base_center_.x + pan_.x, base_center_.y + pan_.y});
   placed_ = framing;
   shown_magnification_ = framing.magnification;
-  // The struts: a mesh on the GPU, built when the scene, its pieces or the colouring change.
+  // The struts: a mesh on the GPU, built when the scene, its pieces or the colouring change,
+  // or the zoom leaves its level of detail (a power of two; render/mesh_detail.hpp).
+  const render::MeshDetail detail = render::mesh_detail(*shown_->model, framing_, framing);
   if (!mesh_ || mesh_model_ != shown_->model || mesh_->color_by != v.color_by ||
-      !mesh_->fits(snapshot)) {
+      !mesh_->fits(snapshot) || !render::detail_serves(mesh_->detail, detail, framing)) {
     mesh_ = std::make_shared<const render::SceneMesh>(
-        render::build_scene_mesh(*shown_->model, snapshot, framing_, v.color_by));
+        render::build_scene_mesh(*shown_->model, snapshot, framing_, v.color_by, detail));
     mesh_model_ = shown_->model;
+    ++mesh_builds_;
   }
-  render::fill_mesh_values(*mesh_, *shown_->model, snapshot, framing, mesh_values_);
-  index_picture(snapshot, framing);
+  // The values change with the iterate, the mesh and the colour scales, not with pan and
+  // zoom: on a scene of millions of elements they are not filled again for every picture.
+  const auto& iterate = shown_->iterates[static_cast<std::size_t>(index)];
+  const std::array<double, 3> values_key{static_cast<double>(mesh_->id), framing.stress_scale,
+                                         framing.moment_scale};
+  if (iterate != values_iterate_ || values_key != values_key_) {
+    render::fill_mesh_values(*mesh_, *shown_->model, snapshot, framing, mesh_values_);
+    values_iterate_ = iterate;
+    values_key_ = values_key;
+  }
+  // The pick index (hover, pins, locate) is built when it is next asked for, not with
+  // every picture: for millions of nodes it costs more than the picture (panning).
+  pick_state_ = shown_;
+  pick_iterate_ = index;
+  pick_stale_ = true;
   render::OverlayInfo info;
   info.title = title_;
   info.method = solver::to_string(shown_->method);
