@@ -20,6 +20,7 @@
 #include "app/interrupt.hpp"
 #include "app/out_of_memory.hpp"
 #include "app/output_file.hpp"
+#include "app/output_options.hpp"
 #include "app/scene_input.hpp"
 #include "scenes/scene_error.hpp"
 #include "solver/load_sweep.hpp"
@@ -231,11 +232,13 @@ void register_bench(CLI::App& app, int& exit_code) {
   auto args = std::make_shared<BenchArgs>();
   CLI::App* command =
       app.add_subcommand("bench", "Benchmark every method on scenes (default: the bundled ones)");
-  command->add_option("scenes", args->scenes, "Scene files");
+  look_up_bundled_scenes(command->add_option(
+      "scenes", args->scenes, "Scene files (paths, or names of bundled scenes: fetic scenes)"));
   command->add_option("--repeat", args->repeat, "Solves per measurement (median)")
       ->check(CLI::Range(1, 1000))
       ->capture_default_str();
-  command->add_option("--csv", args->csv, "Also write the table as CSV (- for stdout)");
+  command->add_option("--csv", args->csv, "Also write the table as CSV (- for stdout)")
+      ->check(output_name());
   command->callback([args, &exit_code] { exit_code = run_bench(*args); });
 }
 

@@ -1,4 +1,4 @@
-// fetic figures --out DIR: the thesis' figures (ALGORITHMS.md section 5) drawn from the
+// fetic figures --out DIR: the thesis' figures (docs/METHODS.md 5) drawn from the
 // running code, one PNG each. Figures whose method is not available are skipped with the
 // reason; the others are still written.
 
@@ -15,6 +15,7 @@
 #include "app/interrupt.hpp"
 #include "app/out_of_memory.hpp"
 #include "app/output_file.hpp"
+#include "app/output_options.hpp"
 #include "app/render_output.hpp"
 #include "app/scene_input.hpp"
 #include "render/figures.hpp"
@@ -50,14 +51,14 @@ int run_figures(const FiguresArgs& args) {
   if (needs_thesis) {
     scene = load_scene_or_report(args.scene, scene_status);
     if (scene_status == kExitInterrupted) return scene_status;
-    if (scene && !memory_suffices(*scene, args.scene,
-                                  {{solver::MethodKind::ActiveSet, solver::MethodKind::FetiC,
-                                    solver::MethodKind::Mprgp, solver::MethodKind::Feti,
-                                    solver::MethodKind::ConjugateGradient,
-                                    solver::MethodKind::SteepestDescent},
-                                   false,
-                                   0},
-                                  scene_status))
+    if (scene && !memory_suffices(
+                     *scene, args.scene,
+                     {{solver::MethodKind::ActiveSet, solver::MethodKind::FetiC,
+                       solver::MethodKind::Mprgp, solver::MethodKind::Feti,
+                       solver::MethodKind::ConjugateGradient, solver::MethodKind::SteepestDescent},
+                      false,
+                      0},
+                     scene_status))
       return scene_status;
     if (scene) {
       thesis = solver::build_model(*scene);
@@ -113,7 +114,9 @@ void register_figures(CLI::App& app, int& exit_code) {
       "figures",
       "Draw the thesis' figures (2.1, 3.2, 4.3, 9.2, 9.3, 9.4) and S.1 (iterations against "
       "subdomains: active set, FETI-C, MPRGP) as PNG");
-  command->add_option("--out", args->out, "Directory for the PNG files")->required();
+  command->add_option("--out", args->out, "Directory for the PNG files")
+      ->required()
+      ->check(output_name(OutputKind::Folder));
   command->add_option("--size", args->size, "Image size in pixels")
       ->check(image_size_check())
       ->capture_default_str();
@@ -122,7 +125,8 @@ void register_figures(CLI::App& app, int& exit_code) {
     ids.push_back(info.id);
   command->add_option("--figure", args->figures, "Only these figures (repeatable; default all)")
       ->check(CLI::IsMember(ids));
-  command->add_option("--scene", args->scene, "The thesis scene, for figures 9.x")
+  look_up_bundled_scenes(
+      command->add_option("--scene", args->scene, "The thesis scene, for figures 9.x"))
       ->capture_default_str();
   command->callback([args, &exit_code] { exit_code = run_figures(*args); });
 }

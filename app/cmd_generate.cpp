@@ -15,6 +15,7 @@
 #include "app/memory_estimate.hpp"
 #include "app/out_of_memory.hpp"
 #include "app/output_file.hpp"
+#include "app/output_options.hpp"
 #include "scenes/generate_scene.hpp"
 #include "scenes/load_scene.hpp"
 #include "scenes/scene_text.hpp"
@@ -179,7 +180,8 @@ void register_generate(CLI::App& app, int& exit_code) {
   command->add_option("--subdomains", args->subdomains, "Subdomains per strut: along[,across]")
       ->capture_default_str();
   command->add_option("--seed", args->seed, "Seed of the variations")->capture_default_str();
-  command->add_option("-o,--out", args->out, "Write to this file instead of stdout (- for stdout)");
+  command->add_option("-o,--out", args->out, "Write to this file instead of stdout (- for stdout)")
+      ->check(output_name());
   command->callback([args, &exit_code] { exit_code = run_generate(*args); });
 }
 

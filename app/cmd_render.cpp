@@ -22,6 +22,7 @@
 #include "app/movie_stream.hpp"
 #include "app/out_of_memory.hpp"
 #include "app/output_file.hpp"
+#include "app/output_options.hpp"
 #include "app/progress.hpp"
 #include "app/render_output.hpp"
 #include "app/scene_input.hpp"
@@ -342,9 +343,10 @@ void register_render(CLI::App& app, int& exit_code) {
       "render",
       "Render solver states as PNG frames and/or a movie: an iteration movie, the final state "
       "or load steps");
-  command->add_option("scene", args->scene, "Scene file (TOML, see docs/SCENES.md)")->required();
+  look_up_bundled_scenes(command->add_option("scene", args->scene, kSceneArgumentHelp))->required();
   command->add_option("--out", args->out,
-                      "Write PNG frames frame_0000.png, frame_0001.png, ... into this directory");
+                      "Write PNG frames frame_0000.png, frame_0001.png, ... into this directory")
+      ->check(output_name(OutputKind::Folder));
   add_method_options(command, args->method);
   CLI::Option* size = command->add_option("--size", args->size, "Image size in pixels")
                           ->check(image_size_check())
@@ -360,7 +362,8 @@ void register_render(CLI::App& app, int& exit_code) {
   every->excludes(final_only);
   command->add_option("--movie", args->movie,
                       "Stream the frames into this H.264 mp4 (ffmpeg; - for stdout; no PNG files "
-                      "unless --out)");
+                      "unless --out)")
+      ->check(output_name());
   command->add_option("--fps", args->fps, "Frames per second of the movie")
       ->check(CLI::Range(1, 120))
       ->capture_default_str();
@@ -397,7 +400,8 @@ void register_render(CLI::App& app, int& exit_code) {
       ->capture_default_str();
   command->add_option("--vtu", args->vtu,
                       "Also write every frame's state as ParaView files here (struts.pvd, "
-                      "contacts.pvd)");
+                      "contacts.pvd)")
+      ->check(output_name(OutputKind::Folder));
   command->add_option("--vtu-format", args->vtu_format, "Data encoding of the .vtu files")
       ->check(CLI::IsMember({"ascii", "binary", "zlib"}))
       ->capture_default_str();

@@ -17,6 +17,7 @@
 #include "app/method_options.hpp"
 #include "app/out_of_memory.hpp"
 #include "app/output_file.hpp"
+#include "app/output_options.hpp"
 #include "app/processes.hpp"
 #include "app/progress.hpp"
 #include "app/result_json.hpp"
@@ -102,12 +103,6 @@ void print_summary(std::ostream& out, const solver::Model& model, const solver::
       << format("%.3f", info.solve_seconds * 1e3) << " ms\n";
 }
 
-int report_result(const SolveArgs& args, const solver::Model& model,
-                  const std::vector<solver::SweepStep>& steps, const RunInfo& info,
-                  size_t load_factor_count, bool was_interrupted, int signal,
-                  const std::optional<OutputError>& output_error, SolveOutputs& outputs,
-                  std::ostream& report);
-
 // Displacements of a direct (active-set) solve at every load factor, for error histories.
 // A load factor the reference cannot solve (an unbounded scene) gets no error history; the
 // solve itself then reports the problem with its own status.
@@ -131,267 +126,344 @@ std::map<double, std::vector<std::vector<solver::Vec2>>> reference_solutions(
   return result;
 }
 
-int run_solve(const SolveArgs& args) {
-  // Under mpirun every process runs this function in step: each reads the scene, builds
-  // the model (replicated metadata) and its own subdomains; every decision that ends the
-  // run is taken alike by all of them, and rank 0 alone prints and writes files.
-  const solver::Communicator& processes = app::processes();
-  if (processes.distributed() && !solver::distributable(args.method.kind())) {
-    std::cerr << "fetic solve: --method " << solver::to_string(args.method.kind())
-              << " runs in one process; under mpirun use --method feti, feti-c or mprgp\n";
-    return kExitUsage;
+// Under mpirun every process runs the phases of run_solve in step: each reads the scene,
+// builds the model (replicated metadata) and its own subdomains; every decision that ends
+// the run is taken alike by all of them, and rank 0 alone prints and writes files. That
+// policy lives here.
+class RankPolicy {
+ public:
+  explicit RankPolicy(const solver::Communicator& processes) : processes_(processes) {}
+  const solver::Communicator& processes() const { return processes_; }
+  bool distributed() const { return processes_.distributed(); }
+  // Rank 0 (or the only process): prints and writes.
+  bool writes() const { return processes_.root(); }
+  // The worst status of any process, so that every process ends alike.
+  int agree(int status) const {
+    return static_cast<int>(processes_.max(static_cast<double>(status)));
   }
-  if (args.monitor_full > 0 && args.monitor.empty()) {
-    std::cerr << "fetic solve: --monitor-full needs --monitor FILE\n";
-    return kExitUsage;
+  bool any(bool flag) const { return processes_.any(flag); }
+  // The signal some process received (rank 0 may have received none).
+  int signal() const { return agree(interrupt_signal()); }
+  // Runs `write` on rank 0. Distributed, an output rank 0 cannot write must not leave the
+  // sweep early there (the others would wait in the next exchange): the failure is kept
+  // and agreed between iterations (stop_requested); one process rethrows it.
+  template <class Write>
+  void on_root(const Write& write) {
+    if (!writes() || output_error_) return;
+    try {
+      write();
+    } catch (const OutputError& error) {
+      if (!distributed()) throw;
+      output_error_ = error;
+    }
   }
-  if (is_stdout(args.monitor) && (is_stdout(args.outputs.json) || is_stdout(args.outputs.csv) ||
-                                  is_stdout(args.outputs.csv_steps))) {
-    std::cerr << "fetic solve: --monitor - and another output on - cannot both go to standard "
-                 "output\n";
-    return kExitUsage;
+  // Every process asks between iterations, so all stop at the same one: for a signal (any
+  // process may have received it) or for an output rank 0 could not write.
+  bool stop_requested() {
+    stop_ = stop_ || any(interrupted() || output_error_.has_value());
+    return stop_;
   }
-  if (processes.distributed() && args.outputs.vtu_every_iteration) {
-    std::cerr << "fetic solve: --vtu-every-iteration runs in one process (an iterate lives in "
-                 "pieces on every process); under mpirun --vtu writes one frame per load step\n";
-    return kExitUsage;
-  }
+  const std::optional<OutputError>& output_error() const { return output_error_; }
+
+ private:
+  const solver::Communicator& processes_;
+  std::optional<OutputError> output_error_;
+  bool stop_ = false;
+};
+
+// ---- phase 0: the arguments and the output targets, before any work ----
+
+int refused_combination(const SolveArgs& args, const RankPolicy& ranks) {
+  const solver::MethodKind kind = args.method.kind();
+  const char* problem = nullptr;
+  if (ranks.distributed() && !solver::distributable(kind))
+    problem = "runs in one process; under mpirun use --method feti, feti-c or mprgp";
+  else if (args.monitor_full > 0 && args.monitor.empty())
+    problem = "--monitor-full needs --monitor FILE";
+  else if (is_stdout(args.monitor) &&
+           (is_stdout(args.outputs.json) || is_stdout(args.outputs.csv) ||
+            is_stdout(args.outputs.csv_steps)))
+    problem = "--monitor - and another output on - cannot both go to standard output";
+  else if (ranks.distributed() && args.outputs.vtu_every_iteration)
+    problem =
+        "--vtu-every-iteration runs in one process (an iterate lives in pieces on every "
+        "process); under mpirun --vtu writes one frame per load step";
+  else if (!args.profile.empty() && !solver::is_dual(kind))
+    problem = "keeps no profile: --profile is for feti, feti-c and mprgp";
+  if (!problem) return kExitOk;
+  std::cerr << "fetic solve: ";
+  if (problem[0] != '-') std::cerr << "--method " << solver::to_string(kind) << " ";
+  std::cerr << problem << '\n';
+  return kExitUsage;
+}
+
+// Every output target is checked before the work starts (a missing folder must not
+// surface after an hour's solve, nor after another output has been replaced).
+int refused_target(const SolveArgs& args, const RankPolicy& ranks) {
   int status = kExitOk;
-  const auto scene = load_scene_or_report(args.scene, status);
-  if (!scene) return status;
+  if (ranks.writes()) try {
+      for (const std::string* file : {&args.outputs.json, &args.outputs.csv,
+                                      &args.outputs.csv_steps, &args.monitor, &args.profile})
+        if (!file->empty()) check_output_file(*file);
+      if (!args.outputs.vtu.empty()) check_output_folder(args.outputs.vtu);
+    } catch (const OutputError& error) {
+      status = report_output_error(error);
+    }
+  return ranks.agree(status);
+}
+
+// ---- phase 1: read the scene ----
+
+std::optional<scenes::Scene> read_scene(const SolveArgs& args, int& status) {
+  auto scene = load_scene_or_report(args.scene, status);
+  if (!scene) return std::nullopt;
   if (const std::string problem =
           load_factor_problem(*scene, args.method.load_factors(),
                               args.method.load_steps.empty() ? "--load-factor" : "--load-steps");
       !problem.empty()) {
     std::cerr << scenes::printable(args.scene) << ": " << problem << '\n';
-    return kExitUsage;
+    status = kExitUsage;
+    return std::nullopt;
   }
   MemoryUse use{{args.method.kind()}, !args.outputs.json.empty(), 0};
   if (args.reference) use.methods.push_back(solver::MethodKind::ActiveSet);
-  if (!memory_suffices(*scene, args.scene, use, status)) return status;
-  Activity assembling("assembling the model");
-  const solver::Model model = solver::build_model(*scene);
+  if (!memory_suffices(*scene, args.scene, use, status)) return std::nullopt;
+  return scene;
+}
 
+// ---- phase 2: set up the method ----
+
+struct SetUp {
+  std::unique_ptr<solver::Method> method;
+  const solver::FetiMethod* dual = nullptr;  // the method, when it is a dual one
+  std::map<double, std::vector<std::vector<solver::Vec2>>> references;  // --reference
   RunInfo info;
+  ProfileRun profile;
+};
+
+int set_up(const SolveArgs& args, const solver::Model& model, const RankPolicy& ranks,
+           SetUp& setup) {
+  RunInfo& info = setup.info;
   info.scene_path = args.scene;
   info.method = args.method.kind();
   info.preconditioner = args.method.options().preconditioner;
   info.tolerance = args.method.tolerance;
-  info.ranks = processes.size();
-
+  info.ranks = ranks.processes().size();
   Activity setting_up("setting up the method (factorizing the subdomains)");
-  const auto setup_start = std::chrono::steady_clock::now();
-  std::unique_ptr<solver::Method> method;
-  std::map<double, std::vector<std::vector<solver::Vec2>>> references;
+  const auto start = std::chrono::steady_clock::now();
   try {
-    method = solver::make_method(info.method, model, args.method.options(), processes);
-    info.setup_seconds = seconds_since(setup_start);
-    if (auto* dual = dynamic_cast<const solver::FetiMethod*>(method.get()))
-      info.subdomains_per_rank = dual->system().partition().subdomains_per_part();
-    if (args.reference) references = reference_solutions(model, args.method, args.scene);
+    setup.method =
+        solver::make_method(info.method, model, args.method.options(), ranks.processes());
+    info.setup_seconds = seconds_since(start);
+    setup.dual = dynamic_cast<const solver::FetiMethod*>(setup.method.get());
+    if (setup.dual) {
+      info.subdomains_per_rank = setup.dual->system().partition().subdomains_per_part();
+      setup.profile.before_solve = setup.dual->profile();
+    }
+    if (args.reference) setup.references = reference_solutions(model, args.method, args.scene);
   } catch (const solver::SolverError& error) {
     std::cerr << scenes::printable(args.scene) << ": " << error.what() << '\n';
     return kExitSolverSetup;
   }
+  return kExitOk;
+}
 
-  auto* dual = dynamic_cast<const solver::FetiMethod*>(method.get());
-  ProfileRun profile;
-  if (dual) profile.before_solve = dual->profile();
-  const std::vector<double> load_factors = args.method.load_factors();
-  const bool sweeping = !args.method.load_steps.empty();
-  // Rank 0 alone writes: the other processes keep the checks (--csv-node) but no paths.
-  SolveOutputArgs output_args = args.outputs;
-  if (!processes.root()) {
+// ---- phase 3: open the outputs ----
+
+// Rank 0 alone writes: the other processes keep the checks (--csv-node) but no paths.
+// The monitor: every process observes (a full line gathers the state, a collective), rank
+// 0 alone opens and writes.
+int open_outputs(const SolveArgs& args, const solver::Model& model, const RankPolicy& ranks,
+                 SolveOutputArgs& output_args, std::unique_ptr<SolveOutputs>& outputs,
+                 SolveMonitor& monitor) {
+  output_args = args.outputs;  // kept by the caller: SolveOutputs refers to it
+  if (!ranks.writes()) {
     output_args = SolveOutputArgs{};
     output_args.csv_nodes = args.outputs.csv_nodes;
   }
-  std::unique_ptr<SolveOutputs> outputs;
-  int output_status = kExitOk;
+  int status = kExitOk;
   try {
-    outputs = std::make_unique<SolveOutputs>(output_args, model, load_factors);
+    outputs = std::make_unique<SolveOutputs>(output_args, model, args.method.load_factors());
     outputs->show_progress(progress_mode(args.progress, args.quiet));
+    if (!args.monitor.empty()) monitor.open(args.monitor);
   } catch (const CLI::ValidationError& error) {
     std::cerr << scenes::printable(args.scene) << ": " << error.what() << '\n';
-    output_status = kExitUsage;
+    status = kExitUsage;
   } catch (const OutputError& error) {
-    output_status = report_output_error(error);
+    status = report_output_error(error);
   }
-  // Agreed, so that no process goes on alone (rank 0 made the directories).
-  // The monitor: every process observes (a full line gathers the state, a collective),
-  // rank 0 alone opens and writes.
-  SolveMonitor monitor(model, args.monitor_full, processes.root());
-  if (output_status == kExitOk && !args.monitor.empty()) try {
-      monitor.open(args.monitor);
-    } catch (const OutputError& error) {
-      output_status = report_output_error(error);
-    }
-  output_status = static_cast<int>(processes.max(static_cast<double>(output_status)));
-  if (output_status != kExitOk) return output_status;
-  // With an output on stdout (-), the report goes to stderr.
-  std::ostream& report = outputs->uses_stdout() || is_stdout(args.monitor) ? std::cerr : std::cout;
-  if (sweeping && !args.quiet)
-    report << "load steps   " << load_factors.size() << " from " << load_factors.front() << " to "
-           << load_factors.back() << ", each warm-started\n";
-  Activity solving("solving");
-  ProgressLine progress(progress_mode(args.progress, args.quiet));
+  return ranks.agree(status);  // so that no process goes on alone
+}
+
+// ---- phase 4: sweep the load factors ----
+
+struct Sweep {
+  const SolveArgs& args;
+  const solver::Model& model;
+  SetUp& setup;
+  RankPolicy& ranks;
+  SolveOutputs& outputs;
+  SolveMonitor& monitor;
+  std::ostream& report;
+  std::vector<double> load_factors = args.method.load_factors();
+  bool sweeping = !args.method.load_steps.empty();
   int step_number = 0;
-  const auto solve_start = std::chrono::steady_clock::now();
-  solver::SweepHooks hooks;
-  hooks.before_start = [&](double t) {
+  ProgressLine progress{progress_mode(args.progress, args.quiet)};
+
+  void before_start(double t) {
     ++step_number;
     monitor.begin_load(t);
     if (!args.reference) return;
-    const auto it = references.find(t);
-    method->set_reference(it != references.end() ? it->second
-                                                 : std::vector<std::vector<solver::Vec2>>{});
-  };
-  hooks.on_iteration = [&](double t, const solver::Method& running) {
-    outputs->iteration(running);
-    if (!progress.due()) return;
+    const auto it = setup.references.find(t);
+    setup.method->set_reference(
+        it != setup.references.end() ? it->second : std::vector<std::vector<solver::Vec2>>{});
+  }
+  // Every process: the monitor observes (a full line gathers the state, a collective
+  // every process calls at the same iterations); its writes never throw (a failure is
+  // kept in the stream and reported at close).
+  void on_iteration(double t, const solver::Method& running) {
+    ranks.on_root([&] { outputs.iteration(running); });
+    if (!args.monitor.empty()) monitor.observe(running);
+    if (!ranks.writes() || !progress.due()) return;
     char line[160];
     const auto& history = running.history();
+    const std::string step = sweeping ? " (step " + std::to_string(step_number) + " of " +
+                                            std::to_string(load_factors.size()) + ")"
+                                      : "";
     std::snprintf(line, sizeof line, "solve  t = %g%s  iteration %d  residual %.3e  active %d", t,
-                  sweeping ? (" (step " + std::to_string(step_number) + " of " +
-                              std::to_string(load_factors.size()) + ")")
-                                 .c_str()
-                           : "",
-                  running.iteration(), history.empty() ? 0.0 : history.back().residual,
+                  step.c_str(), running.iteration(),
+                  history.empty() ? 0.0 : history.back().residual,
                   history.empty() ? 0 : history.back().active_set);
     progress.update(line);
-  };
-  hooks.on_step = [&](const solver::SweepStep& step) {
-    outputs->step(step);
-    if (!sweeping || args.quiet) return;
+  }
+  // Distributed, each step's whole state (the pieces of every process) is gathered for
+  // rank 0's outputs; the sweep itself keeps the local states for its warm starts.
+  void on_step(const solver::SweepStep& local, std::vector<solver::Snapshot>& whole_states) {
+    const solver::SweepStep* step = &local;
+    solver::SweepStep whole;
+    if (ranks.distributed()) {
+      whole_states.push_back(setup.method->gathered_snapshot());
+      whole = {local.load_factor, whole_states.back(), local.history};
+      step = &whole;
+    }
+    ranks.on_root([&] { outputs.step(*step); });
+    if (!sweeping || args.quiet || !ranks.writes()) return;
     progress.clear();
     char line[160];
     std::snprintf(
         line, sizeof line, "  t = %-12.6g %-9s %4d iterations  %5d active  residual %.3e\n",
-        step.load_factor,
-        step.state.status == solver::Status::Running ? "stopped"
-                                                     : solver::to_string(step.state.status),
-        step.state.iteration, step.state.active_set_size(), step.state.residual);
+        step->load_factor,
+        step->state.status == solver::Status::Running ? "stopped"
+                                                      : solver::to_string(step->state.status),
+        step->state.iteration, step->state.active_set_size(), step->state.residual);
     report << line << std::flush;
-  };
-  // Every process asks between iterations, so all stop at the same one: for a signal
-  // (any process may have received it) or for an output rank 0 could not write.
-  std::optional<OutputError> output_error;
-  bool stop = false;
-  hooks.keep_going = [&] {
-    stop = stop || processes.any(interrupted() || output_error.has_value());
-    return !stop;
-  };
-  // Distributed, each step's whole state (the pieces of every process) is gathered for
-  // rank 0's outputs; the sweep itself keeps the local states for its warm starts. An
-  // output rank 0 cannot write must not leave the sweep early there (the others would
-  // wait in the next exchange): it is kept and agreed at the next keep_going.
-  std::vector<solver::Snapshot> whole_states;
-  const auto on_root_keeping_failure = [&](const auto& write) {
-    if (!processes.root() || output_error) return;
-    try {
-      write();
-    } catch (const OutputError& error) {
-      output_error = error;
-    }
-  };
-  if (processes.distributed()) {
-    hooks.on_step = [&, on_step = hooks.on_step](const solver::SweepStep& step) {
-      whole_states.push_back(method->gathered_snapshot());
-      on_root_keeping_failure([&] {
-        on_step({step.load_factor, whole_states.back(), step.history});
-      });
-    };
-    hooks.on_iteration = [&, on_iteration = hooks.on_iteration](double t,
-                                                                const solver::Method& running) {
-      on_root_keeping_failure([&] { on_iteration(t, running); });
-    };
   }
-  // The monitor hook runs on every process, outside the rank-0 wrapping above: a full
-  // line gathers the state (a collective every process calls at the same iterations,
-  // the history being replicated). Its writes never throw (a failure is kept in the
-  // stream and reported at close), so rank 0 never leaves the sweep early for it.
-  if (!args.monitor.empty())
-    hooks.on_iteration = [&, on_iteration = hooks.on_iteration](double t,
-                                                                const solver::Method& running) {
-      on_iteration(t, running);
-      monitor.observe(running);
-    };
-  std::vector<solver::SweepStep> steps;
-  try {
-    steps = solver::sweep(*method, load_factors, hooks);
-  } catch (const OutputError& error) {
-    progress.clear();
-    return report_output_error(error);  // one process: nobody waits for it
-  }
-  progress.clear();
-  info.solve_seconds = seconds_since(solve_start) - outputs->writing_seconds();
-  for (size_t i = 0; i < whole_states.size() && i < steps.size(); ++i)
-    steps[i].state = whole_states[i];
-  const bool was_interrupted = processes.any(interrupted());
-  // The signal some process received (rank 0 may have received none).
-  const int signal = static_cast<int>(processes.max(static_cast<double>(interrupt_signal())));
 
-  if (!args.profile.empty() && dual) {
-    profile.after_solve = dual->profile();
-    profile.setup_seconds = info.setup_seconds;
-    profile.solve_seconds = info.solve_seconds;
+  // Throws OutputError (one process) when an output cannot be written.
+  std::vector<solver::SweepStep> run() {
+    if (sweeping && !args.quiet && ranks.writes())
+      report << "load steps   " << load_factors.size() << " from " << load_factors.front() << " to "
+             << load_factors.back() << ", each warm-started\n";
+    Activity solving("solving");
+    std::vector<solver::Snapshot> whole_states;
+    solver::SweepHooks hooks;
+    hooks.before_start = [&](double t) { before_start(t); };
+    hooks.on_iteration = [&](double t, const solver::Method& m) { on_iteration(t, m); };
+    hooks.on_step = [&](const solver::SweepStep& step) { on_step(step, whole_states); };
+    hooks.keep_going = [&] { return !ranks.stop_requested(); };
+    const auto start = std::chrono::steady_clock::now();
+    std::vector<solver::SweepStep> steps;
+    try {
+      steps = solver::sweep(*setup.method, load_factors, hooks);
+    } catch (...) {
+      progress.clear();
+      throw;
+    }
+    progress.clear();
+    setup.info.solve_seconds = seconds_since(start) - outputs.writing_seconds();
+    for (size_t i = 0; i < whole_states.size() && i < steps.size(); ++i)
+      steps[i].state = whole_states[i];
+    return steps;
+  }
+};
+
+// ---- phase 5: write the outputs, all or none ----
+
+// Collective (the profile gathers every process' figures). The files wait in their
+// temporaries (PendingOutputs) and are committed only when every output could be
+// written; otherwise none replaces what was there.
+int write_outputs(const SolveArgs& args, const std::vector<solver::SweepStep>& steps, SetUp& setup,
+                  RankPolicy& ranks, SolveOutputs& outputs, SolveMonitor& monitor,
+                  PendingOutputs& pending, bool was_interrupted) {
+  int status = kExitOk;
+  // Interrupted under mpirun with outputs to write: rank 0 says so before it writes.
+  const int signal = was_interrupted ? ranks.signal() : 0;  // collective
+  const bool announce = was_interrupted && ranks.distributed() && outputs.writes_anything();
+  const auto keep_first = [&](const OutputError& error) {
+    if (status == kExitOk) status = report_output_error(error);
+  };
+  if (ranks.writes()) try {
+      if (ranks.output_error()) throw *ranks.output_error();
+      Activity writing("writing the outputs");
+      // Under mpirun a signal to mpirun ends the job (SIGKILL) soon after it reaches the
+      // processes, often before the outputs are written and the last message is
+      // forwarded: say so first. A file appears whole or not at all.
+      if (announce)
+        std::cerr << scenes::printable(args.scene) << ": interrupted by " << signal_name(signal)
+                  << " at iteration " << (steps.empty() ? 0 : steps.back().state.iteration)
+                  << "; writing the outputs marked interrupted (a signal to mpirun may end the "
+                     "job first: then none is written)"
+                  << std::endl;
+      // An interrupted solve still writes its outputs, with the current iterate marked
+      // "interrupted": true, "converged": false.
+      outputs.finish(steps, setup.info, !args.method.load_steps.empty());
+    } catch (const OutputError& error) {
+      keep_first(error);
+    }
+  if (!args.profile.empty() && setup.dual) {
+    ProfileRun& profile = setup.profile;
+    profile.after_solve = setup.dual->profile();
+    profile.setup_seconds = setup.info.setup_seconds;
+    profile.solve_seconds = setup.info.solve_seconds;
     profile.iterations = steps.empty() ? 0 : steps.back().state.iteration;
-    if (const auto* mprgp = dynamic_cast<const solver::Mprgp*>(dual))
+    if (const auto* mprgp = dynamic_cast<const solver::Mprgp*>(setup.dual))
       profile.mprgp_steps = mprgp->counts();
     try {
-      write_solve_profile(args.profile, processes, profile);
+      write_solve_profile(args.profile, ranks.processes(), profile);
     } catch (const OutputError& error) {
-      if (processes.root()) status = report_output_error(error);
+      if (ranks.writes()) keep_first(error);
     }
   }
-  // A monitor line that did not arrive: reported, and the status says so unless a signal
-  // ended the run.
-  int monitor_status = kExitOk;
+  // A monitor line that did not arrive: the run's outputs are incomplete.
   if (!args.monitor.empty())
-    if (const std::string problem = monitor.close(); !problem.empty()) {
+    if (const std::string problem = monitor.close(); !problem.empty() && status == kExitOk) {
       std::cerr << problem << '\n';
-      monitor_status = kExitOutput;
+      status = interrupted() ? kExitInterrupted : kExitOutput;
     }
-  if (processes.root() && status == kExitOk)
-    status = report_result(args, model, steps, info, load_factors.size(), was_interrupted, signal,
-                           output_error, *outputs, report);
-  if (monitor_status != kExitOk && status != kExitInterrupted) status = monitor_status;
-  return static_cast<int>(processes.max(static_cast<double>(status)));
+  if (status == kExitOk && ranks.writes()) try {
+      pending.commit();
+    } catch (const OutputError& error) {
+      keep_first(error);
+    }
+  return ranks.agree(status);
 }
 
-// Rank 0 (or the only process): the outputs, the interrupt message or the summary.
+// ---- phase 6: report ----
+
+// Rank 0 (or the only process): the interrupt message or the summary.
 int report_result(const SolveArgs& args, const solver::Model& model,
                   const std::vector<solver::SweepStep>& steps, const RunInfo& info,
-                  size_t load_factor_count, bool was_interrupted, int signal,
-                  const std::optional<OutputError>& output_error, SolveOutputs& outputs,
+                  const RankPolicy& ranks, bool was_interrupted, const SolveOutputs& outputs,
                   std::ostream& report) {
-  if (output_error) return report_output_error(*output_error);
-  const bool sweeping = !args.method.load_steps.empty();
-  const bool announce_first =
-      was_interrupted && processes().distributed() && outputs.writes_anything();
-  try {
-    // An interrupted solve still writes its outputs, with the current iterate marked
-    // "interrupted": true, "converged": false.
-    Activity writing("writing the outputs");
-    // Under mpirun a signal to mpirun ends the job (SIGKILL) soon after it reaches the
-    // processes, often before the outputs are written and the last message is forwarded:
-    // say so first. A file appears whole or not at all.
-    if (announce_first)
-      std::cerr << scenes::printable(args.scene) << ": interrupted by " << signal_name(signal)
-                << " at iteration " << (steps.empty() ? 0 : steps.back().state.iteration)
-                << "; writing the outputs marked interrupted (a signal to mpirun may end the "
-                   "job first: then none is written)"
-                << std::endl;
-    outputs.finish(steps, info, sweeping);
-  } catch (const OutputError& error) {
-    return report_output_error(error);
-  }
-  if (was_interrupted && announce_first) {
-    std::cerr << scenes::printable(args.scene) << ": written, the current iterate marked "
-              << "interrupted: " << outputs.written_list() << '\n';
-    return kExitInterrupted;
-  }
   if (was_interrupted) {
-    const bool cut = steps.empty() || steps.size() < load_factor_count ||
+    const int signal = ranks.signal();
+    if (!ranks.writes()) return kExitInterrupted;
+    if (ranks.distributed() && outputs.writes_anything()) {  // announced before writing
+      std::cerr << scenes::printable(args.scene) << ": written, the current iterate marked "
+                << "interrupted: " << outputs.written_list() << '\n';
+      return kExitInterrupted;
+    }
+    const bool cut = steps.empty() || steps.size() < args.method.load_factors().size() ||
                      steps.back().state.status == solver::Status::Running;
     std::cerr << scenes::printable(args.scene) << ": interrupted by " << signal_name(signal);
     if (!cut)
@@ -405,6 +477,7 @@ int report_result(const SolveArgs& args, const solver::Model& model,
     std::cerr << '\n';
     return kExitInterrupted;
   }
+  if (!ranks.writes()) return kExitOk;
   const solver::SweepStep& last = steps.back();
   if (!args.quiet) print_summary(report, model, last.state, info);
   for (const solver::SweepStep& step : steps)
@@ -417,12 +490,49 @@ int report_result(const SolveArgs& args, const solver::Model& model,
   return kExitOk;
 }
 
+// The phases: check, read, set up, open the outputs, sweep, write, report.
+int run_solve(const SolveArgs& args) {
+  RankPolicy ranks(app::processes());
+  if (const int status = refused_combination(args, ranks)) return status;
+  if (const int status = refused_target(args, ranks)) return status;
+  int status = kExitOk;
+  const auto scene = read_scene(args, status);
+  if (!scene) return status;
+  const solver::Model model = [&] {
+    Activity assembling("assembling the model");
+    return solver::build_model(*scene);
+  }();
+  SetUp setup;
+  if (const int failed = set_up(args, model, ranks, setup)) return failed;
+  PendingOutputs pending;  // every file waits for the commit in write_outputs
+  SolveOutputArgs output_args;
+  std::unique_ptr<SolveOutputs> outputs;
+  SolveMonitor monitor(model, args.monitor_full, ranks.writes());
+  if (const int failed = open_outputs(args, model, ranks, output_args, outputs, monitor))
+    return failed;
+  // With an output on stdout (-), the report goes to stderr.
+  std::ostream& report = outputs->uses_stdout() || is_stdout(args.monitor) ? std::cerr : std::cout;
+  Sweep sweep{args, model, setup, ranks, *outputs, monitor, report};
+  std::vector<solver::SweepStep> steps;
+  try {
+    steps = sweep.run();
+  } catch (const OutputError& error) {
+    return report_output_error(error);  // one process: nobody waits for it
+  }
+  const bool was_interrupted = ranks.any(interrupted());
+  if (const int failed =
+          write_outputs(args, steps, setup, ranks, *outputs, monitor, pending, was_interrupted))
+    return failed;
+  return ranks.agree(
+      report_result(args, model, steps, setup.info, ranks, was_interrupted, *outputs, report));
+}
+
 }  // namespace
 
 void register_solve(CLI::App& app, int& exit_code) {
   auto args = std::make_shared<SolveArgs>();
   CLI::App* command = app.add_subcommand("solve", "Solve a scene and report the result");
-  command->add_option("scene", args->scene, "Scene file (TOML, see docs/SCENES.md)")->required();
+  look_up_bundled_scenes(command->add_option("scene", args->scene, kSceneArgumentHelp))->required();
   add_method_options(command, args->method);
   add_solve_output_options(command, args->outputs);
   command->add_flag("--reference", args->reference,
@@ -434,9 +544,11 @@ void register_solve(CLI::App& app, int& exit_code) {
                       "a FIFO or pipe can follow it live; docs/COMMANDS.md)");
   command->add_flag("--progress", args->progress,
                     "Show the progress line on stderr even when it is not a terminal");
-  command->add_option("--profile", args->profile,
-                      "feti, feti-c, mprgp: write what each process did in the solve (time split, "
-                      "messages, bytes, coarse problem, memory) as JSON here");
+  command
+      ->add_option("--profile", args->profile,
+                   "feti, feti-c, mprgp: write what each process did in the solve (time split, "
+                   "messages, bytes, coarse problem, memory) as JSON here")
+      ->check(output_name());
   command->callback([args, &exit_code] {
     try {
       exit_code = run_solve(*args);

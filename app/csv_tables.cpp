@@ -2,6 +2,9 @@
 
 #include <cmath>
 #include <cstdio>
+#include <limits>
+
+#include "scenes/message_text.hpp"
 
 namespace fetic::app {
 namespace {
@@ -29,22 +32,22 @@ std::optional<TrackedNode> find_node(const solver::Model& model, const std::stri
                                      std::string& problem) {
   const size_t at = label.find('@');
   const size_t dot = label.rfind('.');
-  std::string name;
+  std::string name, index;
   int station = -1;
   if (at != std::string::npos) {
     name = label.substr(0, at);
-    const std::string index = label.substr(at + 1);
-    if (index.empty() || index.find_first_not_of("0123456789") != std::string::npos ||
-        index.size() > 9) {
-      problem = "'" + label + "': the node index after '@' must be a whole number";
+    index = label.substr(at + 1);
+    if (index.empty() || index.find_first_not_of("0123456789") != std::string::npos) {
+      problem = scenes::quoted(label) + ": the node index after '@' must be a whole number";
       return std::nullopt;
     }
-    station = std::stoi(index);
+    // More digits than an int holds: out of range like any index past the last node.
+    station = index.size() > 9 ? std::numeric_limits<int>::max() : std::stoi(index);
   } else if (dot != std::string::npos &&
              (label.substr(dot) == ".from" || label.substr(dot) == ".to")) {
     name = label.substr(0, dot);
   } else {
-    problem = "'" + label + "': name a node as STRUT.from, STRUT.to or STRUT@i";
+    problem = scenes::quoted(label) + ": name a node as STRUT.from, STRUT.to or STRUT@i";
     return std::nullopt;
   }
   for (size_t s = 0; s < model.strut_names.size(); ++s) {
@@ -52,12 +55,14 @@ std::optional<TrackedNode> find_node(const solver::Model& model, const std::stri
     const solver::StrutMesh& mesh = model.struts[s];
     if (station < 0) station = label.substr(dot) == ".from" ? 0 : mesh.nx;
     if (station > mesh.nx) {
-      problem = "'" + label + "': strut '" + name + "' has nodes 0.." + std::to_string(mesh.nx);
+      problem = scenes::quoted(label) + ": node index " + scenes::shortened(index) +
+                " is out of range: strut " + scenes::quoted(name) + " has nodes 0.." +
+                std::to_string(mesh.nx);
       return std::nullopt;
     }
     return TrackedNode{label, static_cast<int>(s), mesh.node(station, mesh.ny / 2)};
   }
-  problem = "'" + label + "': the scene has no strut '" + name + "'";
+  problem = scenes::quoted(label) + ": the scene has no strut " + scenes::quoted(name);
   return std::nullopt;
 }
 
@@ -93,11 +98,14 @@ void write_history_csv(std::ostream& out, const std::vector<solver::SweepStep>& 
 void write_steps_csv(std::ostream& out, const solver::Model& model,
                      const std::vector<solver::SweepStep>& steps,
                      const std::vector<TrackedNode>& nodes) {
+  // Quantities with a unit name it, in the scene's units: "ux:left.to [m]".
+  const std::string length = " [" + model.units.length + "]",
+                    force_unit = " [" + model.units.force + "]";
   out << "load_step,load_factor,status,iterations,residual,active_pairs";
   for (const TrackedNode& node : nodes)
-    out << ",ux:" << node.label << ",uy:" << node.label;
+    out << ",ux:" << node.label << length << ",uy:" << node.label << length;
   for (const auto& [a, b] : model.contact_ends)
-    out << ",force:" << a << '/' << b << ",active_pairs:" << a << '/' << b;
+    out << ",force:" << a << '/' << b << force_unit << ",active_pairs:" << a << '/' << b;
   out << '\n';
   for (size_t k = 0; k < steps.size(); ++k) {
     const solver::Snapshot& state = steps[k].state;

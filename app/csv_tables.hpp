@@ -31,8 +31,8 @@ std::vector<TrackedNode> contact_end_nodes(const solver::Model& model);
 // load_step,load_factor,iteration,residual,active_set[,error]: one row per history entry.
 void write_history_csv(std::ostream& out, const std::vector<solver::SweepStep>& steps);
 
-// load_step,load_factor,status,iterations,residual,active_pairs, then ux:NODE,uy:NODE per
-// node and force:A/B,active_pairs:A/B per contact.
+// load_step,load_factor,status,iterations,residual,active_pairs, then ux:NODE [L],uy:NODE [L]
+// per node and force:A/B [F],active_pairs:A/B per contact (L, F: the scene's units).
 void write_steps_csv(std::ostream& out, const solver::Model& model,
                      const std::vector<solver::SweepStep>& steps,
                      const std::vector<TrackedNode>& nodes);

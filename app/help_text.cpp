@@ -16,6 +16,9 @@ const std::map<int, const char*> kStatus = {
      "       \"converged\": false)"},
     {5, "  5    an output file or directory could not be written"},
     {6, "  6    no display: no EGL device to render with (gui: no X display)"},
+    {7,
+     "  7    not enough memory: the scene needs more than is available (refused before the\n"
+     "       work, with the estimate; FETIC_MEMORY_CHECK=off tries anyway)"},
     {130, "  130  interrupted by SIGINT or SIGTERM (Ctrl-C)"},
 };
 
@@ -39,7 +42,7 @@ std::string help_footer(const std::string& command) {
            "  fetic solve scenes/two_bars.toml --json result.json\n"
            "  fetic solve scenes/two_bars.toml --load-steps 0:2:21 --csv-steps curve.csv \\\n"
            "              --vtu paraview/          # then: paraview paraview/struts.pvd\n\n" +
-           statuses({0, 1, 2, 3, 4, 5, 130}) +
+           statuses({0, 1, 2, 3, 4, 5, 7, 130}) +
            "  After SIGINT/SIGTERM the --json, --csv, --csv-steps and --vtu outputs are still\n"
            "  written, with the current iterate marked \"interrupted\": true.\n\n" +
            kSceneUnits +
@@ -49,41 +52,47 @@ std::string help_footer(const std::string& command) {
     return "Examples:\n"
            "  fetic render scenes/thesis.toml --out frames/ --movie thesis.mp4\n"
            "  fetic render scenes/two_bars.toml --out frames/ --load-steps 0:2:21 --vtu vtu/\n\n" +
-           statuses({0, 1, 2, 3, 4, 5, 6, 130}) + "\n" + kSceneUnits +
+           statuses({0, 1, 2, 3, 4, 5, 6, 7, 130}) + "\n" + kSceneUnits +
            "Image sizes are in pixels; --magnification scales displacements and gaps in the "
            "picture.\n";
   if (command == "figures")
     return "Example:\n"
            "  fetic figures --out figures/     # works from any directory\n\n" +
-           statuses({0, 1, 2, 3, 5, 6, 130}) +
+           statuses({0, 1, 2, 3, 5, 6, 7, 130}) +
            "  Status 3: no figure could be drawn; figures that cannot be drawn are skipped\n"
            "  with the reason.\n\nImage sizes are in pixels.\n";
   if (command == "bench")
     return "Example:\n"
            "  fetic bench --repeat 5 --csv bench.csv    # the bundled scenes\n\n" +
-           statuses({0, 1, 2, 3, 5, 130}) +
+           statuses({0, 1, 2, 3, 5, 7, 130}) +
            "\nTimes are in milliseconds; ratios are to the active-set method measured in the\n"
            "same run.\n";
   if (command == "bench-render")
     return "Example:\n"
            "  fetic bench-render --frames 60 --size 1280x720\n\n" +
-           statuses({0, 1, 2, 3, 5, 6, 130}) +
+           statuses({0, 1, 2, 3, 5, 6, 7, 130}) +
            "\nReports frames per second; image sizes are in pixels.\n";
   if (command == "gui")
     return "Example:\n"
            "  fetic gui scenes/thesis.toml --max-load 2\n\n" +
-           statuses({0, 1, 2, 3, 5, 6, 130}) + "\n" + kSceneUnits;
+           statuses({0, 1, 2, 3, 4, 5, 6, 7, 130}) + "\n" + kSceneUnits;
   if (command == "generate")
     return "Example:\n"
            "  fetic generate --model plane --pairs 20 --elements 40,8 --subdomains 4,2 -o "
            "big.toml\n\n" +
-           statuses({0, 1, 5}) + "\nThe scene is in SI units: lengths [m], E [Pa], forces [N].\n";
+           statuses({0, 1, 5, 7, 130}) +
+           "\nThe scene is in SI units: lengths [m], E [Pa], forces [N].\n";
+  if (command == "scenes")
+    return "Example:\n  fetic scenes             # then: fetic solve thesis --json r.json\n\n" +
+           statuses({0, 1, 2, 5}) + "  Status 2: no bundled scene folder was found.\n";
+  if (command == "help") return "Example:\n  fetic help solve\n\n" + statuses({0, 1, 5});
   return {};
 }
 
 void add_help_footers(CLI::App& app) {
   app.footer(
-      "Run `fetic COMMAND --help` for a command's options, an example, its exit statuses "
+      "Run `fetic help COMMAND` (or `fetic COMMAND --help`) for a command's options, an example, "
+      "its exit statuses "
       "and units.\nDocumentation: README.md and docs/ (installed in share/doc/fetic).");
   for (CLI::App* command : app.get_subcommands([](CLI::App*) { return true; })) {
     const std::string footer = help_footer(command->get_name());

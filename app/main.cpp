@@ -11,6 +11,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "app/command_line_help.hpp"
 #include "app/commands.hpp"
 #include "app/exit_codes.hpp"
 #include "app/help_text.hpp"
@@ -18,6 +19,7 @@
 #include "app/out_of_memory.hpp"
 #include "app/processes.hpp"
 #include "app/standard_streams.hpp"
+#include "app/version.hpp"
 #include "scenes/scene_error.hpp"
 #include "solver/interruption.hpp"
 
@@ -35,7 +37,8 @@ bool known_command(const CLI::App& app, const std::string& word) {
 bool refuse_under_mpi(int argc, char** argv) {
   if (!fetic::app::processes().distributed()) return false;
   const std::string command = argc > 1 ? argv[1] : "";
-  if (command == "solve" || command == "--help" || command == "-h" || command == "--version")
+  if (command == "solve" || command == "--help" || command == "-h" || command == "--version" ||
+      command == "-v")
     return false;
   std::cerr << "fetic " << fetic::scenes::printable(command)
             << " runs in one process: start it without mpirun "
@@ -85,7 +88,7 @@ int fetic::app::run_command_line(int argc, char** argv) {
   install_out_of_memory_handler();
   CLI::App app{"fetic - frictionless contact of elastic struts by FETI and FETI-C"};
   app.require_subcommand(1);
-  app.set_version_flag("--version", "fetic 0.1.0");
+  app.set_version_flag("-v,--version", std::string("fetic ") + fetic_version());
   install_interrupt_handlers();
   int exit_code = kExitOk;
   register_solve(app, exit_code);
@@ -95,6 +98,8 @@ int fetic::app::run_command_line(int argc, char** argv) {
   register_figures(app, exit_code);
   register_bench_render(app, exit_code);
   register_gui(app, exit_code);
+  register_scenes(app, exit_code);
+  register_help(app, exit_code);
   add_help_footers(app);
   if (argc > 1 && argv[1][0] != '-' && !known_command(app, argv[1])) {
     std::string commands;
@@ -106,6 +111,11 @@ int fetic::app::run_command_line(int argc, char** argv) {
   }
   try {
     app.parse(argc, argv);
+  } catch (const CLI::ExtrasError& error) {
+    const std::string message = unknown_option_message(app, argc, argv);
+    if (message.empty()) return finish_standard_output(app.exit(error) == 0 ? kExitOk : kExitUsage);
+    std::cerr << message;
+    return finish_standard_output(kExitUsage);
   } catch (const CLI::ParseError& error) {
     const int code = app.exit(error);
     return finish_standard_output(code == 0 ? kExitOk : kExitUsage);

@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <sstream>
 
+#include "scenes/message_text.hpp"
 #include "solver/load_sweep.hpp"
 
 namespace fetic::app {
@@ -43,23 +44,16 @@ std::optional<LoadSteps> parse_load_steps(const std::string& text) {
 
 namespace {
 
-std::string short_number(double value) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%g", value);
-  return text;
-}
-
-// Values are quoted back shortened: an option's message stays one readable line.
-std::string shown_value(const std::string& text) {
-  return text.size() > 40 ? text.substr(0, 40) + "..." : text;
-}
+using scenes::number_text;
+// Values are quoted back shortened and escaped: an option's message stays one line.
+using scenes::shortened;
 
 }  // namespace
 
 CLI::Validator finite_number() {
   return CLI::Validator(
       [](std::string& text) -> std::string {
-        return parse_number(text) ? "" : "must be a finite number, got " + shown_value(text);
+        return parse_number(text) ? "" : "must be a finite number, got " + shortened(text);
       },
       "FINITE");
 }
@@ -67,10 +61,10 @@ CLI::Validator finite_number() {
 CLI::Validator number_in(double low, double high, Bound low_bound, Bound high_bound) {
   std::string range;
   if (low_bound != Bound::None)
-    range += (low_bound == Bound::Open ? " greater than " : " of at least ") + short_number(low);
+    range += (low_bound == Bound::Open ? " greater than " : " of at least ") + number_text(low);
   if (high_bound != Bound::None)
     range += std::string(range.empty() ? "" : " and") +
-             (high_bound == Bound::Open ? " less than " : " of at most ") + short_number(high);
+             (high_bound == Bound::Open ? " less than " : " of at most ") + number_text(high);
   const std::string description = "must be a finite number" + range;
   return CLI::Validator(
       [=](std::string& text) -> std::string {
@@ -80,7 +74,7 @@ CLI::Validator number_in(double low, double high, Bound low_bound, Bound high_bo
                            (low_bound == Bound::Open ? *value > low : *value >= low)) &&
                           (high_bound == Bound::None ||
                            (high_bound == Bound::Open ? *value < high : *value <= high));
-        return fits ? "" : description + ", got " + shown_value(text);
+        return fits ? "" : description + ", got " + shortened(text);
       },
       "NUMBER");
 }
@@ -95,7 +89,7 @@ CLI::Validator integer_in(long long low, long long high) {
             value <= high)
           return "";
         return "must be a whole number from " + std::to_string(low) + " to " +
-               std::to_string(high) + ", got " + shown_value(text);
+               std::to_string(high) + ", got " + shortened(text);
       },
       "INT");
 }

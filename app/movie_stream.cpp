@@ -44,6 +44,41 @@ bool write_all(int fd, const std::uint8_t* data, std::size_t size) {
 
 }  // namespace
 
+int spawn_ffmpeg(const std::vector<std::string>& input, const std::vector<std::string>& encoding,
+                 const ExternalTarget& target, int stdin_fd, pid_t& child) {
+  std::vector<std::string> arguments{"ffmpeg", "-y", "-loglevel", "error"};
+  arguments.insert(arguments.end(), input.begin(), input.end());
+  arguments.insert(arguments.end(), {"-c:v", "libx264"});
+  arguments.insert(arguments.end(), encoding.begin(), encoding.end());
+  // yuv420p for players; the pad makes odd sizes even, as H.264 needs.
+  arguments.insert(arguments.end(),
+                   {"-pix_fmt", "yuv420p", "-vf", "pad=ceil(iw/2)*2:ceil(ih/2)*2", "-f", "mp4"});
+  // A stream cannot be rewound to write the index at the front: a fragmented mp4.
+  if (target.stream) arguments.insert(arguments.end(), {"-movflags", "frag_keyframe+empty_moov"});
+  // "file:" keeps a ':' in the name from being read as a protocol.
+  arguments.push_back(target.file.empty() ? "pipe:1" : "file:" + target.file);
+  std::vector<char*> argv;
+  for (std::string& argument : arguments)
+    argv.push_back(argument.data());
+  argv.push_back(nullptr);
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  if (stdin_fd >= 0) posix_spawn_file_actions_adddup2(&actions, stdin_fd, 0);  // clears CLOEXEC
+  // fetic ignores SIGPIPE (a lost write is reported, not fatal: a frame written after
+  // ffmpeg stopped fails with EPIPE); ffmpeg gets the default.
+  posix_spawnattr_t attributes;
+  posix_spawnattr_init(&attributes);
+  sigset_t defaults;
+  sigemptyset(&defaults);
+  sigaddset(&defaults, SIGPIPE);
+  posix_spawnattr_setsigdefault(&attributes, &defaults);
+  posix_spawnattr_setflags(&attributes, POSIX_SPAWN_SETSIGDEF);
+  const int spawned = posix_spawnp(&child, "ffmpeg", &actions, &attributes, argv.data(), environ);
+  posix_spawnattr_destroy(&attributes);
+  posix_spawn_file_actions_destroy(&actions);
+  return spawned;
+}
+
 MovieStream::MovieStream(const ExternalTarget& target, int width, int height, int fps)
     : width_(width), height_(height) {
   const std::string shown = target.file.empty() ? "standard output" : target.file;
@@ -56,42 +91,10 @@ MovieStream::MovieStream(const ExternalTarget& target, int width, int height, in
   ::fcntl(fds[1], F_SETPIPE_SZ, 1 << 20);
   const std::string size = std::to_string(width) + "x" + std::to_string(height);
   // veryfast: about twice the speed of x264's default preset, and on these flat pictures
-  // no larger; yuv420p for players; the pad makes odd sizes even, as H.264 needs.
-  std::vector<std::string> arguments{"ffmpeg",     "-y",
-                                     "-loglevel",  "error",
-                                     "-f",         "rawvideo",
-                                     "-pix_fmt",   "rgba",
-                                     "-s",         size,
-                                     "-framerate", std::to_string(fps),
-                                     "-i",         "pipe:0",
-                                     "-c:v",       "libx264",
-                                     "-preset",    "veryfast",
-                                     "-pix_fmt",   "yuv420p",
-                                     "-vf",        "pad=ceil(iw/2)*2:ceil(ih/2)*2",
-                                     "-f",         "mp4"};
-  // A stream cannot be rewound to write the index at the front: a fragmented mp4.
-  if (target.stream) arguments.insert(arguments.end(), {"-movflags", "frag_keyframe+empty_moov"});
-  // "file:" keeps a ':' in the name from being read as a protocol.
-  arguments.push_back(target.file.empty() ? "pipe:1" : "file:" + target.file);
-  std::vector<char*> argv;
-  for (std::string& argument : arguments)
-    argv.push_back(argument.data());
-  argv.push_back(nullptr);
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_adddup2(&actions, fds[0], 0);  // dup2 clears FD_CLOEXEC
-  // fetic ignores SIGPIPE (a lost write is reported, not fatal: a frame written after
-  // ffmpeg stopped fails with EPIPE); ffmpeg gets the default.
-  posix_spawnattr_t attributes;
-  posix_spawnattr_init(&attributes);
-  sigset_t defaults;
-  sigemptyset(&defaults);
-  sigaddset(&defaults, SIGPIPE);
-  posix_spawnattr_setsigdefault(&attributes, &defaults);
-  posix_spawnattr_setflags(&attributes, POSIX_SPAWN_SETSIGDEF);
-  const int spawned = posix_spawnp(&child_, "ffmpeg", &actions, &attributes, argv.data(), environ);
-  posix_spawnattr_destroy(&attributes);
-  posix_spawn_file_actions_destroy(&actions);
+  // no larger.
+  const int spawned = spawn_ffmpeg({"-f", "rawvideo", "-pix_fmt", "rgba", "-s", size, "-framerate",
+                                    std::to_string(fps), "-i", "pipe:0"},
+                                   {"-preset", "veryfast"}, target, fds[0], child_);
   ::close(fds[0]);
   if (spawned != 0) {
     ::close(fds[1]);

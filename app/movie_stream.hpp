@@ -12,11 +12,20 @@
 #include <mutex>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include "app/output_file.hpp"
 #include "render/image.hpp"
 
 namespace fetic::app {
+
+// Starts ffmpeg reading `input` (its input options and -i) and writing an H.264 mp4 (with
+// the `encoding` options, e.g. a preset) to the target: the file itself, standard output
+// when target.file is "", a fragmented mp4 onto a stream. `stdin_fd` >= 0 becomes its
+// standard input. SIGPIPE, which fetic ignores, is back at its default there. Returns 0,
+// or the error of posix_spawnp.
+int spawn_ffmpeg(const std::vector<std::string>& input, const std::vector<std::string>& encoding,
+                 const ExternalTarget& target, int stdin_fd, pid_t& child);
 
 class MovieStream {
  public:

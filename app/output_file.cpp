@@ -13,6 +13,7 @@
 #include <iostream>
 #include <mutex>
 #include <set>
+#include <vector>
 
 #include "app/exit_codes.hpp"
 #include "app/interrupt.hpp"
@@ -87,6 +88,7 @@ Target classify(const std::string& given) {
   struct stat info {};
   if (::stat(target.path.c_str(), &info) != 0) {
     if (errno == ENOENT) return target;  // absent: created through a temporary file
+    if (errno == ENOTDIR) throw OutputError(label + ": a part of the path is a file, not a folder");
     throw OutputError(label + ": cannot write (" + reason(errno) + ")");
   }
   if (S_ISREG(info.st_mode)) {
@@ -262,14 +264,71 @@ void discard_temporary(const std::string& name) {
   forget_temporary(name);
 }
 
-void rename_into_place(const std::string& temporary, const Target& target,
+void rename_into_place(const std::string& temporary, const std::string& path,
                        const std::string& given) {
-  if (std::rename(temporary.c_str(), target.path.c_str()) != 0) {
+  if (std::rename(temporary.c_str(), path.c_str()) != 0) {
     const int error = errno;
     discard_temporary(temporary);
     throw OutputError(shown(given) + ": cannot put the file in place (" + reason(error) + ")");
   }
   forget_temporary(temporary);
+}
+
+// ---- outputs waiting for PendingOutputs::commit ----
+
+struct Staged {
+  std::string temporary;
+  std::string path;   // where it goes (links followed)
+  std::string given;  // as the user named it, for messages
+};
+
+std::mutex pending_mutex;
+bool pending_active = false;
+std::vector<Staged>& pending() {
+  static std::vector<Staged> files;
+  return files;
+}
+
+// Adds the finished temporary to the pending outputs; false when none are being held.
+bool hold(const std::string& temporary, const std::string& path, const std::string& given) {
+  std::lock_guard lock(pending_mutex);
+  if (!pending_active) return false;
+  for (Staged& staged : pending())
+    if (staged.path == path) {  // written again: the new version replaces the pending one
+      discard_temporary(staged.temporary);
+      staged = {temporary, path, given};
+      return true;
+    }
+  pending().push_back({temporary, path, given});
+  return true;
+}
+
+// A finished temporary: renamed into place now, or held for the commit.
+void place(const std::string& temporary, const Target& target, const std::string& given) {
+  if (!hold(temporary, target.path, given)) rename_into_place(temporary, target.path, given);
+}
+
+// "." for "name", "/" for "/name", "a/b" for "a/b/name".
+std::string folder_of(const std::string& path) {
+  const std::string parent = parent_of(path);
+  if (parent.empty()) return ".";
+  return parent.size() == 1 ? parent : parent.substr(0, parent.size() - 1);
+}
+
+std::string label_of(const std::string& given, const std::string& path) {
+  return shown(given) + (path == given ? "" : " (-> " + shown(path) + ")");
+}
+
+// Throws unless `folder` is a folder this process can create files in.
+void check_writable_folder(const std::string& folder, const std::string& label) {
+  struct stat info {};
+  if (::stat(folder.c_str(), &info) != 0)
+    throw OutputError(label + ": cannot reach the folder " + shown(folder) + " (" + reason(errno) +
+                      ")");
+  if (!S_ISDIR(info.st_mode)) throw OutputError(label + ": " + shown(folder) + " is not a folder");
+  if (::access(folder.c_str(), W_OK | X_OK) != 0)
+    throw OutputError(label + ": cannot write in the folder " + shown(folder) + " (" +
+                      reason(errno) + ")");
 }
 
 // Runs `write` on a descriptor: a temporary file renamed into place, the stream, or stdout.
@@ -307,10 +366,90 @@ void write_through(const std::string& given,
     throw OutputError(where + ": cannot write (" + error + "); the output is lost or incomplete",
                       stopped);
   }
-  if (!temporary.empty()) rename_into_place(temporary, target, given);
+  if (!temporary.empty()) place(temporary, target, given);
 }
 
 }  // namespace
+
+std::string resolved_output_path(const std::string& path) {
+  return follow_links(path);
+}
+
+void check_output_file(const std::string& given) {
+  const Target target = classify(given);
+  if (target.kind != Kind::Replace) return;
+  const std::string label = label_of(given, target.path);
+  const std::string folder = folder_of(target.path);
+  struct stat info {};
+  if (::stat(folder.c_str(), &info) != 0 && (errno == ENOENT || errno == ENOTDIR))
+    throw OutputError(label + ": the folder " + shown(folder) +
+                      (target.path == given ? "" : " that the symbolic link points into") +
+                      " does not exist");
+  check_writable_folder(folder, label);
+}
+
+void check_output_folder(const std::string& given) {
+  if (given.empty()) throw OutputError("an output folder's name is empty");
+  if (is_stdout(given))
+    throw OutputError("- (standard output) cannot take a folder of files; give a folder name");
+  const std::string path = follow_links(given);
+  const std::string label = label_of(given, path);
+  struct stat info {};
+  if (::stat(path.c_str(), &info) == 0) {
+    if (!S_ISDIR(info.st_mode)) throw OutputError(label + ": is a file, not a folder");
+    check_writable_folder(path, label);
+    return;
+  }
+  if (path != given)
+    throw OutputError(shown(given) + ": is a symbolic link to " + shown(path) +
+                      ", which does not exist; give the name of a folder");
+  // Missing: the nearest folder that exists must take the new ones.
+  for (std::string folder = folder_of(path);; folder = folder_of(folder)) {
+    if (::stat(folder.c_str(), &info) == 0) {
+      if (!S_ISDIR(info.st_mode))
+        throw OutputError(label + ": " + shown(folder) + " is a file, not a folder");
+      check_writable_folder(folder, label);
+      return;
+    }
+    if (folder == "." || folder == "/")
+      throw OutputError(label + ": cannot reach the folder " + shown(folder) + " (" +
+                        reason(errno) + ")");
+  }
+}
+
+PendingOutputs::PendingOutputs() {
+  std::lock_guard lock(pending_mutex);
+  pending_active = true;
+}
+
+PendingOutputs::~PendingOutputs() {
+  std::lock_guard lock(pending_mutex);
+  for (const Staged& staged : pending())
+    discard_temporary(staged.temporary);
+  pending().clear();
+  pending_active = false;
+}
+
+void PendingOutputs::commit() {
+  std::vector<Staged> files;
+  {
+    std::lock_guard lock(pending_mutex);
+    files.swap(pending());
+  }
+  for (size_t k = 0; k < files.size(); ++k)
+    try {
+      rename_into_place(files[k].temporary, files[k].path, files[k].given);
+    } catch (const OutputError&) {
+      for (size_t rest = k + 1; rest < files.size(); ++rest)
+        discard_temporary(files[rest].temporary);
+      throw;
+    }
+}
+
+size_t PendingOutputs::size() const {
+  std::lock_guard lock(pending_mutex);
+  return pending().size();
+}
 
 void write_output(const std::string& path, std::string_view bytes) {
   write_through(path, [&](int fd) {
@@ -370,7 +509,7 @@ void write_output_by(const std::string& path,
                           "; nothing was written",
                       stopped);
   }
-  rename_into_place(temporary, target, path);
+  place(temporary, target, path);
 }
 
 struct OutputStream::State {
@@ -392,8 +531,19 @@ void OutputStream::open(const std::string& path) {
   if (target.kind == Kind::Stream) {
     fd = open_stream(target, path);
   } else if (target.kind == Kind::Replace) {
-    fd = ::open(target.path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
-    if (fd < 0) throw OutputError(shown(path) + ": cannot open (" + reason(errno) + ")");
+    bool held = false;
+    {
+      std::lock_guard lock(pending_mutex);
+      held = pending_active;
+    }
+    if (held) {  // into a temporary that the commit renames
+      std::string temporary;
+      fd = create_temporary(target.path, target.exists ? target.mode : 0, temporary);
+      hold(temporary, target.path, path);
+    } else {
+      fd = ::open(target.path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
+      if (fd < 0) throw OutputError(shown(path) + ": cannot open (" + reason(errno) + ")");
+    }
   }
   std::lock_guard lock(state_->mutex);
   state_->fd = fd;

@@ -12,6 +12,12 @@
 // * A directory, a block device or a socket: refused.
 // Every write and the close are checked. Any failure throws OutputError naming the path
 // and the reason; the command then exits with status 5 (130 when a signal ended it).
+//
+// A command with several outputs checks every target before the work starts
+// (check_output_file, check_output_folder) and holds a PendingOutputs while it writes:
+// the files then stay in their temporaries until commit() renames them all, so a run
+// that fails half-way (an output that cannot be written, a lost monitor line) replaces
+// no existing file.
 
 #include <functional>
 #include <memory>
@@ -71,6 +77,45 @@ class OutputStream {
  private:
   struct State;
   std::unique_ptr<State> state_;
+};
+
+// ---- checked before the work starts ----
+
+// The path that a chain of symbolic links finally names (for a dangling link, the path it
+// names, which does not exist yet); `path` itself when it is no link. Throws OutputError
+// for a loop.
+std::string resolved_output_path(const std::string& path);
+
+// Throws OutputError unless `path` can take a file: "-", a character device or FIFO, or a
+// regular file, existing or not, in an existing folder this process can write in (links
+// followed). A directory, a missing folder, a dangling link into a missing folder are
+// refused with a message saying which.
+void check_output_file(const std::string& path);
+
+// The same for a folder that is to hold files (--vtu, render --out): an existing folder
+// this process can write in, or a path whose missing folders can be created (the nearest
+// existing one is a writable folder; none of the way is a file).
+void check_output_folder(const std::string& path);
+
+// ---- committed together ----
+
+// While one is alive, every output that goes to a regular file (write_output,
+// write_output_by, OutputStream) stays in its temporary file, and commit() renames them
+// all into place at the end; destroyed without commit() it removes them, and no existing
+// file is replaced. Writing the same path again replaces the earlier pending version.
+// Outputs to "-", devices and FIFOs are streams and are written at once. One per process
+// at a time (the PNG encoder threads of `render` write through it).
+class PendingOutputs {
+ public:
+  PendingOutputs();
+  ~PendingOutputs();
+  PendingOutputs(const PendingOutputs&) = delete;
+  PendingOutputs& operator=(const PendingOutputs&) = delete;
+  // Renames every pending file into place; throws OutputError when one cannot be (the
+  // rest are then removed).
+  void commit();
+  // How many files wait.
+  size_t size() const;
 };
 
 // True when `path` means standard output; commands then print their report to stderr so

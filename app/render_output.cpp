@@ -19,6 +19,7 @@
 #include "app/data_paths.hpp"
 #include "app/exit_codes.hpp"
 #include "app/interrupt.hpp"
+#include "app/movie_stream.hpp"
 #include "app/output_file.hpp"
 #include "scenes/scene_error.hpp"
 #include "solver/threads.hpp"
@@ -153,47 +154,10 @@ int assemble_movie(const std::string& directory, int count, int fps, const std::
       (std::filesystem::path(directory) / ("frame_%0" + digits + "d.png")).string();
   try {
     write_output_by(movie, [&](const ExternalTarget& target) {
-      std::vector<std::string> arguments{"ffmpeg",
-                                         "-y",
-                                         "-loglevel",
-                                         "error",
-                                         "-framerate",
-                                         std::to_string(fps),
-                                         "-start_number",
-                                         "0",
-                                         "-i",
-                                         input,
-                                         "-frames:v",
-                                         std::to_string(count),
-                                         "-c:v",
-                                         "libx264",
-                                         "-pix_fmt",
-                                         "yuv420p",
-                                         "-vf",
-                                         "pad=ceil(iw/2)*2:ceil(ih/2)*2",
-                                         "-f",
-                                         "mp4"};
-      // A stream cannot be rewound to write the index at the front: a fragmented mp4.
-      if (target.stream)
-        arguments.insert(arguments.end(), {"-movflags", "frag_keyframe+empty_moov"});
-      // "file:" keeps a ':' in the name from being read as a protocol.
-      arguments.push_back(target.file.empty() ? "pipe:1" : "file:" + target.file);
-      std::vector<char*> argv;
-      for (std::string& argument : arguments)
-        argv.push_back(argument.data());
-      argv.push_back(nullptr);
-      // fetic ignores SIGPIPE (a lost write is reported, not fatal); ffmpeg gets the default.
-      posix_spawnattr_t attributes;
-      posix_spawnattr_init(&attributes);
-      sigset_t defaults;
-      sigemptyset(&defaults);
-      sigaddset(&defaults, SIGPIPE);
-      posix_spawnattr_setsigdefault(&attributes, &defaults);
-      posix_spawnattr_setflags(&attributes, POSIX_SPAWN_SETSIGDEF);
       pid_t child = 0;
-      const int spawned =
-          posix_spawnp(&child, "ffmpeg", nullptr, &attributes, argv.data(), environ);
-      posix_spawnattr_destroy(&attributes);
+      const int spawned = spawn_ffmpeg({"-framerate", std::to_string(fps), "-start_number", "0",
+                                        "-i", input, "-frames:v", std::to_string(count)},
+                                       {}, target, -1, child);
       if (spawned != 0) return false;
       // SIGINT/SIGTERM interrupt waitpid (no SA_RESTART): stop ffmpeg then, and wait for
       // it, so that its temporary file is removed only once nobody writes it any more.

@@ -1,6 +1,7 @@
 #include "app/result_json.hpp"
 
 #include "app/state_json.hpp"
+#include "app/version.hpp"
 
 namespace fetic::app {
 
@@ -8,6 +9,7 @@ nlohmann::ordered_json result_json(const solver::Model& model, const solver::Sna
                                    const std::vector<solver::HistoryEntry>& history,
                                    const RunInfo& info, std::vector<ElementMaker>* makers) {
   nlohmann::ordered_json result;
+  result["fetic_version"] = fetic_version();
   result["scene"] = info.scene_path;
   result["title"] = model.title;
   result["model"] = scenes::to_string(model.kind);

@@ -2,10 +2,12 @@
 
 #include <sys/stat.h>
 
+#include <filesystem>
 #include <iostream>
 #include <new>
 #include <stdexcept>
 
+#include "app/data_paths.hpp"
 #include "app/exit_codes.hpp"
 #include "app/interrupt.hpp"
 #include "app/out_of_memory.hpp"
@@ -25,7 +27,27 @@ std::string counts(const scenes::Scene& scene) {
          " subdomains, " + std::to_string(scene.contacts.size()) + " contacts";
 }
 
+// "  looked in: ..." after a scene that could not be opened, when it was looked up by name.
+void report_where_looked(const std::string& path) {
+  std::error_code error;
+  if (std::filesystem::exists(std::filesystem::symlink_status(path, error))) return;
+  const SceneLookup lookup = find_scene(path);
+  if (lookup.found || lookup.looked_in.empty()) return;
+  std::cerr << "  looked in:";
+  for (const std::string& place : lookup.looked_in)
+    std::cerr << "\n    " << scenes::printable(place);
+  if (lookup.looked_in.size() == 1)
+    std::cerr << "\n  (no bundled scene folder found: set FETIC_DATA_DIR to the folder that "
+                 "holds scenes/)";
+  std::cerr << "\n  `fetic scenes` lists the bundled scenes\n";
+}
+
 }  // namespace
+
+CLI::Option* look_up_bundled_scenes(CLI::Option* option) {
+  // (the transform's result replaces the value)
+  return option->transform([](std::string argument) { return resolve_scene(argument); }, "", "");
+}
 
 std::string memory_problem(const scenes::Scene& scene, const MemoryUse& use) {
   if (!memory_check_enabled()) return "";
@@ -77,6 +99,7 @@ std::optional<scenes::Scene> load_scene_or_report(const std::string& path, int& 
       status = kExitInterrupted;
     } else {
       std::cerr << error.what() << '\n';
+      report_where_looked(path);
       status = kExitInvalidScene;
     }
   } catch (const std::bad_alloc&) {

@@ -4,10 +4,20 @@
 #include <optional>
 #include <string>
 
+#include <CLI/CLI.hpp>
+
 #include "app/memory_estimate.hpp"
 #include "scenes/scene.hpp"
 
 namespace fetic::app {
+
+// Makes a scene argument (or each of a list) name a bundled scene when no such path
+// exists relative to the working directory (data_paths.hpp, find_scene).
+CLI::Option* look_up_bundled_scenes(CLI::Option* option);
+
+// The help text of a command's scene argument.
+inline constexpr const char* kSceneArgumentHelp =
+    "Scene file (TOML, see docs/SCENES.md), or a bundled scene's name (fetic scenes)";
 
 // The scene, or nullopt after printing every problem (file:line: message) to stderr, with
 // `status` set: kExitInvalidScene, kExitInterrupted (a signal while waiting on a FIFO) or

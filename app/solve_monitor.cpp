@@ -5,18 +5,23 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include "app/method_options.hpp"
+#include "app/output_options.hpp"
+#include "app/version.hpp"
+#include "scenes/units.hpp"
+
 namespace fetic::app {
 
 void add_monitor_options(CLI::App* command, std::string& path, int& full_every,
                          const std::string& path_help) {
-  command->add_option("--monitor", path, path_help);
+  command->add_option("--monitor", path, path_help)->check(output_name());
   command
       ->add_option("--monitor-full", full_every,
                    "With --monitor: add the state (displacements, contact multipliers) every "
                    "N-th iteration (N = 1 when not given)")
       ->expected(0, 1)
       ->default_str("1")
-      ->check(CLI::PositiveNumber);
+      ->check(integer_in(1, 1'000'000'000));
 }
 
 SolveMonitor::SolveMonitor(const solver::Model& model, int full_every, bool writes)
@@ -95,6 +100,16 @@ void SolveMonitor::observe(const solver::Method& method) {
     lines += line.dump() + '\n';
   }
   working_set_ = working_set;
+  if (!header_written_) {
+    // Written with the first iteration's line, not at open: a FIFO's reader sees both.
+    const nlohmann::ordered_json header = {{"fetic_version", fetic_version()},
+                                           {"units",
+                                            {{"length", model_->units.length},
+                                             {"force", model_->units.force},
+                                             {"stress", scenes::stress_unit(model_->units)}}}};
+    lines = header.dump() + '\n' + lines;
+    header_written_ = true;
+  }
   out_.write(lines);
 }
 

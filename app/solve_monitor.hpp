@@ -53,6 +53,7 @@ class SolveMonitor {
   double load_factor_ = 0.0;
   size_t written_ = 0;             // history entries of this load factor written
   std::vector<char> working_set_;  // per contact pair, as of the last line
+  bool header_written_ = false;    // the first line: version and units
 };
 
 }  // namespace fetic::app

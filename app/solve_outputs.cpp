@@ -2,25 +2,35 @@
 
 #include "app/json_layout.hpp"
 #include "app/output_file.hpp"
+#include "app/output_options.hpp"
 #include "app/state_json.hpp"
 #include "solver/stopwatch.hpp"
 
 namespace fetic::app {
 
 void add_solve_output_options(CLI::App* command, SolveOutputArgs& args) {
-  command->add_option("--json", args.json,
-                      "Write the result file (JSON, docs/SCENES.md) here (- for stdout)");
-  command->add_option("--csv", args.csv,
-                      "Write the iteration history of every load step as CSV here (- for stdout)");
-  command->add_option("--csv-steps", args.csv_steps,
-                      "Write one CSV row per load step here: load factor, displacements of the "
-                      "--csv-node nodes [m], total force [N] and active pairs of every contact");
+  command
+      ->add_option("--json", args.json,
+                   "Write the result file (JSON, docs/SCENES.md) here (- for stdout)")
+      ->check(output_name());
+  command
+      ->add_option("--csv", args.csv,
+                   "Write the iteration history of every load step as CSV here (- for stdout)")
+      ->check(output_name());
+  command
+      ->add_option("--csv-steps", args.csv_steps,
+                   "Write one CSV row per load step here: load factor, displacements of the "
+                   "--csv-node nodes, total force and active pairs of every contact (in "
+                   "scene units, named in the header)")
+      ->check(output_name());
   command->add_option("--csv-node", args.csv_nodes,
                       "A node for --csv-steps: STRUT.from, STRUT.to or STRUT@i (repeatable; "
                       "default: both ends of every contact)");
-  command->add_option("--vtu", args.vtu,
-                      "Write ParaView files here: struts.pvd and contacts.pvd with one .vtu "
-                      "pair per load step");
+  command
+      ->add_option("--vtu", args.vtu,
+                   "Write ParaView files here: struts.pvd and contacts.pvd with one .vtu "
+                   "pair per load step")
+      ->check(output_name(OutputKind::Folder));
   command->add_option("--vtu-format", args.vtu_format, "Data encoding of the .vtu files")
       ->check(CLI::IsMember({"ascii", "binary", "zlib"}))
       ->capture_default_str();

@@ -133,6 +133,16 @@ void write_field_array(std::ostream& out, const VtkArray& array, VtkEncoding enc
   (void)encoding;  // a handful of values: always ASCII, readable in the file
 }
 
+// A String array of one value, as VTK's writer stores it in ASCII: each byte's code, then
+// a 0 that ends the string.
+void write_field_text(std::ostream& out, const std::string& name, const std::string& text) {
+  out << "      <Array type=\"String\" Name=\"" << name
+      << "\" NumberOfTuples=\"1\" format=\"ascii\">\n        ";
+  for (unsigned char c : text)
+    out << static_cast<int>(c) << ' ';
+  out << "0\n      </Array>\n";
+}
+
 void write_data(std::ostream& out, const char* tag, const std::vector<VtkArray>& arrays,
                 VtkEncoding encoding) {
   out << "      <" << tag << ">\n";
@@ -205,10 +215,12 @@ void write_vtu(std::ostream& out, const VtkGrid& grid, VtkEncoding encoding) {
          "header_type=\"UInt64\""
       << (encoding == VtkEncoding::Zlib ? " compressor=\"vtkZLibDataCompressor\"" : "") << ">\n"
       << "  <UnstructuredGrid>\n";
-  if (!grid.field_data.empty()) {
+  if (!grid.field_data.empty() || !grid.field_text.empty()) {
     out << "    <FieldData>\n";
     for (const VtkArray& array : grid.field_data)
       write_field_array(out, array, encoding);
+    for (const auto& [name, text] : grid.field_text)
+      write_field_text(out, name, text);
     out << "    </FieldData>\n";
   }
   out << "    <Piece NumberOfPoints=\"" << grid.points.size() / 3 << "\" NumberOfCells=\""
@@ -229,14 +241,16 @@ void write_pvd(std::ostream& out, const std::vector<PvdEntry>& entries) {
   out << "<?xml version=\"1.0\"?>\n"
       << "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
       << "  <Collection>\n";
+  for (const PvdEntry& entry : entries)
+    out << pvd_entry(entry);
+  out << kPvdClosing;
+}
+
+std::string pvd_entry(const PvdEntry& entry) {
   char time[40];
-  for (const PvdEntry& entry : entries) {
-    std::snprintf(time, sizeof time, "%.17g", entry.time);
-    out << "    <DataSet timestep=\"" << time << "\" group=\"\" part=\"0\" file=\""
-        << xml_escape(entry.file) << "\"/>\n";
-  }
-  out << "  </Collection>\n"
-      << "</VTKFile>\n";
+  std::snprintf(time, sizeof time, "%.17g", entry.time);
+  return "    <DataSet timestep=\"" + std::string(time) + "\" group=\"\" part=\"0\" file=\"" +
+         xml_escape(entry.file) + "\"/>\n";
 }
 
 }  // namespace fetic::app

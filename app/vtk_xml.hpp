@@ -9,6 +9,7 @@
 #include <optional>
 #include <ostream>
 #include <string>
+#include <utility>
 #include <variant>
 #include <vector>
 
@@ -33,6 +34,8 @@ struct VtkGrid {
   std::vector<std::int64_t> offsets;       // per cell: end of its points in connectivity
   std::vector<std::uint8_t> types;         // per cell: VTK cell type (3 line, 9 quad)
   std::vector<VtkArray> point_data, cell_data, field_data;
+  // Field data strings (VTK String arrays of one tuple): the writer's version, the units.
+  std::vector<std::pair<std::string, std::string>> field_text;
 };
 
 inline constexpr std::uint8_t kVtkLine = 3;
@@ -45,6 +48,10 @@ struct PvdEntry {
   std::string file;  // relative to the .pvd
 };
 void write_pvd(std::ostream& out, const std::vector<PvdEntry>& entries);
+// The parts of a .pvd: one entry's line and the lines that close the file (a series grows
+// by overwriting the closing lines with the next entry and them again).
+std::string pvd_entry(const PvdEntry& entry);
+inline constexpr const char* kPvdClosing = "  </Collection>\n</VTKFile>\n";
 
 // Standard base64 (RFC 4648) with padding.
 std::string base64(const std::uint8_t* data, std::size_t size);

@@ -7,7 +7,10 @@
 // strut cell data `strut`, `element`, `subdomain`, `stress_axial` (+ `stress_sxx`,
 // `stress_syy`, `stress_sxy`, `stress_von_mises` in the plane model), `axial_force`;
 // contact cell data `contact`, `pair`, `gap`, `force`, `active`, `normal`; field data
-// `load_factor`, `iteration`, `residual`, `converged`.
+// `load_factor`, `iteration`, `residual`, `converged` and the strings `fetic_version`,
+// `length_unit`, `force_unit`, `stress_unit`. Frame model: the ends a joint joins share
+// one point; point data `rotation`; cell data `bending_moment` (middle),
+// `bending_moment_ends` and `end_rotations` (2 components: the element's two ends).
 
 #include <string>
 #include <vector>
@@ -20,8 +23,9 @@ namespace fetic::app {
 VtkGrid struts_grid(const solver::Model& model, const solver::Snapshot& state);
 VtkGrid contacts_grid(const solver::Model& model, const solver::Snapshot& state);
 
-// Frames written one by one; the .pvd files always list the frames written so far
-// (rewritten after each frame, atomically), so an interrupted run leaves a complete
+// Frames written one by one; the .pvd files always list the frames written so far (the
+// first frame writes them whole, atomically; each later one appends its entry in place,
+// so a series costs time linear in its frames), and an interrupted run leaves a complete
 // series. Throws OutputError naming the file on failure.
 class VtuSeries {
  public:

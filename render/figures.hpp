@@ -1,5 +1,5 @@
 #pragma once
-// The thesis' figures (ALGORITHMS.md section 5), computed by the running code:
+// The thesis' figures (docs/METHODS.md 5), computed by the running code:
 //   2.1  shapes of quadratic forms (positive/negative definite, semidefinite, indefinite)
 //   3.2  steepest-descent path on a 2x2 problem      4.3  CG path on the same problem
 //   9.2  the solved thesis problem, active contacts in red circles

@@ -12,6 +12,8 @@
 
 #include <toml++/toml.h>
 
+#include "scenes/frame_mechanisms.hpp"
+#include "scenes/message_text.hpp"
 #include "scenes/scene_text.hpp"
 #include "scenes/units.hpp"
 #include "scenes/validate_scene.hpp"
@@ -75,40 +77,12 @@ std::string type_name(const toml::node& node) {
   }
 }
 
-std::string quoted(std::string_view text) {
-  return "'" + std::string(text) + "'";
-}
-
-std::string number_text(double value) {
-  std::ostringstream out;
-  out << value;
-  return out.str();
-}
-
-size_t edit_distance(std::string_view a, std::string_view b) {
-  std::vector<size_t> row(b.size() + 1);
-  for (size_t j = 0; j <= b.size(); ++j)
-    row[j] = j;
-  for (size_t i = 1; i <= a.size(); ++i) {
-    size_t diagonal = row[0];
-    row[0] = i;
-    for (size_t j = 1; j <= b.size(); ++j) {
-      const size_t above = row[j];
-      const bool same = std::tolower(static_cast<unsigned char>(a[i - 1])) ==
-                        std::tolower(static_cast<unsigned char>(b[j - 1]));
-      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (same ? 0 : 1)});
-      diagonal = above;
-    }
-  }
-  return row[b.size()];
-}
-
 // " (did you mean 'area'?)" when a known key is close to the unknown one.
 std::string suggestion(std::string_view key, const std::vector<std::string>& known) {
   std::string best;
   size_t best_distance = 3;
   for (const std::string& candidate : known) {
-    const size_t d = edit_distance(key, candidate);
+    const size_t d = edit_distance(key, candidate, LetterCase::Ignored);
     if (d < best_distance) {
       best_distance = d;
       best = candidate;
@@ -847,139 +821,149 @@ class SceneParser {
 // undefined behaviour (found by fuzz/fuzz_scene with UBSan). TOML allows non-ASCII
 // characters only inside strings and comments, so this lexer finds the first one anywhere
 // else, before toml++ sees it. Returns its line and what it is, or line 0.
-Problem misplaced_non_ascii(std::string_view text) {
+class NonAsciiLexer {
+ public:
+  explicit NonAsciiLexer(std::string_view text) : text_(text) {}
+
+  Problem run() {
+    for (size_t i = 0; i < text_.size(); ++i) {
+      const char c = text_[i];
+      const bool ascii = static_cast<unsigned char>(c) < 0x80;
+      if (c == '\n') ++line_;
+      const char* problem = nullptr;
+      switch (state_) {
+        case State::Normal:
+          problem = normal(i, c, ascii);
+          break;
+        case State::Comment:
+          if (c == '\n') end_of_line_outside();
+          break;
+        case State::Basic:
+          if (c == '\\' && i + 1 < text_.size() && text_[i + 1] != '\n')
+            ++i;  // an escaped character
+          else if (c == '"' || c == '\n')
+            end_of_one_line_string(c);
+          break;
+        case State::Literal:
+          if (c == '\'' || c == '\n') end_of_one_line_string(c);
+          break;
+        case State::MultiBasic:
+          problem = multi_basic(i, c, ascii);
+          break;
+        case State::MultiLiteral:
+          if (starts(i, "'''")) end_of_multi_line_string(i, '\'');
+          break;
+      }
+      if (problem)
+        return {line_, std::string("TOML syntax error: a non-ASCII character ") + problem};
+    }
+    return {0, ""};
+  }
+
+ private:
   enum class State { Normal, Comment, Basic, Literal, MultiBasic, MultiLiteral };
-  State state = State::Normal;
-  int line = 1;
-  bool continuation = false;  // after a line-ending backslash in a multi-line basic string
+
+  bool starts(size_t i, std::string_view what) const {
+    return text_.substr(i, what.size()) == what;
+  }
+  void end_of_line_outside() {
+    state_ = State::Normal;
+    in_word_ = false;
+    if (depth_ == 0) value_ = false;
+  }
+  void end_of_one_line_string(char c) {
+    state_ = State::Normal;
+    in_word_ = true;  // a quote right after a string starts none
+    if (c == '\n' && depth_ == 0) value_ = false;
+  }
+  void end_of_multi_line_string(size_t& i, char quote) {
+    state_ = State::Normal;
+    i += 2;
+    for (int extra = 0; extra < 2 && i + 1 < text_.size() && text_[i + 1] == quote; ++extra)
+      ++i;  // up to 2 quotes before the end
+    in_word_ = true;
+  }
+
+  // Outside strings and comments.
+  const char* normal(size_t& i, char c, bool ascii) {
+    if (!ascii) return "outside a string or comment";
+    if (c == '#') {
+      state_ = State::Comment;
+      in_word_ = false;
+    } else if (c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == ',' || c == ']' ||
+               c == '}') {  // toml++'s value terminators
+      in_word_ = false;
+      if (value_ && (c == ']' || c == '}') && depth_ > 0) --depth_;
+      if (c == '\n' && depth_ == 0) value_ = false;
+    } else if (c == '"' || c == '\'') {
+      // In a bare word (0"x, a."b") toml++ scans on through the quote: no string.
+      if (in_word_) return nullptr;
+      const bool triple = starts(i, c == '"' ? "\"\"\"" : "'''");
+      state_ = c == '"' ? (triple ? State::MultiBasic : State::Basic)
+                        : (triple ? State::MultiLiteral : State::Literal);
+      if (triple) i += 2;
+    } else if (!value_) {  // keys and table headers
+      if (c == '=') {
+        value_ = true;
+        depth_ = 0;
+        in_word_ = false;
+      } else {
+        in_word_ = std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.';
+      }
+    } else if (!in_word_ && (c == '[' || c == '{')) {
+      ++depth_;
+    } else if (in_word_ || c != '=') {  // '=' between words: key = value in an inline table
+      in_word_ = true;
+    }
+    return nullptr;
+  }
+
+  // Inside a multi-line basic string: what follows a backslash.
+  const char* multi_basic(size_t& i, char c, bool ascii) {
+    if (continuation_) {
+      if (c == ' ' || c == '\t' || c == '\r' || c == '\n') return nullptr;
+      if (!ascii) return "right after a line-ending backslash in a multi-line string";
+      continuation_ = false;
+    }
+    if (c == '\\') {
+      size_t j = i + 1;
+      while (j < text_.size() && (text_[j] == ' ' || text_[j] == '\t' || text_[j] == '\r'))
+        ++j;
+      if (j < text_.size() && static_cast<unsigned char>(text_[j]) >= 0x80)
+        return "after a backslash in a multi-line string";
+      if (j < text_.size() && text_[j] == '\n')
+        continuation_ = true;
+      else if (i + 1 < text_.size())
+        ++i;  // an escaped character
+    } else if (starts(i, "\"\"\"")) {
+      end_of_multi_line_string(i, '"');
+    }
+    return nullptr;
+  }
+
+  std::string_view text_;
+  State state_ = State::Normal;
+  int line_ = 1;
+  bool continuation_ = false;  // after a line-ending backslash in a multi-line basic string
   // Outside strings and comments: in a value (after '=', until the end of the line outside
   // brackets), brackets open there, and inside a bare word (key, number, date, ...).
-  bool value = false;
-  int depth = 0;
-  bool in_word = false;
-  const auto starts = [&](size_t i, std::string_view what) {
-    return text.substr(i, what.size()) == what;
-  };
-  const auto skip_quotes = [&](size_t& i, char quote) {  // up to 2 quotes before the end
-    for (int extra = 0; extra < 2 && i + 1 < text.size() && text[i + 1] == quote; ++extra)
-      ++i;
-  };
-  for (size_t i = 0; i < text.size(); ++i) {
-    const char c = text[i];
-    const bool ascii = static_cast<unsigned char>(c) < 0x80;
-    if (c == '\n') ++line;
-    switch (state) {
-      case State::Normal: {
-        if (!ascii)
-          return {line, "TOML syntax error: a non-ASCII character outside a string or comment"};
-        if (c == '#') {
-          state = State::Comment;
-          in_word = false;
-          break;
-        }
-        if (c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == ',' || c == ']' ||
-            c == '}') {  // toml++'s value terminators
-          in_word = false;
-          if (value && (c == ']' || c == '}') && depth > 0) --depth;
-          if (c == '\n' && depth == 0) value = false;
-          break;
-        }
-        if (c == '"' || c == '\'') {
-          // In a bare word (0"x, a."b") toml++ scans on through the quote: no string.
-          if (in_word) break;
-          const bool triple = starts(i, c == '"' ? "\"\"\"" : "'''");
-          state = c == '"' ? (triple ? State::MultiBasic : State::Basic)
-                           : (triple ? State::MultiLiteral : State::Literal);
-          if (triple) i += 2;
-          break;
-        }
-        if (!value) {  // keys and table headers
-          if (c == '=') {
-            value = true;
-            depth = 0;
-            in_word = false;
-          } else {
-            in_word =
-                std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.';
-          }
-          break;
-        }
-        if (!in_word && (c == '[' || c == '{')) {
-          ++depth;
-        } else if (!in_word && c == '=') {
-          // key = value inside an inline table
-        } else {
-          in_word = true;
-        }
-        break;
-      }
-      case State::Comment:
-        if (c == '\n') {
-          state = State::Normal;
-          in_word = false;
-          if (depth == 0) value = false;
-        }
-        break;
-      case State::Basic:
-        if (c == '\\' && i + 1 < text.size() && text[i + 1] != '\n')
-          ++i;  // an escaped character
-        else if (c == '"' || c == '\n') {
-          state = State::Normal;
-          in_word = true;  // a quote right after a string starts none
-          if (c == '\n' && depth == 0) value = false;
-        }
-        break;
-      case State::Literal:
-        if (c == '\'' || c == '\n') {
-          state = State::Normal;
-          in_word = true;
-          if (c == '\n' && depth == 0) value = false;
-        }
-        break;
-      case State::MultiBasic:
-        if (continuation) {
-          if (c == ' ' || c == '\t' || c == '\r' || c == '\n') break;
-          if (!ascii)
-            return {line,
-                    "TOML syntax error: a non-ASCII character right after a line-ending "
-                    "backslash in a multi-line string"};
-          continuation = false;
-        }
-        if (c == '\\') {
-          size_t j = i + 1;
-          while (j < text.size() && (text[j] == ' ' || text[j] == '\t' || text[j] == '\r'))
-            ++j;
-          if (j < text.size() && static_cast<unsigned char>(text[j]) >= 0x80)
-            return {line,
-                    "TOML syntax error: a non-ASCII character after a backslash in a "
-                    "multi-line string"};
-          if (j < text.size() && text[j] == '\n')
-            continuation = true;
-          else if (i + 1 < text.size())
-            ++i;  // an escaped character
-        } else if (starts(i, "\"\"\"")) {
-          state = State::Normal;
-          i += 2;
-          skip_quotes(i, '"');
-          in_word = true;
-        }
-        break;
-      case State::MultiLiteral:
-        if (starts(i, "'''")) {
-          state = State::Normal;
-          i += 2;
-          skip_quotes(i, '\'');
-          in_word = true;
-        }
-        break;
-    }
-  }
-  return {0, ""};
+  bool value_ = false;
+  int depth_ = 0;
+  bool in_word_ = false;
+};
+
+Problem misplaced_non_ascii(std::string_view text) {
+  return NonAsciiLexer(text).run();
 }
 
 }  // namespace
 
-Scene parse_scene(std::string_view text, const std::string& path) {
+namespace {
+
+// parse_scene(), with `stop` asked between the steps of checks that take long on large
+// scenes (the frame mechanism check): then a SceneError says the loading was interrupted.
+Scene parse_scene_text(std::string_view text, const std::string& path,
+                       const std::function<bool()>& stop) {
   // TOML allows no NUL byte anywhere; toml++ 3.3 trips over some (after '[' an internal
   // assertion, found by fuzz/fuzz_scene). Refuse them up front with a clearer message.
   if (const size_t nul = text.find('\0'); nul != std::string_view::npos) {
@@ -1002,13 +986,23 @@ Scene parse_scene(std::string_view text, const std::string& path) {
   scene.path = path;
   std::vector<Problem> problems;
   SceneParser(scene, problems).parse(root);
-  if (problems.empty()) problems = validate_scene(scene);
+  try {
+    if (problems.empty()) problems = validate_scene(scene, stop);
+  } catch (const MechanismCheckStopped&) {
+    throw SceneError(path, {{1, "interrupted while checking the scene"}});
+  }
   if (!problems.empty()) throw SceneError(path, std::move(problems));
   return scene;
 }
 
+}  // namespace
+
+Scene parse_scene(std::string_view text, const std::string& path) {
+  return parse_scene_text(text, path, {});
+}
+
 Scene load_scene_file(const std::string& path, const std::function<bool()>& stop) {
-  return parse_scene(read_scene_text(path, stop), path);
+  return parse_scene_text(read_scene_text(path, stop), path, stop);
 }
 
 }  // namespace fetic::scenes

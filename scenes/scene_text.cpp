@@ -42,8 +42,9 @@ std::string read_text_file(const std::string& path, std::size_t max_bytes, const
   const std::string limit_text = "the limit for a " + what + " is " +
                                  mebibytes(static_cast<double>(max_bytes)) + " (" +
                                  std::to_string(max_bytes) + " bytes)";
-  const int fd = retrying([&] { return ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NOCTTY); },
-                          stop, path, ("opening the " + what + " (a FIFO without a writer?)").c_str());
+  const int fd =
+      retrying([&] { return ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NOCTTY); }, stop, path,
+               ("opening the " + what + " (a FIFO without a writer?)").c_str());
   if (fd < 0) throw read_error(path, "cannot open the " + what + " (" + std::strerror(errno) + ")");
   struct Closer {
     int fd;
@@ -69,7 +70,8 @@ std::string read_text_file(const std::string& path, std::size_t max_bytes, const
     }
     const ssize_t n = retrying([&] { return ::read(fd, text.data() + used, text.size() - used); },
                                stop, path, ("reading the " + what).c_str());
-    if (n < 0) throw read_error(path, "cannot read the " + what + " (" + std::strerror(errno) + ")");
+    if (n < 0)
+      throw read_error(path, "cannot read the " + what + " (" + std::strerror(errno) + ")");
     if (n == 0) break;
     used += static_cast<size_t>(n);
   }
@@ -85,138 +87,168 @@ std::string read_scene_text(const std::string& path, const std::function<bool()>
   return read_text_file(path, kMaxSceneFileBytes, "scene file", stop);
 }
 
-Problem nesting_problem(std::string_view text) {
-  // Levels: the root table is 0. A header segment counts 2 (an array of tables adds a
-  // table inside an array at each of its segments), a key segment 1, an array or inline
-  // table 1. Over-counting is harmless: a scene nests 4 deep.
+namespace {
+
+// Levels: the root table is 0. A header segment counts 2 (an array of tables adds a
+// table inside an array at each of its segments), a key segment 1, an array or inline
+// table 1. Over-counting is harmless: a scene nests 4 deep.
+class NestingScanner {
+ public:
+  explicit NestingScanner(std::string_view text) : text_(text) {}
+
+  // The line where the nesting first goes deeper than kMaxNesting, or 0.
+  int run() {
+    const size_t size = text_.size();
+    for (size_t i = 0; i < size && deepest_line_ == 0; ++i) {
+      const char c = text_[i];
+      if (c == '\n') {
+        ++line_;
+        if (containers_.empty()) mode_ = Mode::LineStart;
+      } else if (c == ' ' || c == '\t' || c == '\r') {
+        continue;
+      } else if (c == '#') {
+        while (i + 1 < size && text_[i + 1] != '\n')
+          ++i;
+      } else if (c == '"' || c == '\'') {  // a string: a key segment, or a value to skip
+        if (mode_ == Mode::LineStart) start_key(header_depth_);
+        if (mode_ != Mode::Value) segment();
+        skip_string(i, c);
+      } else {
+        structure(i, c);
+      }
+    }
+    return deepest_line_;
+  }
+
+ private:
   enum class Mode { LineStart, Header, Key, Value };
   struct Container {
     char kind;
     int outer;  // the depth of the value that holds it
   };
-  Mode mode = Mode::LineStart;
-  std::vector<Container> containers;
-  int line = 1;
-  int header_depth = 0;
-  int key_depth = 0, value_depth = 0;
-  bool segment_open = false;
-  int deepest_line = 0;
-  const auto check = [&](int depth) {
-    if (depth > kMaxNesting && deepest_line == 0) deepest_line = line;
-  };
-  const auto start_key = [&](int base) {
-    mode = Mode::Key;
-    key_depth = base;
-    segment_open = false;
-  };
+
+  void check(int depth) {
+    if (depth > kMaxNesting && deepest_line_ == 0) deepest_line_ = line_;
+  }
+  void start_key(int base) {
+    mode_ = Mode::Key;
+    key_depth_ = base;
+    segment_open_ = false;
+  }
   // A key or header segment starts at a bare character or a quoted key.
-  const auto segment = [&] {
-    if (segment_open) return;
-    segment_open = true;
-    if (mode == Mode::Header) {
-      header_depth += 2;
-      check(header_depth);
+  void segment() {
+    if (segment_open_) return;
+    segment_open_ = true;
+    if (mode_ == Mode::Header) {
+      header_depth_ += 2;
+      check(header_depth_);
     } else {
-      ++key_depth;
-      check(key_depth);
+      ++key_depth_;
+      check(key_depth_);
     }
-  };
-  const size_t size = text.size();
-  for (size_t i = 0; i < size && deepest_line == 0; ++i) {
-    const char c = text[i];
-    if (c == '\n') {
-      ++line;
-      if (containers.empty()) mode = Mode::LineStart;
-      continue;
-    }
-    if (c == ' ' || c == '\t' || c == '\r') continue;
-    if (c == '#') {
-      while (i + 1 < size && text[i + 1] != '\n')
-        ++i;
-      continue;
-    }
-    if (c == '"' || c == '\'') {  // a string: a key segment, or a value to skip
-      const bool triple = i + 2 < size && text[i + 1] == c && text[i + 2] == c;
-      if (mode == Mode::LineStart) start_key(header_depth);
-      if (mode != Mode::Value) segment();
-      i += triple ? 3 : 1;
-      for (; i < size; ++i) {
-        if (text[i] == '\n') {
-          ++line;
-          if (!triple) break;  // an unterminated one-line string: toml++ reports it
-        }
-        if (c == '"' && text[i] == '\\') {
-          if (i + 1 < size && text[i + 1] == '\n') ++line;
-          ++i;
-          continue;
-        }
-        if (text[i] != c) continue;
-        if (!triple) break;
-        if (i + 2 < size && text[i + 1] == c && text[i + 2] == c) {
-          i += 2;
-          while (i + 1 < size && text[i + 1] == c)  // up to two quotes before the end
-            ++i;
-          break;
-        }
+  }
+  // From the opening quote at i to the closing one.
+  void skip_string(size_t& i, char quote) {
+    const size_t size = text_.size();
+    const bool triple = i + 2 < size && text_[i + 1] == quote && text_[i + 2] == quote;
+    i += triple ? 3 : 1;
+    for (; i < size; ++i) {
+      if (text_[i] == '\n') {
+        ++line_;
+        if (!triple) break;  // an unterminated one-line string: toml++ reports it
       }
-      continue;
+      if (quote == '"' && text_[i] == '\\') {
+        if (i + 1 < size && text_[i + 1] == '\n') ++line_;
+        ++i;
+        continue;
+      }
+      if (text_[i] != quote) continue;
+      if (!triple) break;
+      if (i + 2 < size && text_[i + 1] == quote && text_[i + 2] == quote) {
+        i += 2;
+        while (i + 1 < size && text_[i + 1] == quote)  // up to two quotes before the end
+          ++i;
+        break;
+      }
     }
-    switch (mode) {
+  }
+  // Anything else: headers, keys, values and their brackets.
+  void structure(size_t& i, char c) {
+    const bool doubled = i + 1 < text_.size() && text_[i + 1] == c;
+    switch (mode_) {
       case Mode::LineStart:
         if (c == '[') {
-          mode = Mode::Header;
-          header_depth = 0;
-          segment_open = false;
-          if (i + 1 < size && text[i + 1] == '[') ++i;
+          mode_ = Mode::Header;
+          header_depth_ = 0;
+          segment_open_ = false;
+          if (doubled) ++i;
           break;
         }
-        start_key(header_depth);
+        start_key(header_depth_);
         [[fallthrough]];
       case Mode::Key:
         if (c == '.') {
-          segment_open = false;
+          segment_open_ = false;
         } else if (c == '=') {
-          mode = Mode::Value;
-          value_depth = key_depth;
-        } else if (c == '}' && !containers.empty()) {  // an empty inline table
-          value_depth = containers.back().outer;
-          containers.pop_back();
-          mode = Mode::Value;
+          mode_ = Mode::Value;
+          value_depth_ = key_depth_;
+        } else if (c == '}' && !containers_.empty()) {  // an empty inline table
+          value_depth_ = containers_.back().outer;
+          containers_.pop_back();
+          mode_ = Mode::Value;
         } else {
           segment();
         }
         break;
       case Mode::Header:
         if (c == '.') {
-          segment_open = false;
+          segment_open_ = false;
         } else if (c == ']') {
-          if (i + 1 < size && text[i + 1] == ']') ++i;
-          mode = Mode::LineStart;
+          if (doubled) ++i;
+          mode_ = Mode::LineStart;
         } else {
           segment();
         }
         break;
       case Mode::Value:
-        if (c == '[' || c == '{') {
-          containers.push_back({c, value_depth});
-          ++value_depth;  // the elements of an array, the keys of an inline table
-          check(value_depth);
-          if (c == '{') start_key(value_depth);
-        } else if (c == ']' || c == '}') {
-          if (!containers.empty()) {
-            value_depth = containers.back().outer;
-            containers.pop_back();
-          }
-        } else if (c == ',' && !containers.empty() && containers.back().kind == '{') {
-          start_key(containers.back().outer + 1);
-        }
+        value(c);
         break;
     }
   }
-  if (deepest_line == 0) return {0, ""};
-  return {deepest_line, "the TOML nests deeper than " + std::to_string(kMaxNesting) +
-                            " levels (table headers, dotted keys, arrays and inline tables "
-                            "together; a scene needs 4)"};
+  void value(char c) {
+    if (c == '[' || c == '{') {
+      containers_.push_back({c, value_depth_});
+      ++value_depth_;  // the elements of an array, the keys of an inline table
+      check(value_depth_);
+      if (c == '{') start_key(value_depth_);
+    } else if (c == ']' || c == '}') {
+      if (!containers_.empty()) {
+        value_depth_ = containers_.back().outer;
+        containers_.pop_back();
+      }
+    } else if (c == ',' && !containers_.empty() && containers_.back().kind == '{') {
+      start_key(containers_.back().outer + 1);
+    }
+  }
+
+  std::string_view text_;
+  Mode mode_ = Mode::LineStart;
+  std::vector<Container> containers_;
+  int line_ = 1;
+  int header_depth_ = 0;
+  int key_depth_ = 0, value_depth_ = 0;
+  bool segment_open_ = false;
+  int deepest_line_ = 0;
+};
+
+}  // namespace
+
+Problem nesting_problem(std::string_view text) {
+  const int line = NestingScanner(text).run();
+  if (line == 0) return {0, ""};
+  return {line, "the TOML nests deeper than " + std::to_string(kMaxNesting) +
+                    " levels (table headers, dotted keys, arrays and inline tables "
+                    "together; a scene needs 4)"};
 }
 
 }  // namespace fetic::scenes

@@ -12,5 +12,6 @@ set(FETIC_SCENE_LOADER_SOURCES
   validate_frame.cpp
   frame_kinematics.cpp
   null_space.cpp
+  sparse_null_space.cpp
   magnitudes.cpp
   write_scene.cpp)

@@ -10,24 +10,14 @@
 #include <sstream>
 #include <tuple>
 
-#include "scenes/frame_kinematics.hpp"
+#include "scenes/frame_mechanisms.hpp"
 #include "scenes/magnitudes.hpp"
+#include "scenes/message_text.hpp"
 #include "scenes/scene_geometry.hpp"
 #include "scenes/units.hpp"
 
 namespace fetic::scenes {
 namespace {
-
-std::string quoted(const std::string& text) {
-  return "'" + text + "'";
-}
-
-std::string number_text(double value) {
-  std::ostringstream out;
-  out.precision(6);
-  out << value;
-  return out.str();
-}
 
 bool outside_magnitude_range(double value) {
   const double magnitude = std::abs(value);
@@ -165,9 +155,9 @@ void check_contacts(const Scene& scene, const std::map<NodeKey, int>& joint_of_n
   }
 }
 
-void check_mechanisms(const Scene& scene, std::vector<Problem>& problems) {
-  const FrameKinematics kinematics = frame_kinematics(scene);
-  for (const Mechanism& mechanism : frame_mechanisms(scene, kinematics)) {
+void check_mechanisms(const Scene& scene, std::vector<Problem>& problems,
+                      const std::function<bool()>& stop) {
+  for (const Mechanism& mechanism : frame_mechanisms(scene, stop)) {
     std::string names;
     for (size_t i = 0; i < mechanism.struts.size() && i < 8; ++i)
       names += (names.empty() ? "" : ", ") + quoted(scene.struts[mechanism.struts[i]].name);
@@ -185,12 +175,13 @@ void check_mechanisms(const Scene& scene, std::vector<Problem>& problems) {
 
 }  // namespace
 
-void validate_frame(Scene& scene, std::vector<Problem>& problems) {
+void validate_frame(Scene& scene, std::vector<Problem>& problems,
+                    const std::function<bool()>& stop) {
   check_magnitudes(scene, problems);
   std::map<NodeKey, int> joint_of_node;
   check_joints(scene, problems, joint_of_node);
   check_contacts(scene, joint_of_node, problems, scene.warnings);
-  if (problems.empty()) check_mechanisms(scene, problems);
+  if (problems.empty()) check_mechanisms(scene, problems, stop);
 }
 
 }  // namespace fetic::scenes

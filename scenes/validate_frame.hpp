@@ -5,6 +5,7 @@
 // stiffness and moments, and mechanisms (frame_kinematics.hpp).
 
 #include <cstddef>
+#include <functional>
 #include <vector>
 
 #include "scenes/scene.hpp"
@@ -17,6 +18,7 @@ namespace fetic::scenes {
 inline constexpr std::size_t kMaxJointEnds = 64;
 
 // Appends the problems found; adds warnings to scene.warnings.
-void validate_frame(Scene& scene, std::vector<Problem>& problems);
+void validate_frame(Scene& scene, std::vector<Problem>& problems,
+                    const std::function<bool()>& stop = {});
 
 }  // namespace fetic::scenes

@@ -8,6 +8,7 @@
 
 #include "scenes/load_scene.hpp"
 #include "scenes/magnitudes.hpp"
+#include "scenes/message_text.hpp"
 #include "scenes/scene_geometry.hpp"
 #include "scenes/validate_frame.hpp"
 
@@ -16,17 +17,6 @@ namespace {
 
 // Geometric comparisons are relative to the size of the struts involved.
 constexpr double kRelativeTolerance = kGapRoundingTolerance;
-
-std::string quoted(const std::string& text) {
-  return "'" + text + "'";
-}
-
-std::string number_text(double value) {
-  std::ostringstream out;
-  out.precision(6);
-  out << value;
-  return out.str();
-}
 
 void check_strut_geometry(const Scene& scene, std::vector<Problem>& problems) {
   for (const Strut& strut : scene.struts) {
@@ -254,7 +244,7 @@ void check_plane_struts_held(const Scene& scene, std::vector<Problem>& problems)
 
 }  // namespace
 
-std::vector<Problem> validate_scene(Scene& scene) {
+std::vector<Problem> validate_scene(Scene& scene, const std::function<bool()>& stop) {
   std::vector<Problem> problems;
   scene.warnings.clear();
   check_strut_geometry(scene, problems);
@@ -262,7 +252,7 @@ std::vector<Problem> validate_scene(Scene& scene) {
   check_magnitudes(scene, problems);
   if (!problems.empty()) return problems;
   if (scene.model == ModelKind::Frame) {
-    validate_frame(scene, problems);
+    validate_frame(scene, problems, stop);
     return problems;
   }
   check_contacts(scene, problems, scene.warnings);

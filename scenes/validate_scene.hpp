@@ -3,6 +3,7 @@
 // contact geometry (facing, collinear, no overlap, matching faces) and whether every
 // strut can be held by a support, directly or through contacts.
 
+#include <functional>
 #include <vector>
 
 #include "scenes/scene.hpp"
@@ -11,6 +12,7 @@
 namespace fetic::scenes {
 
 // Returns the problems that make the scene invalid; fills scene.warnings.
-std::vector<Problem> validate_scene(Scene& scene);
+// `stop`: asked between the steps of long checks (frame_kinematics.hpp).
+std::vector<Problem> validate_scene(Scene& scene, const std::function<bool()>& stop = {});
 
 }  // namespace fetic::scenes

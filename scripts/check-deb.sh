@@ -14,7 +14,7 @@ fresh=false
 [ "${1:-}" = "--fresh" ] && fresh=true
 
 [ -f build/CMakeCache.txt ] || { echo "check-deb: build first (scripts/setup.sh)"; exit 1; }
-cmake --build build --target fetic
+cmake --build build --target fetic fetic_man_page fetic_changelog
 rm -f build/fetic_*.deb
 (cd build && cpack -G DEB > cpack.log 2>&1) || { cat build/cpack.log; exit 1; }
 deb=$(ls "$PWD"/build/fetic_*.deb)
@@ -38,6 +38,24 @@ for lib in $(readelf -d "$tmp/root/usr/bin/fetic" | sed -n 's/.*NEEDED.*\[\(.*\)
 done
 echo "check-deb: every linked library is covered by Depends"
 
+# The documentation as installed: every relative link of README.md and docs/*.md (pages
+# and pictures) resolves inside the package; the man page and the copyright are there.
+doc="$tmp/root/usr/share/doc/fetic"
+for page in "$doc/README.md" "$doc"/docs/*.md; do
+  for link in $(grep -o '](\([^)#]*\)' "$page" | sed 's/^](//; s/)$//' | grep -v '^[a-z]*:' | sort -u); do
+    [ -e "$(dirname "$page")/$link" ] ||
+      { echo "check-deb: ${page#"$tmp/root"} links to $link, which the package lacks"; exit 1; }
+  done
+done
+test -s "$doc/copyright" && test -s "$doc/changelog.Debian.gz"
+zcat "$tmp/root/usr/share/man/man1/fetic.1.gz" | grep -q '^.SH "FETIC SOLVE"'
+test -x "$tmp/root/usr/share/fetic/scripts/vtu_picture.py"
+echo "check-deb: documentation links resolve; man page, copyright and helper script installed"
+if command -v lintian > /dev/null; then
+  lintian --fail-on error "$deb" | tee "$tmp/lintian.txt" || { echo "check-deb: lintian found errors"; exit 1; }
+  echo "check-deb: lintian: $(grep -c '^E:' "$tmp/lintian.txt" || true) errors, $(grep -c '^W:' "$tmp/lintian.txt" || true) warnings"
+fi
+
 run_installed() {  # the commands a user runs after installing, from an empty directory
   cat <<'SCRIPT'
 set -euo pipefail
@@ -45,7 +63,8 @@ work=$(mktemp -d) && cd "$work"
 fetic --version
 fetic figures --out figures
 test "$(ls figures/*.png | wc -l)" -ge 6
-fetic solve /usr/share/fetic/scenes/two_bars.toml --load-steps 0:2:5 --json r.json \
+fetic scenes | grep -q two_bars
+fetic solve two_bars --load-steps 0:2:5 --json r.json \
   --csv-steps curve.csv --vtu vtu --quiet
 test -s r.json && test -s curve.csv && test -s vtu/struts.pvd
 fetic bench-render --frames 3 --size 320x200 > /dev/null

@@ -1,26 +1,35 @@
 #!/usr/bin/env bash
-# Installs every build and test dependency from Debian 12's packages.
+# Installs fetic's dependencies from Debian 12's packages.
+#   scripts/install-deps.sh          what building and running the program needs
+#                                    (README's first command, scripts/setup.sh)
+#   scripts/install-deps.sh --all    that, and what the tests, benchmarks, package check,
+#                                    fuzzing and window tests need (scripts/test.sh, CI)
 set -euo pipefail
-packages=(
+program=(
   cmake ninja-build g++ pkg-config
-  libeigen3-dev libsuitesparse-dev          # linear algebra, CHOLMOD
+  libeigen3-dev libsuitesparse-dev          # linear algebra, CHOLMOD, SuiteSparseQR
   libtomlplusplus-dev libcli11-dev nlohmann-json3-dev   # scenes, command line, results
-  libimgui-dev libglfw3-dev libstb-dev      # window, overlay, PNG decoding in tests
+  libimgui-dev libglfw3-dev libstb-dev      # window, overlay, text and PNG reading
   libspng-dev                               # PNG frames (8x faster than stb_image_write)
   libegl-dev libegl1-mesa-dev libgl-dev libgles-dev libopengl-dev libegl-mesa0 libgl1-mesa-dri
   fonts-dejavu-core                         # text in rendered frames
+  zlib1g-dev                                # compressed ParaView (.vtu) output
+  libopenmpi-dev                            # distributed solves (mpirun -np N fetic solve)
+)
+rest=(
   catch2 libcgal-dev libgmp-dev libmpfr-dev # tests: Catch2, CGAL's exact QP solver
   coinor-libipopt-dev                       # benchmark: a general-purpose QP solver
   xvfb xauth xdotool                        # window tests
-  ffmpeg                                    # movies
-  zlib1g-dev                                # compressed ParaView (.vtu) output
+  ffmpeg                                    # movies (the program runs without; tests make movies)
   python3-vtk9                              # tests: VTK's reader checks the .vtu files
-  dpkg-dev file                             # cpack -G DEB (dpkg-shlibdeps finds the dependencies)
-  libopenmpi-dev openmpi-bin                # distributed solves (mpirun -np N fetic solve)
+  openmpi-bin                               # mpirun, for the distributed tests
+  dpkg-dev file lintian                     # cpack -G DEB (dpkg-shlibdeps), the package check
   # scripts/fuzz.sh: clang with libFuzzer and the ASan/UBSan runtimes for clang, and
   # llvm-symbolizer for readable crash stacks (g++'s sanitizers need nothing more)
   clang-14 libclang-rt-14-dev llvm-14
 )
+packages=("${program[@]}")
+[ "${1:-}" = "--all" ] && packages+=("${rest[@]}")
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Writes scenes/thesis.toml, the thesis' test problem (chapter 9, ALGORITHMS.md section 5).
+"""Writes scenes/thesis.toml, the thesis' test problem (chapter 9, docs/METHODS.md 5).
 
 50 pairs of opposing horizontal bars, 5 nodes and 2 subdomains each (500 unknowns).
 Left bars: clamped at their left ends, lengths growing upward, so the gaps shrink from

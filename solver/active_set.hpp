@@ -1,5 +1,5 @@
 #pragma once
-// The primal active-set method (ALGORITHMS.md 4.4, Nocedal & Wright Alg. 16.3) on the
+// The primal active-set method (docs/METHODS.md 4.4, Nocedal & Wright Alg. 16.3) on the
 // assembled problem. K is factorized once, strut by strut; each working-set subproblem
 //   min 1/2 p'K p + g'p  s.t.  a_k'p = 0 (k in W),   g = K x - t f
 // is solved through the small dense saddle system of the Schur complement S = A K^+ A'

@@ -8,6 +8,8 @@
 
 #include <Eigen/Dense>
 
+#include "scenes/union_find.hpp"
+
 namespace fetic::solver {
 namespace {
 
@@ -90,76 +92,118 @@ Eigen::VectorXd nonnegative_least_squares(const Eigen::MatrixXd& M, const Eigen:
   return x;
 }
 
+// The free motions of a frame model (scenes/frame_kinematics), and what the loads and the
+// contacts do along them.
+struct FrameMotions {
+  const Model& model;
+  const scenes::FrameKinematics& kinematics = model.kinematics;
+  const std::vector<scenes::FreeMotion>& motions = kinematics.motions;
+  int k = static_cast<int>(motions.size());
+  std::vector<std::vector<int>> motions_of = by_group();
+
+  std::vector<std::vector<int>> by_group() const {
+    std::vector<std::vector<int>> list(kinematics.groups.size());
+    for (int m = 0; m < k; ++m)
+      list[static_cast<size_t>(motions[m].group)].push_back(m);
+    return list;
+  }
+  // Displacement and rotation of a node of a strut per unit of motion m.
+  auto at(int m, int strut, int node) const {
+    const Vec2& p = model.struts[strut].nodes[node];
+    return scenes::motion_at(kinematics, motions[m], strut, {p.x(), p.y()});
+  }
+  // Work of the loads per unit of each motion; `load_scale` gets their size.
+  Eigen::VectorXd load_work(double load_factor, double& load_scale) const {
+    Eigen::VectorXd work = Eigen::VectorXd::Zero(k);
+    load_scale = 0.0;
+    for (size_t s = 0; s < model.struts.size(); ++s) {
+      const Eigen::VectorXd& f = model.loads[s];
+      load_scale += f.lpNorm<1>();
+      for (int node = 0; node < model.struts[s].node_count(); ++node) {
+        if (f.segment<3>(3 * node).isZero()) continue;
+        for (int m : motions_of[kinematics.group_of_strut[s]]) {
+          const auto u = at(m, static_cast<int>(s), node);
+          work(m) +=
+              load_factor * (f(3 * node) * u[0] + f(3 * node + 1) * u[1] + f(3 * node + 2) * u[2]);
+        }
+      }
+    }
+    return work;
+  }
+  // Change of a contact gap per unit of a motion of the two groups it touches (A Z).
+  struct Entry {
+    int pair, motion;
+    double value;
+  };
+  // The entries of A Z; `sets` joins the motions that a contact changes together.
+  std::vector<Entry> gap_changes(scenes::UnionFind& sets) const {
+    std::vector<Entry> entries;
+    for (int p = 0; p < static_cast<int>(model.pairs.size()); ++p) {
+      const ContactPair& pair = model.pairs[p];
+      const int ga = kinematics.group_of_strut[pair.strut_a];
+      const int gb = kinematics.group_of_strut[pair.strut_b];
+      std::vector<int> touched = motions_of[ga];
+      if (gb != ga) touched.insert(touched.end(), motions_of[gb].begin(), motions_of[gb].end());
+      int first = -1;
+      for (int m : touched) {
+        const auto ua = at(m, pair.strut_a, pair.node_a);
+        const auto ub = at(m, pair.strut_b, pair.node_b);
+        const double value = pair.normal.x() * (ua[0] - ub[0]) + pair.normal.y() * (ua[1] - ub[1]);
+        if (std::abs(value) <= 1e-12) continue;
+        entries.push_back({p, m, value});
+        if (first < 0) first = m;
+        sets.join(m, first);
+      }
+    }
+    return entries;
+  }
+  // The struts that the combination `amount` of the motions `members` moves.
+  std::vector<int> moved_struts(const std::vector<int>& members,
+                                const Eigen::VectorXd& amount) const {
+    std::vector<int> moved;
+    std::vector<char> group_seen(kinematics.groups.size(), 0);
+    for (int m : members) {
+      const int g = motions[m].group;
+      if (group_seen[g]) continue;
+      group_seen[g] = 1;
+      for (int s : kinematics.groups[g]) {
+        double largest = 0.0;
+        for (int node : {0, model.struts[s].nx}) {
+          double ux = 0.0, uy = 0.0;
+          for (size_t i = 0; i < members.size(); ++i) {
+            if (motions[members[i]].group != g) continue;
+            const auto u = at(members[i], s, node);
+            ux += amount(static_cast<int>(i)) * u[0];
+            uy += amount(static_cast<int>(i)) * u[1];
+          }
+          largest = std::max(largest, std::hypot(ux, uy));
+        }
+        if (largest > 1e-6 * amount.norm()) moved.push_back(s);
+      }
+    }
+    std::sort(moved.begin(), moved.end());
+    return moved;
+  }
+};
+
 // Frame model: the loads' work along the free motions (scenes/frame_kinematics) must be
 // balanced by compressive contact forces: Z'f = (A Z)' lambda for some lambda >= 0
 // (Farkas), cluster by cluster of motions that contacts link. Otherwise the residual
 // y = Z'f - (A Z)' lambda of the closest balance is a motion that opens every contact it
 // touches ((A Z) y <= 0) and along which the loads do work: the struts it moves escape.
 std::string frame_unbounded_struts(const Model& model, double load_factor) {
-  const scenes::FrameKinematics& kinematics = model.kinematics;
-  const auto& motions = kinematics.motions;
-  const int k = static_cast<int>(motions.size());
+  const FrameMotions frame{model};
+  const int k = frame.k;
   if (k == 0) return {};
-  std::vector<std::vector<int>> motions_of(kinematics.groups.size());
-  for (int m = 0; m < k; ++m)
-    motions_of[motions[m].group].push_back(m);
-  auto motion_of = [&](int m, int strut, int node) {
-    const Vec2& p = model.struts[strut].nodes[node];
-    return scenes::motion_at(kinematics, motions[m], strut, {p.x(), p.y()});
-  };
-  // Work of the loads per unit of each motion, and their scale.
-  Eigen::VectorXd work = Eigen::VectorXd::Zero(k);
   double load_scale = 0.0;
-  for (size_t s = 0; s < model.struts.size(); ++s) {
-    const Eigen::VectorXd& f = model.loads[s];
-    load_scale += f.lpNorm<1>();
-    const auto& group_motions = motions_of[kinematics.group_of_strut[s]];
-    if (group_motions.empty()) continue;
-    for (int node = 0; node < model.struts[s].node_count(); ++node) {
-      if (f.segment<3>(3 * node).isZero()) continue;
-      for (int m : group_motions) {
-        const auto u = motion_of(m, static_cast<int>(s), node);
-        work(m) +=
-            load_factor * (f(3 * node) * u[0] + f(3 * node + 1) * u[1] + f(3 * node + 2) * u[2]);
-      }
-    }
-  }
-  // Change of each contact gap per unit of each motion of the two groups it touches (A Z),
-  // and the clusters of motions that contacts change together.
-  struct Entry {
-    int pair, motion;
-    double value;
-  };
-  std::vector<Entry> entries;
-  std::vector<int> parent(k);
-  std::iota(parent.begin(), parent.end(), 0);
-  auto root = [&](int i) {
-    while (parent[i] != i)
-      i = parent[i] = parent[parent[i]];
-    return i;
-  };
-  for (int p = 0; p < static_cast<int>(model.pairs.size()); ++p) {
-    const ContactPair& pair = model.pairs[p];
-    const int ga = kinematics.group_of_strut[pair.strut_a];
-    const int gb = kinematics.group_of_strut[pair.strut_b];
-    std::vector<int> touched = motions_of[ga];
-    if (gb != ga) touched.insert(touched.end(), motions_of[gb].begin(), motions_of[gb].end());
-    int first = -1;
-    for (int m : touched) {
-      const auto ua = motion_of(m, pair.strut_a, pair.node_a);
-      const auto ub = motion_of(m, pair.strut_b, pair.node_b);
-      const double value = pair.normal.x() * (ua[0] - ub[0]) + pair.normal.y() * (ua[1] - ub[1]);
-      if (std::abs(value) <= 1e-12) continue;
-      entries.push_back({p, m, value});
-      if (first < 0) first = m;
-      parent[root(m)] = root(first);
-    }
-  }
+  const Eigen::VectorXd work = frame.load_work(load_factor, load_scale);
+  scenes::UnionFind sets(k);
+  const std::vector<FrameMotions::Entry> entries = frame.gap_changes(sets);
   std::vector<std::vector<int>> members_of(k), entries_of(k);
   for (int m = 0; m < k; ++m)
-    members_of[root(m)].push_back(m);
+    members_of[sets.root(m)].push_back(m);
   for (size_t e = 0; e < entries.size(); ++e)
-    entries_of[root(entries[e].motion)].push_back(static_cast<int>(e));
+    entries_of[sets.root(entries[e].motion)].push_back(static_cast<int>(e));
   const double tolerance = 1e-10 * std::abs(load_factor) * load_scale;
   for (int cluster = 0; cluster < k; ++cluster) {
     const std::vector<int>& members = members_of[cluster];
@@ -181,30 +225,7 @@ std::string frame_unbounded_struts(const Model& model, double load_factor) {
     const Eigen::VectorXd residual =
         rows.empty() ? b : Eigen::VectorXd(b - M * nonnegative_least_squares(M, b));
     if (!(residual.norm() > tolerance)) continue;
-    // The struts the escaping motion moves.
-    std::vector<int> escaping;
-    std::vector<char> group_seen(kinematics.groups.size(), 0);
-    for (int m : members) {
-      const int g = motions[m].group;
-      if (group_seen[g]) continue;
-      group_seen[g] = 1;
-      for (int s : kinematics.groups[g]) {
-        double largest = 0.0;
-        for (int node : {0, model.struts[s].nx}) {
-          double ux = 0.0, uy = 0.0;
-          for (int i = 0; i < n; ++i) {
-            if (motions[members[i]].group != g) continue;
-            const auto u = motion_of(members[i], s, node);
-            ux += residual(i) * u[0];
-            uy += residual(i) * u[1];
-          }
-          largest = std::max(largest, std::hypot(ux, uy));
-        }
-        if (largest > 1e-6 * residual.norm()) escaping.push_back(s);
-      }
-    }
-    std::sort(escaping.begin(), escaping.end());
-    return escape_message(model, escaping, load_factor);
+    return escape_message(model, frame.moved_struts(members, residual), load_factor);
   }
   return {};
 }

@@ -1,5 +1,5 @@
 #pragma once
-// Tearing the model into FETI subdomains (ALGORITHMS.md sections 1-2).
+// Tearing the model into FETI subdomains (docs/METHODS.md 1-2).
 //
 // Each strut is split into `subdomains` boxes along its axis and `subdomains_across`
 // across it (plane model); neighbouring boxes share their interface nodes. We use

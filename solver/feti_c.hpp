@@ -1,5 +1,5 @@
 #pragma once
-// FETI-C (ALGORITHMS.md 4.5, thesis Def. 8.5, Dureisseix & Farhat 2001): PCPG on the
+// FETI-C (docs/METHODS.md 4.5, thesis Def. 8.5, Dureisseix & Farhat 2001): PCPG on the
 // equality rows and the working set W of contact rows, with the planning procedure
 // PLAN keeping lambda_W >= 0 and G^ lambda = e after every step.
 //
@@ -13,7 +13,7 @@
 //         lambda = PLAN(lambda + a p),  a = y'w / p'F p
 //         r -= a F p if PLAN changed nothing, else r = d - F lambda
 //
-// Difference from the thesis (and ALGORITHMS.md 4.5), and why: there the direction is
+// Difference from the thesis (and docs/METHODS.md 4.5), and why: there the direction is
 // z = M^-1 w^ projected with P^ of E and W only, so the components on penetrating rows
 // outside W leave ker G: p'F p can then vanish (F is only definite on ker G) and the
 // step a = y'w / p'F p explodes - it does on random scenes with floating struts. Here

@@ -66,7 +66,7 @@ class FetiMethod : public Method {
   // with groups of floating struts the active rows leave free placed as close to where
   // they started as the gaps allow.
   Eigen::VectorXd rigid_amplitudes() const;
-  // ||w|| relative to the scale of the problem (ALGORITHMS.md 4.3/4.5 use ||d||).
+  // ||w|| relative to the scale of the problem (docs/METHODS.md 4.3/4.5 use ||d||).
   double relative(double norm) const { return scale_ > 0.0 ? norm / scale_ : norm; }
   // Sets the scale from r = d - F lambda at the starting lambda: max(||d||, ||F lambda||).
   // ||d|| alone depends on the generalized inverse: when K^+ f happens to vanish (a load

@@ -1,5 +1,5 @@
 #pragma once
-// Preconditioners M^-1 ~ F^-1 of the FETI interface problem (ALGORITHMS.md section 3),
+// Preconditioners M^-1 ~ F^-1 of the FETI interface problem (docs/METHODS.md 3),
 // applied subdomain by subdomain like F:
 //   lumped:    M^-1 = sum_j B_j K_j B_j'
 //   Dirichlet: M^-1 = sum_j B_j [0 0; 0 S_j] B_j',  S_j = K_bb - K_bi K_ii^-1 K_ib

@@ -1,6 +1,6 @@
 #pragma once
 // The FETI interface operators, applied implicitly subdomain by subdomain and never
-// assembled (ALGORITHMS.md section 2):
+// assembled (docs/METHODS.md 2):
 //   F = sum_j B_j K_j^+ B_j'      d = t sum_j B_j K_j^+ f_j - c
 //   G = [R_j' B_j']_j             e = t [R_j' f_j]_j
 //

@@ -8,6 +8,7 @@
 #include <Eigen/Dense>
 
 #include "scenes/null_space.hpp"
+#include "scenes/union_find.hpp"
 #include "solver/rigid_modes.hpp"
 
 namespace fetic::solver {
@@ -64,19 +65,14 @@ FreeMotionSpace::FreeMotionSpace(const FetiSystem& system) : system_(system) {
   GZ_.setFromTriplets(gz.begin(), gz.end());
 
   // Clusters: motions that a contact row changes together.
-  std::vector<int> parent(k);
-  std::iota(parent.begin(), parent.end(), 0);
-  auto root = [&](int i) {
-    while (parent[i] != i)
-      i = parent[i] = parent[parent[i]];
-    return i;
-  };
+  scenes::UnionFind sets(k);
+  const auto root = [&](int i) { return sets.root(i); };
   std::vector<std::vector<int>> row_motions(d.contact_rows());
   for (int r = 0; r < d.contact_rows(); ++r) {
     for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(GZ_, r); it; ++it)
       if (std::abs(it.value()) > kNegligible) row_motions[r].push_back(static_cast<int>(it.col()));
     for (int m : row_motions[r])
-      parent[root(m)] = root(row_motions[r].front());
+      sets.join(m, row_motions[r].front());
   }
   std::vector<int> cluster_of(k, -1);
   for (int m = 0; m < k; ++m) {

@@ -1,5 +1,5 @@
 #pragma once
-// Steepest descent (ALGORITHMS.md 4.1) and conjugate gradients (4.2) on K u = t f for
+// Steepest descent (docs/METHODS.md 4.1) and conjugate gradients (4.2) on K u = t f for
 // scenes without contacts. Residual: ||t f - K u|| / ||t f||.
 
 #include <memory>

@@ -1,5 +1,5 @@
 #pragma once
-// MPRGP (Dostal's modified proportioning with reduced gradient projections; ALGORITHMS.md
+// MPRGP (Dostal's modified proportioning with reduced gradient projections; docs/METHODS.md
 // 4.6, Dostal 2009, PERMON's MPGP, ESPRESO's MPRGP) on the dual problem of section 2,
 // with the same FETI operators and subdomains as FETI-C:
 //

@@ -1,5 +1,5 @@
 #pragma once
-// FETI-1 solved by the preconditioned conjugate projected gradient (ALGORITHMS.md 4.3),
+// FETI-1 solved by the preconditioned conjugate projected gradient (docs/METHODS.md 4.3),
 // for scenes without contacts:
 //   lambda = G'(GG')^-1 e,  r = d - F lambda
 //   loop: w = P r (stop when ||w|| <= tol ||d||); z = M^-1 w; y = P z;

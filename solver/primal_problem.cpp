@@ -4,6 +4,7 @@
 #include <cmath>
 #include <map>
 
+#include "scenes/message_text.hpp"
 #include "solver/rigid_modes.hpp"
 #include "solver/threads.hpp"
 
@@ -24,10 +25,24 @@ std::string singular_message(const Model& model, int strut, CholmodFactor::Resul
     case CholmodFactor::Result::Failed:
       return name + ": CHOLMOD failed to factorize the stiffness of " + part;
     default:
-      return name + ": the stiffness of " + part +
-             " is singular beyond its rigid-body modes (check E, area/thickness and the mesh "
-             "proportions)";
+      break;
   }
+  const std::string singular =
+      name + ": the stiffness of " + part + " is singular beyond its rigid-body modes";
+  const StrutMesh& mesh = model.struts[static_cast<size_t>(strut)];
+  if (mesh.dofs_per_node != 3)
+    return singular + " (check E, " + (mesh.ny > 0 ? "thickness" : "area") +
+           " and the mesh proportions)";
+  // A beam element's bending stiffness 12 E I / h^3 against its axial one E A / h: when
+  // the inertia is what makes it vanish, say so.
+  const double h = mesh.length / std::max(mesh.nx, 1);
+  const double bending_over_axial = 12.0 * mesh.inertia / (mesh.area * h * h);
+  if (!(bending_over_axial > 1e-10))
+    return singular + ": its bending stiffness is " + scenes::number_text(bending_over_axial) +
+           " times its axial stiffness (inertia " + scenes::number_text(mesh.inertia) + ", area " +
+           scenes::number_text(mesh.area) + ", element length " + scenes::number_text(h) +
+           "); check inertia";
+  return singular + " (check E, area, inertia and the mesh proportions)";
 }
 
 namespace {
@@ -59,6 +74,13 @@ std::vector<std::map<int, JointOwner>> joint_owners(const Model& model) {
 }  // namespace
 
 PrimalProblem::PrimalProblem(const Model& model, bool factorize_blocks) : model_(model) {
+  number_free_dofs();
+  assemble_blocks(factorize_blocks);
+  build_contact_rows();
+}
+
+void PrimalProblem::number_free_dofs() {
+  const Model& model = model_;
   const int strut_count = static_cast<int>(model.struts.size());
   const std::vector<std::vector<int>> groups = strut_groups(model);
   const auto owners = joint_owners(model);
@@ -95,8 +117,11 @@ PrimalProblem::PrimalProblem(const Model& model, bool factorize_blocks) : model_
     size_ = next;
     blocks_.push_back(std::move(block));
   }
+}
 
-  std::vector<std::vector<int>> motions_of_group(groups.size());
+void PrimalProblem::assemble_blocks(bool factorize_blocks) {
+  const Model& model = model_;
+  std::vector<std::vector<int>> motions_of_group(blocks_.size());
   for (size_t m = 0; m < model.kinematics.motions.size(); ++m)
     motions_of_group[model.kinematics.motions[m].group].push_back(static_cast<int>(m));
   std::vector<Eigen::Triplet<double>> k_entries, r_entries;
@@ -148,8 +173,11 @@ PrimalProblem::PrimalProblem(const Model& model, bool factorize_blocks) : model_
   K_.setFromTriplets(k_entries.begin(), k_entries.end());
   R_.resize(size_, static_cast<int>(kernel_struts_.size()));
   R_.setFromTriplets(r_entries.begin(), r_entries.end());
+}
 
-  // Contact rows: (u_a - u_b) . n <= gap, on the free DOFs of both nodes.
+// Contact rows: (u_a - u_b) . n <= gap, on the free DOFs of both nodes.
+void PrimalProblem::build_contact_rows() {
+  const Model& model = model_;
   const int m = static_cast<int>(model.pairs.size());
   std::vector<Eigen::Triplet<double>> a_entries;
   c_.resize(m);

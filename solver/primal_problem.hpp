@@ -59,6 +59,11 @@ class PrimalProblem {
  private:
   // Frame model: the group's free motions as columns over the block's DOFs; records the
   // struts each moves in kernel_struts_.
+  // The constructor's steps: the free DOFs numbered group by group (global_of_, blocks_,
+  // size_); K, R, f and each block's kernel and factor; the contact rows A, c.
+  void number_free_dofs();
+  void assemble_blocks(bool factorize_blocks);
+  void build_contact_rows();
   Eigen::MatrixXd frame_kernel(const std::vector<int>& motions, const StrutBlock& block);
 
   const Model& model_;

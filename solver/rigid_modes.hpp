@@ -1,5 +1,5 @@
 #pragma once
-// Rigid-body modes (a basis of ker K) of a floating box of a strut's mesh (ALGORITHMS.md
+// Rigid-body modes (a basis of ker K) of a floating box of a strut's mesh (docs/METHODS.md
 // section 2). Bar: a column of ones (axial translation). Plane: per node the rows
 // [-y 1 0; x 0 1] (rotation, x-translation, y-translation), with (x, y) taken relative to
 // the box centre so that the three columns are of comparable size. Frame: the same

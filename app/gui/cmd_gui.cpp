@@ -132,7 +132,7 @@ void register_gui(CLI::App& app, int& exit_code) {
   auto args = std::make_shared<gui::Options>();
   CLI::App* command = app.add_subcommand(
       "gui", "Interactive window: load slider, live warm-started FETI-C, iteration history");
-  command->add_option("scene", args->scene, "Scene file (TOML, see docs/SCENES.md)")->required();
+  look_up_bundled_scenes(command->add_option("scene", args->scene, kSceneArgumentHelp))->required();
   command->add_option("--method", args->method, "Method to start with")
       ->check(method_name())
       ->capture_default_str();

@@ -19,6 +19,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "tests/support/shell_run.hpp"
+
 extern char** environ;
 
 namespace {
@@ -37,9 +39,7 @@ struct Folder {
   std::string operator/(const std::string& name) const { return (path / name).string(); }
 };
 
-std::string scene(const std::string& name) {
-  return std::string(FETIC_BUNDLED_SCENES_DIR) + "/" + name;
-}
+using fetic::test::scene;
 
 int run(const std::string& arguments, const std::string& log) {
   const int raw = std::system(
@@ -53,9 +53,16 @@ std::string read_text(const std::string& path) {
   return {std::istreambuf_iterator<char>(in), {}};
 }
 
+// The iteration lines, after checking the first line: the version and units header.
 std::vector<json> lines_of(const std::string& text) {
   std::vector<json> lines;
   std::istringstream in(text);
+  std::string first;
+  REQUIRE(std::getline(in, first));
+  const json header = json::parse(first);
+  CHECK(header["fetic_version"].get<std::string>() == FETIC_VERSION);
+  CHECK(header["units"]["length"].is_string());
+  CHECK_FALSE(header.contains("iteration"));
   for (std::string line; std::getline(in, line);)
     lines.push_back(json::parse(line));
   return lines;

@@ -23,18 +23,10 @@
 namespace {
 
 using Run = fetic::test::ShellRun;
-
-Run run(const std::string& arguments) {
-  return fetic::test::run_shell(std::string(FETIC_EXECUTABLE) + " " + arguments);
-}
-
-std::string scene(const std::string& name) {
-  return std::string(FETIC_BUNDLED_SCENES_DIR) + "/" + name;
-}
-
-std::string temporary(const std::string& name) {
-  return fetic::test::temporary_path(name);
-}
+using fetic::test::run;
+using fetic::test::scene;
+// A path in the temporary folder, unique to this test process.
+const auto& temporary = fetic::test::temporary_path;
 
 // scenes/two_bars.toml: EA = 2.1e7 N, both bars 1 m, gap 1 mm, P = 63 kN at t = 1, the
 // load at right.from; the gap closes at t* = g EA / (P L) = 1/3.
@@ -131,10 +123,11 @@ TEST_CASE("two bars load sweep: contact force and displacement curves match the 
   for (const auto& row : rows) {
     const double t = std::stod(row.at("load_factor"));
     CHECK(row.at("status") == "converged");
-    CHECK(std::abs(std::stod(row.at("force:left.to/right.from")) - closed.force(t)) <=
+    CHECK(std::abs(std::stod(row.at("force:left.to/right.from [N]")) - closed.force(t)) <=
           1e-8 * force_scale);
-    CHECK(std::abs(std::stod(row.at("ux:right.from")) - closed.right_from_ux(t)) <= 1e-8 * u_scale);
-    CHECK(std::abs(std::stod(row.at("ux:left.to")) - closed.left_to_ux(t)) <= 1e-8 * u_scale);
+    CHECK(std::abs(std::stod(row.at("ux:right.from [m]")) - closed.right_from_ux(t)) <=
+          1e-8 * u_scale);
+    CHECK(std::abs(std::stod(row.at("ux:left.to [m]")) - closed.left_to_ux(t)) <= 1e-8 * u_scale);
     CHECK(std::stoi(row.at("active_pairs:left.to/right.from")) == (closed.force(t) > 0.0 ? 1 : 0));
   }
   // The history table: one row per history entry of every step.

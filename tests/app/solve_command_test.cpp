@@ -17,18 +17,10 @@
 namespace {
 
 using Run = fetic::test::ShellRun;
-
-Run run(const std::string& arguments) {
-  return fetic::test::run_shell(std::string(FETIC_EXECUTABLE) + " " + arguments);
-}
-
-std::string scene(const std::string& name) {
-  return std::string(FETIC_BUNDLED_SCENES_DIR) + "/" + name;
-}
-
-std::string temporary(const std::string& name) {
-  return fetic::test::temporary_path(name);
-}
+using fetic::test::run;
+using fetic::test::scene;
+// A path in the temporary folder, unique to this test process.
+const auto& temporary = fetic::test::temporary_path;
 
 }  // namespace
 

@@ -31,6 +31,8 @@
 
 #include "render/golden.hpp"
 
+#include "tests/support/shell_run.hpp"
+
 extern char** environ;
 
 namespace fs = std::filesystem;
@@ -40,9 +42,7 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-std::string scene(const std::string& name) {
-  return std::string(FETIC_BUNDLED_SCENES_DIR) + "/" + name;
-}
+using fetic::test::scene;
 
 fs::path fresh_directory(const std::string& name) {
   const fs::path directory = fs::temp_directory_path() / (name + "_" + std::to_string(::getpid()));
@@ -420,6 +420,8 @@ std::vector<json> json_lines(const fs::path& path) {
   std::ifstream in(path);
   for (std::string line; std::getline(in, line);)
     lines.push_back(json::parse(line));  // every line whole: a torn one throws
+  // The first line is the stream's header (version, units), not an iteration.
+  if (!lines.empty() && lines.front().contains("fetic_version")) lines.erase(lines.begin());
   return lines;
 }
 

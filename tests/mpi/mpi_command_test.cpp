@@ -48,9 +48,7 @@ Run run_fetic(const std::string& arguments, int processes = 0) {
   return run(launcher + FETIC_EXECUTABLE + " " + arguments);
 }
 
-std::string scene(const std::string& name) {
-  return std::string(FETIC_BUNDLED_SCENES_DIR) + "/" + name;
-}
+using fetic::test::scene;
 
 int occurrences(const std::string& text, const std::string& what) {
   int count = 0;
@@ -355,6 +353,8 @@ std::vector<nlohmann::json> monitor_lines(const std::string& path) {
   std::vector<nlohmann::json> lines;
   for (std::string line; std::getline(in, line);)
     lines.push_back(nlohmann::json::parse(line));
+  // The first line is the stream's header (version, units), not an iteration.
+  if (!lines.empty() && lines.front().contains("fetic_version")) lines.erase(lines.begin());
   return lines;
 }
 

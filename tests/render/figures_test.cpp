@@ -1,5 +1,5 @@
 // The thesis' figures come from the running code: the 2x2 paths are the solver's own SD
-// and CG iterates (checked here against the formulas of ALGORITHMS.md 4.1-4.2), and every
+// and CG iterates (checked here against the formulas of docs/METHODS.md 4.1-4.2), and every
 // figure of the catalogue can be drawn.
 
 #include <catch2/catch.hpp>

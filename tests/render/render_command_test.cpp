@@ -15,6 +15,8 @@
 #include <string>
 #include "tests/support/skip.hpp"
 
+#include "tests/support/shell_run.hpp"
+
 namespace fs = std::filesystem;
 
 namespace {
@@ -43,9 +45,7 @@ Run run(const std::string& arguments, const std::string& environment = "") {
   return run_program(environment + " " + std::string(FETIC_EXECUTABLE) + " " + arguments);
 }
 
-std::string scene(const std::string& name) {
-  return std::string(FETIC_BUNDLED_SCENES_DIR) + "/" + name;
-}
+using fetic::test::scene;
 
 fs::path fresh_directory(const std::string& name) {
   const fs::path directory = fs::temp_directory_path() / (name + "_" + std::to_string(::getpid()));

@@ -125,6 +125,6 @@ TEST_CASE("frames onto a file, a dangling link or an empty name: status 5 naming
       Catch::Contains(link + ": is a symbolic link to 'missing/frames', which does not exist"));
 
   const Result empty = run_fetic({"figures", "--figure", "2.1", "--out", ""});
-  CHECK(empty.status == 5);
-  CHECK_THAT(empty.err, Catch::Contains("the output directory is an empty name"));
+  CHECK(empty.status == 1);
+  CHECK_THAT(empty.err, Catch::Contains("--out: an empty name writes nothing"));
 }

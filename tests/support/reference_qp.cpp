@@ -9,6 +9,8 @@
 #include <numeric>
 #include <stdexcept>
 
+#include "scenes/union_find.hpp"
+
 namespace fetic::testing {
 namespace {
 
@@ -53,15 +55,10 @@ ReferenceSolution solve_reference_qp(const scenes::Scene& scene, double load_fac
     bars.push_back(describe(s));
 
   // Groups of struts connected by contacts are independent problems.
-  std::vector<int> parent(strut_count);
-  std::iota(parent.begin(), parent.end(), 0);
-  auto root = [&](int i) {
-    while (parent[i] != i)
-      i = parent[i] = parent[parent[i]];
-    return i;
-  };
+  scenes::UnionFind sets(strut_count);
+  const auto root = [&](int i) { return sets.root(i); };
   for (const scenes::Contact& c : scene.contacts)
-    parent[root(c.a.strut)] = root(c.b.strut);
+    sets.join(c.a.strut, c.b.strut);
 
   ReferenceSolution solution;
   solution.optimal = true;

@@ -25,6 +25,7 @@
 #include <map>
 #include <numeric>
 
+#include "scenes/union_find.hpp"
 #include "tests/support/reference_qp.hpp"
 
 namespace fetic::testing {
@@ -90,19 +91,7 @@ Eigen::Matrix<double, 6, 6> element_stiffness(const scenes::Strut& strut, const 
   return axial.transpose() * ka * axial + bending.transpose() * kb * bending;
 }
 
-class UnionFind {
- public:
-  explicit UnionFind(int n) : parent_(n) { std::iota(parent_.begin(), parent_.end(), 0); }
-  int root(int i) {
-    while (parent_[i] != i)
-      i = parent_[i] = parent_[parent_[i]];
-    return i;
-  }
-  void join(int a, int b) { parent_[root(a)] = root(b); }
-
- private:
-  std::vector<int> parent_;
-};
+using scenes::UnionFind;
 
 int node_of(const scenes::Scene& scene, const scenes::EndRef& ref) {
   if (ref.node >= 0) return ref.node;

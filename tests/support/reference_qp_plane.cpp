@@ -14,6 +14,7 @@
 #include <numeric>
 #include <stdexcept>
 
+#include "scenes/union_find.hpp"
 #include "tests/support/reference_qp.hpp"
 
 namespace fetic::testing {
@@ -78,15 +79,10 @@ ReferenceSolution solve_plane_reference_qp(const scenes::Scene& scene, double lo
   for (const scenes::Strut& s : scene.struts)
     struts.push_back(describe(s));
 
-  std::vector<int> parent(strut_count);
-  std::iota(parent.begin(), parent.end(), 0);
-  auto root = [&](int i) {
-    while (parent[i] != i)
-      i = parent[i] = parent[parent[i]];
-    return i;
-  };
+  scenes::UnionFind sets(strut_count);
+  const auto root = [&](int i) { return sets.root(i); };
   for (const scenes::Contact& c : scene.contacts)
-    parent[root(c.a.strut)] = root(c.b.strut);
+    sets.join(c.a.strut, c.b.strut);
 
   ReferenceSolution solution;
   solution.optimal = true;

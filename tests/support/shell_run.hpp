@@ -25,6 +25,13 @@ inline std::string temporary_path(const std::string& name) {
       .string();
 }
 
+// The path of a bundled scene, scenes/NAME (the tests' CMake sets the folder).
+#ifdef FETIC_BUNDLED_SCENES_DIR
+inline std::string scene(const std::string& name) {
+  return std::string(FETIC_BUNDLED_SCENES_DIR) + "/" + name;
+}
+#endif
+
 inline ShellRun run_shell(const std::string& command) {
   const std::string log = temporary_path("shell_run_output.txt");
   const int raw = std::system((command + " > " + log + " 2>&1").c_str());
@@ -35,5 +42,12 @@ inline ShellRun run_shell(const std::string& command) {
   std::filesystem::remove(log);
   return result;
 }
+
+// `fetic ARGUMENTS` through the shell (the tests' CMake sets the executable).
+#ifdef FETIC_EXECUTABLE
+inline ShellRun run(const std::string& arguments) {
+  return run_shell(std::string(FETIC_EXECUTABLE) + " " + arguments);
+}
+#endif
 
 }  // namespace fetic::test
