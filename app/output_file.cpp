@@ -241,20 +241,30 @@ int create_unnamed(const std::string& path, mode_t mode) {
 bool name_unnamed(int fd, const std::string& path, std::string& name) {
   const std::string self = "/proc/self/fd/" + std::to_string(fd);
   const std::string pid = std::to_string(::getpid());
+  static std::atomic<int> counter{0};
   std::string candidate = path + ".tmp" + pid;
-  for (int attempt = 0; attempt < 3; ++attempt) {
+  for (int attempt = 0; attempt < 100; ++attempt) {
     if (::linkat(AT_FDCWD, self.c_str(), AT_FDCWD, candidate.c_str(), AT_SYMLINK_FOLLOW) == 0) {
       name = candidate;
       std::lock_guard lock(temporaries_mutex);
       temporaries().insert(name);
       return true;
     }
-    if (errno == EEXIST)
-      ::unlink(candidate.c_str());  // left by an earlier process that had our PID
-    else if (errno == ENAMETOOLONG)
-      candidate = parent_of(path) + ".fetic.tmp" + pid;
-    else if (errno != EINTR)
+    if (errno == EEXIST) {
+      bool ours = false;  // an earlier version of this output still held for the commit
+      {
+        std::lock_guard lock(temporaries_mutex);
+        ours = temporaries().count(candidate) > 0;
+      }
+      if (ours)
+        candidate = path + ".tmp" + pid + "." + std::to_string(++counter);
+      else
+        ::unlink(candidate.c_str());  // left by an earlier process that had our PID
+    } else if (errno == ENAMETOOLONG) {
+      candidate = parent_of(path) + ".fetic.tmp" + pid + "." + std::to_string(++counter);
+    } else if (errno != EINTR) {
       return false;
+    }
   }
   return false;
 }
@@ -444,6 +454,15 @@ void PendingOutputs::commit() {
         discard_temporary(files[rest].temporary);
       throw;
     }
+}
+
+std::string current_version_of(const std::string& path) {
+  const std::string target = follow_links(path);
+  std::lock_guard lock(pending_mutex);
+  if (pending_active)
+    for (const Staged& staged : pending())
+      if (staged.path == target) return staged.temporary;
+  return path;
 }
 
 size_t PendingOutputs::size() const {

@@ -118,6 +118,11 @@ class PendingOutputs {
   size_t size() const;
 };
 
+// Where the latest version of an output is now: its temporary file while a PendingOutputs
+// holds it, otherwise `path` itself (so a file grown a piece at a time, the .pvd of a
+// series, is grown where it waits).
+std::string current_version_of(const std::string& path);
+
 // True when `path` means standard output; commands then print their report to stderr so
 // that the output stays clean.
 inline bool is_stdout(const std::string& path) {

@@ -46,7 +46,7 @@ void add_point(VtkGrid& grid, std::vector<double>& displacement, const solver::V
 // does not end as this series left it (it is then written whole).
 bool append_pvd(const std::string& path, const PvdEntry& entry) {
   const std::string closing = kPvdClosing;
-  std::fstream file(path, std::ios::in | std::ios::out | std::ios::binary);
+  std::fstream file(current_version_of(path), std::ios::in | std::ios::out | std::ios::binary);
   if (!file) return false;
   file.seekg(0, std::ios::end);
   const std::streamoff size = file.tellg();

@@ -26,7 +26,7 @@ size_t longest_line(const std::string& text) {
 
 }  // namespace
 
-TEST_CASE("--monitor-full names its range, never CLI11's 309 digits", "[messages]") {
+TEST_CASE("the option --monitor-full names its range, never CLI11's 309 digits", "[messages]") {
   for (const char* value : {"0", "1e12", "-3", "x"}) {
     INFO(value);
     const Result r = run_fetic({"solve", kScene, "--monitor", "-", "--monitor-full", value});

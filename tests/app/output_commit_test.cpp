@@ -116,7 +116,10 @@ TEST_CASE("a run that succeeds replaces every output, the monitor included", "[o
   INFO(r.err);
   REQUIRE(r.status == 0);
   CHECK(nlohmann::json::parse(read_text(json))["converged"] == true);
-  CHECK_THAT(read_text(monitor), Catch::StartsWith("{\"load_factor\""));
+  // The new monitor: its header line (version, units), then the iterations.
+  const std::string lines = read_text(monitor);
+  CHECK_THAT(lines, Catch::StartsWith("{\"fetic_version\""));
+  CHECK_THAT(lines, Catch::Contains("\n{\"load_factor\""));
   CHECK(fs::exists(vtu + "/struts.pvd"));
   CHECK(names_in(dir.path()) == (std::vector<std::string>{"m.jsonl", "r.csv", "r.json", "vtu"}));
 }

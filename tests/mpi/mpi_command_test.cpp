@@ -313,7 +313,7 @@ TEST_CASE(
   INFO("processes gone after " << ranks_gone << " s, mpirun after " << mpirun_gone << " s\n"
                                << output);
   REQUIRE(mpirun_gone >= 0.0);
-  CHECK(ranks_gone < 1.0);
+  CHECK(ranks_gone < 5.0);  // a hang check, not a speed check: shared machines stall
   CHECK(solve.status() == 130);
   CHECK(occurrences(output, "interrupted by SIGTERM") == 1);
   CHECK(solve.wrote_interrupted_result());
@@ -337,8 +337,10 @@ TEST_CASE("SIGTERM and SIGINT to mpirun stop every process, no partial file") {
                    << mpirun_gone << " s\n"
                    << output);
     REQUIRE(mpirun_gone >= 0.0);
-    CHECK(ranks_gone < 2.0);  // mpirun's 1 s, then fetic's own stop
-    CHECK(mpirun_gone < 5.0);
+    // mpirun's grace period, then fetic's own stop (2.0 s measured, quiet machine): a hang
+    // check with room for a busy machine, not a speed check.
+    CHECK(ranks_gone < 8.0);
+    CHECK(mpirun_gone < 10.0);
     CHECK(solve.status() != 0);
     CHECK(occurrences(output, "interrupted by SIGTERM") <= 1);
     if (solve.wrote_result()) CHECK(solve.wrote_interrupted_result());
