@@ -6,29 +6,12 @@
 #include <array>
 #include <random>
 
-#include "solver/cholmod_factor.hpp"
-#include "solver/primal_problem.hpp"
 #include "tests/support/random_scenes.hpp"
 #include "tests/support/solve_helpers.hpp"
 
 using namespace fetic;
 using fetic::solver::MethodKind;
 using fetic::solver::Preconditioner;
-
-namespace {
-
-std::vector<std::vector<solver::Vec2>> direct(const solver::Model& model) {
-  solver::PrimalProblem problem(model);
-  solver::CholmodFactor factor;
-  REQUIRE(factor.factorize(problem.stiffness()) == solver::CholmodFactor::Result::Ok);
-  Eigen::VectorXd f = problem.load(), u(problem.size());
-  factor.solve(f.data(), u.data());
-  solver::Snapshot s;
-  s.pieces = problem.pieces(u);
-  return solver::strut_displacements(model, s);
-}
-
-}  // namespace
 
 TEST_CASE("FETI-1 agrees with a direct solve on the contact-free scene, every preconditioner") {
   const auto scene = testing::bundled_scene("cantilevers.toml");
@@ -42,7 +25,7 @@ TEST_CASE("FETI-1 agrees with a direct solve on the contact-free scene, every pr
       const auto solved = testing::solve(scene, MethodKind::Feti, 1.0, options);
       REQUIRE(solved->state.status == solver::Status::Converged);
       const auto u = solver::strut_displacements(solved->model, solved->state);
-      CHECK(solver::relative_error(u, direct(solved->model)) <= 1e-9);
+      CHECK(solver::relative_error(u, testing::direct_displacements(solved->model)) <= 1e-9);
     }
   }
 }
@@ -59,7 +42,7 @@ TEST_CASE("FETI-1 agrees with a direct solve on 40 random contact-free scenes") 
     const auto solved = testing::solve_text(text, MethodKind::Feti, 1.0, options);
     REQUIRE(solved->state.status == solver::Status::Converged);
     const auto u = solver::strut_displacements(solved->model, solved->state);
-    CHECK(solver::relative_error(u, direct(solved->model)) <= 1e-9);
+    CHECK(solver::relative_error(u, testing::direct_displacements(solved->model)) <= 1e-9);
   }
 }
 
