@@ -139,28 +139,28 @@ TEST_CASE("units: derived names and the prefix a legend uses") {
   CHECK(stress_unit({"in", "lbf"}) == "psi");
   CHECK(stress_unit({"in", "kip"}) == "ksi");
   CHECK(force_per_length_unit({"mm", "N"}) == "N/mm");
-  // 420 N/mm² is 420 MPa; 420e6 N/m² too; 0.42 kN/mm² is 420 MPa as well.
-  DisplayUnit unit = display_unit(Quantity::Stress, {"mm", "N"}, 420.0);
-  CHECK(unit.name == "MPa");
-  CHECK(420.0 / unit.divisor == Approx(420.0));
-  unit = display_unit(Quantity::Stress, {"m", "N"}, 420e6);
-  CHECK(unit.name == "MPa");
-  CHECK(420e6 / unit.divisor == Approx(420.0));
-  unit = display_unit(Quantity::Stress, {"mm", "kN"}, 0.42);
-  CHECK(unit.name == "MPa");
-  CHECK(0.42 / unit.divisor == Approx(420.0));
-  unit = display_unit(Quantity::Force, {"mm", "N"}, 84000.0);
-  CHECK(unit.name == "kN");
-  CHECK(84000.0 / unit.divisor == Approx(84.0));
-  // Moments: the scene's length, the force prefixed: 3.2e6 N mm reads 3.2 MN mm.
-  unit = display_unit(Quantity::Moment, {"mm", "N"}, 3.2e6);
-  CHECK(unit.name == "MN mm");
-  CHECK(3.2e6 / unit.divisor == Approx(3.2));
-  unit = display_unit(Quantity::Moment, {"mm", "N"}, 420.0);
-  CHECK(unit.name == "N mm");
-  unit = display_unit(Quantity::Moment, {"m", "N"}, 6800.0);
-  CHECK(unit.name == "kN m");
-  CHECK(6800.0 / unit.divisor == Approx(6.8));
+  // The unit a legend shows for its largest value, and that value in it. 420 N/mm² is
+  // 420 MPa; 420e6 N/m² too; 0.42 kN/mm² is 420 MPa as well. Moments: the scene's length,
+  // the force prefixed: 3.2e6 N mm reads 3.2 MN mm.
+  struct Shown {
+    Quantity quantity;
+    Units units;
+    double largest;
+    std::string name;
+    double number;
+  };
+  for (const Shown& c : {Shown{Quantity::Stress, {"mm", "N"}, 420.0, "MPa", 420.0},
+                         Shown{Quantity::Stress, {"m", "N"}, 420e6, "MPa", 420.0},
+                         Shown{Quantity::Stress, {"mm", "kN"}, 0.42, "MPa", 420.0},
+                         Shown{Quantity::Force, {"mm", "N"}, 84000.0, "kN", 84.0},
+                         Shown{Quantity::Moment, {"mm", "N"}, 3.2e6, "MN mm", 3.2},
+                         Shown{Quantity::Moment, {"mm", "N"}, 420.0, "N mm", 420.0},
+                         Shown{Quantity::Moment, {"m", "N"}, 6800.0, "kN m", 6.8}}) {
+    INFO(c.largest << " " << c.units.force << ", " << c.units.length);
+    const DisplayUnit unit = display_unit(c.quantity, c.units, c.largest);
+    CHECK(unit.name == c.name);
+    CHECK(c.largest / unit.divisor == Approx(c.number));
+  }
   CHECK(display_unit(Quantity::Moment, {"in", "kip"}, 30.0).name == "kip in");
   // Lengths stay in the scene's unit; imperial quantities are not converted.
   CHECK(display_unit(Quantity::Length, {"mm", "N"}, 0.001).name == "mm");

@@ -13,19 +13,31 @@ using namespace fetic;
 using fetic::solver::MethodKind;
 using fetic::solver::Preconditioner;
 
+namespace {
+
+solver::SolveOptions feti1_options(Preconditioner preconditioner, bool scaling) {
+  solver::SolveOptions options;
+  options.preconditioner = preconditioner;
+  options.scaling = scaling;
+  options.tolerance = 1e-12;
+  return options;
+}
+
+void check_feti1_against_direct(const testing::Solved& solved) {
+  REQUIRE(solved.state.status == solver::Status::Converged);
+  const auto u = solver::strut_displacements(solved.model, solved.state);
+  CHECK(solver::relative_error(u, testing::direct_displacements(solved.model)) <= 1e-9);
+}
+
+}  // namespace
+
 TEST_CASE("FETI-1 agrees with a direct solve on the contact-free scene, every preconditioner") {
   const auto scene = testing::bundled_scene("cantilevers.toml");
   for (Preconditioner p :
        {Preconditioner::None, Preconditioner::Lumped, Preconditioner::Dirichlet}) {
     for (bool scaling : {false, true}) {
-      solver::SolveOptions options;
-      options.preconditioner = p;
-      options.scaling = scaling;
-      options.tolerance = 1e-12;
-      const auto solved = testing::solve(scene, MethodKind::Feti, 1.0, options);
-      REQUIRE(solved->state.status == solver::Status::Converged);
-      const auto u = solver::strut_displacements(solved->model, solved->state);
-      CHECK(solver::relative_error(u, testing::direct_displacements(solved->model)) <= 1e-9);
+      check_feti1_against_direct(
+          *testing::solve(scene, MethodKind::Feti, 1.0, feti1_options(p, scaling)));
     }
   }
 }
@@ -35,14 +47,10 @@ TEST_CASE("FETI-1 agrees with a direct solve on 40 random contact-free scenes") 
   for (int trial = 0; trial < 40; ++trial) {
     const std::string text = testing::random_contact_free_scene(rng);
     INFO(text);
-    solver::SolveOptions options;
-    options.preconditioner = std::array{Preconditioner::Dirichlet, Preconditioner::Lumped,
+    const Preconditioner p = std::array{Preconditioner::Dirichlet, Preconditioner::Lumped,
                                         Preconditioner::None}[trial % 3];
-    options.tolerance = 1e-12;
-    const auto solved = testing::solve_text(text, MethodKind::Feti, 1.0, options);
-    REQUIRE(solved->state.status == solver::Status::Converged);
-    const auto u = solver::strut_displacements(solved->model, solved->state);
-    CHECK(solver::relative_error(u, testing::direct_displacements(solved->model)) <= 1e-9);
+    check_feti1_against_direct(
+        *testing::solve_text(text, MethodKind::Feti, 1.0, feti1_options(p, true)));
   }
 }
 

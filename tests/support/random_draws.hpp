@@ -21,10 +21,8 @@ inline bool chance(std::mt19937& rng, double p) {
   return uniform(rng, 0.0, 1.0) < p;
 }
 
-// The shortest text that reads back as the same double ("1.001", not "1.0009999999999999");
-// a zero of either sign is written 0.0.
+// The shortest text that reads back as the same double ("1.001", not "1.0009999999999999").
 inline std::string toml_number(double value) {
-  if (value == 0.0) return "0.0";
   char buffer[40];
   std::string text(buffer, std::to_chars(buffer, buffer + sizeof buffer, value).ptr);
   if (text.find_first_of(".eEn") == std::string::npos) text += ".0";

@@ -2,6 +2,8 @@
 // Small helpers shared by the solver tests: load a scene from text, run a method to the
 // end, compare displacements and forces with a reference.
 
+#include <catch2/catch.hpp>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -67,6 +69,18 @@ inline WarmAndCold warm_and_cold(solver::Method& method, double load, double nex
   return states;
 }
 
+// A warm start after a 5% load change (1 to 1.05) needs fewer iterations than a cold one
+// and ends at the same displacements (to 1e-8).
+inline void check_warm_start(solver::Method& method, const solver::Model& model) {
+  const WarmAndCold states = warm_and_cold(method, 1.0, 1.05);
+  REQUIRE(states.first.status == solver::Status::Converged);
+  REQUIRE(states.warm.status == solver::Status::Converged);
+  REQUIRE(states.cold.status == solver::Status::Converged);
+  CHECK(states.warm.iteration < states.cold.iteration);
+  CHECK(solver::relative_error(solver::strut_displacements(model, states.warm),
+                               solver::strut_displacements(model, states.cold)) <= 1e-8);
+}
+
 // ||u - u_ref|| / ||u_ref|| over every node of every strut.
 inline double displacement_error(const Solved& solved, const ReferenceSolution& reference) {
   const auto u = solver::strut_displacements(solved.model, solved.state);
@@ -104,6 +118,13 @@ inline double load_scale(const solver::Model& model) {
 inline constexpr const char* kCantileverKeys =
     "E = 2.1e11, area = 2.0e-3, inertia = 3.0e-6, elements = 8, subdomains = 3, "
     "fixed = ['from']";
+
+// The displacements and contact forces of `solved` agree with the reference to 1e-8
+// (forces relative to the larger of their size and 1e-12 of the loads).
+inline void check_against_reference(const Solved& solved, const ReferenceSolution& reference) {
+  CHECK(displacement_error(solved, reference) <= 1e-8);
+  CHECK(force_error(solved, reference, 1e-12 * load_scale(solved.model)) <= 1e-8);
+}
 
 // A bar chain: a clamped base, a floating middle strut pushed onto it (its left end 1 mm
 // away), and a floating tip touching the middle one, pulled by `tip_force` along x: away
