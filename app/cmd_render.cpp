@@ -1,8 +1,10 @@
 // fetic render SCENE --out DIR: solver states as PNG frames (an iteration movie, the final
 // state, or a sequence of load steps), optionally assembled into an mp4 by ffmpeg.
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <functional>
@@ -27,6 +29,7 @@
 #include "app/view_file.hpp"
 #include "app/vtu_export.hpp"
 #include "render/colormap.hpp"
+#include "render/contact_chart.hpp"
 #include "render/frame_composer.hpp"
 #include "render/frame_sequence.hpp"
 #include "scenes/scene_error.hpp"
@@ -54,7 +57,8 @@ struct RenderArgs {
   // Given on the command line: these win over the view's entries.
   bool size_given = false, magnification_given = false, color_given = false;
   bool labels = false;
-  std::string vtu;  // also write each frame's state as ParaView files here
+  bool chart = false, no_chart = false;  // neither: the chart at 200 pairs and more
+  std::string vtu;                       // also write each frame's state as ParaView files here
   std::string vtu_format = "zlib";
   bool progress = false;
   bool quiet = false;
@@ -65,13 +69,28 @@ render::ColorBy color_by(const std::string& name) {
   return color_from_name(name).value_or(render::ColorBy::Subdomain);
 }
 
+// What the legends' scales are: the run's largest values over every frame (a movie's
+// common scale), or the view file's; "" for one frame, whose own largest they are.
+std::string scale_basis(const render::FramePlan& plan, const render::RunExtent& extent,
+                        bool from_view) {
+  if (from_view) return "of the view file";
+  if (plan.load_factors.size() > 1) {
+    char text[96];
+    std::snprintf(text, sizeof text, "over loads %g-%g", plan.load_factors.front(),
+                  plan.load_factors.back());
+    return text;
+  }
+  if (extent.frame_count > 1) return "over all " + std::to_string(extent.frame_count) + " frames";
+  return "";
+}
+
 int run_render(const RenderArgs& args) {
   SavedView saved;
   if (!args.view.empty()) try {
       saved = read_view_file(args.view);
     } catch (const ViewFileError& error) {
       std::cerr << error.what() << '\n';
-      return kExitUsage;
+      return interrupted() ? kExitInterrupted : kExitUsage;
     }
   int status = kExitOk;
   const auto scene = load_scene_or_report(args.scene, status);
@@ -126,7 +145,8 @@ int run_render(const RenderArgs& args) {
   }
   if (!args.out.empty() && !make_output_directory(args.out)) return kExitOutput;
   auto headless = open_headless(args.out.empty() ? args.movie : args.out,
-                                render::base_text_size(size.width, size.height));
+                                std::max(render::base_text_size(size.width, size.height),
+                                         static_cast<float>(saved.text_size.value_or(0.0))));
   if (!headless) return kExitNoDisplay;
 
   ProgressLine progress(progress_mode(args.progress, args.quiet));
@@ -167,7 +187,9 @@ int run_render(const RenderArgs& args) {
   if (args.color_given) view.color_by = color_by(args.color);
   if (args.no_overlay) view.show_overlay = false;
   if (args.labels) view.show_labels = true;
+  view.show_chart = render::chart_shown(model, args.chart ? 1 : args.no_chart ? 0 : -1);
   apply_scales(saved.scales, extent);
+  view.scale_basis = scale_basis(plan, extent, saved.scales.has_value());
   render::OverlayInfo info;
   info.title =
       model.title.empty() ? std::filesystem::path(args.scene).filename().string() : model.title;
@@ -278,8 +300,10 @@ int run_render(const RenderArgs& args) {
     return kExitInterrupted;
   }
 
-  // With --movie - the movie goes to stdout: the report goes to stderr then.
-  std::ostream& report = is_stdout(args.movie) ? std::cerr : std::cout;
+  // With --movie - the movie goes to stdout: the report goes to stderr then; --quiet: none
+  // (problems are still said on stderr).
+  std::ostream null_stream(nullptr);
+  std::ostream& report = args.quiet ? null_stream : is_stdout(args.movie) ? std::cerr : std::cout;
   if (frames_wanted) {
     report << "frames       " << written << " in " << args.out << " ("
            << frame_name(0, extent.frame_count) << " .. "
@@ -357,6 +381,11 @@ void register_render(CLI::App& app, int& exit_code) {
           ->check(CLI::IsMember({"subdomain", "strut", "stress", "moment"}))
           ->capture_default_str();
   command->add_flag("--no-overlay", args->no_overlay, "No information panel");
+  CLI::Option* chart =
+      command->add_flag("--chart", args->chart,
+                        "Beside the picture, the contact force and current gap of every pair "
+                        "along the scene, the active ones marked (on by itself at 200 pairs)");
+  command->add_flag("--no-chart", args->no_chart, "No per-contact chart")->excludes(chart);
   command->add_flag("--labels", args->labels,
                     "Strut names beside the struts (where there is room)");
   command->add_option("--max-frames", args->max_frames, "Refuse runs with more frames")
@@ -378,7 +407,9 @@ void register_render(CLI::App& app, int& exit_code) {
       ->capture_default_str();
   command->add_flag("--progress", args->progress,
                     "Show the progress line on stderr even when it is not a terminal");
-  command->add_flag("--quiet", args->quiet, "No progress line");
+  command->add_flag("--quiet", args->quiet,
+                    "No progress line and no report of what was written (problems are still "
+                    "said on stderr)");
   command->callback([args, size, magnification, color, &exit_code] {
     args->size_given = size->count() > 0;
     args->magnification_given = magnification->count() > 0;
