@@ -58,14 +58,13 @@ FreeMotionSpace::FreeMotionSpace(const FetiSystem& system) : system_(system) {
   for (int r = first_contact; r < d.row_count(); ++r)
     for (const RowEntry& entry : d.rows[r].entries) {
       const Subdomain& sub = d.subdomains[entry.subdomain];
-      const std::vector<int>& moving =
-          motions_of_group[model.kinematics.group_of_strut[sub.strut]];
+      const std::vector<int>& moving = motions_of_group[model.kinematics.group_of_strut[sub.strut]];
       Eigen::MatrixXd& RZ = modes_of[entry.subdomain];
       if (RZ.size() == 0) {
         Eigen::MatrixXd Zj = Eigen::MatrixXd::Zero(sub.mode_count, static_cast<int>(moving.size()));
         for (int i = 0; i < sub.mode_count; ++i)
           for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(Z_rows,
-                                                                           sub.mode_offset + i);
+                                                                              sub.mode_offset + i);
                it; ++it) {
             const auto at = std::lower_bound(moving.begin(), moving.end(), it.col());
             if (at != moving.end() && *at == it.col()) Zj(i, at - moving.begin()) = it.value();
@@ -153,7 +152,8 @@ std::vector<UnheldGroup> FreeMotionSpace::unheld(const std::vector<char>& active
       for (int j : cluster.subdomains) {
         const Subdomain& sub = d.subdomains[j];
         double largest = 0.0;
-        for (auto at = std::lower_bound(cluster.modes.begin(), cluster.modes.end(), sub.mode_offset);
+        for (auto at =
+                 std::lower_bound(cluster.modes.begin(), cluster.modes.end(), sub.mode_offset);
              at != cluster.modes.end() && *at < sub.mode_offset + sub.mode_count; ++at)
           largest = std::max(largest, std::abs(Q(static_cast<int>(at - cluster.modes.begin()), c)));
         if (largest > kNegligible) group.subdomains.push_back(j);

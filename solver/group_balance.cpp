@@ -110,8 +110,9 @@ void GroupBalance::factorize_blocks() {
     for (size_t a = 0; a < groups.size(); ++a) {
       sums[static_cast<size_t>(groups[a].first)].add(groups[a].second * groups[a].second);
       for (size_t b = a + 1; b < groups.size(); ++b) {
-        const long long key = static_cast<long long>(std::min(groups[a].first, groups[b].first)) * k +
-                              std::max(groups[a].first, groups[b].first);
+        const long long key =
+            static_cast<long long>(std::min(groups[a].first, groups[b].first)) * k +
+            std::max(groups[a].first, groups[b].first);
         const auto at = std::lower_bound(keys.begin(), keys.end(), key) - keys.begin();
         sums[static_cast<size_t>(k) + static_cast<size_t>(at)].add(groups[a].second *
                                                                    groups[b].second);
@@ -139,7 +140,8 @@ void GroupBalance::factorize_blocks() {
     if (n > kMaxBlock)
       throw SolverError("MPRGP: " + std::to_string(n) +
                         " free motions of struts held only by contacts are linked through "
-                        "shared contact rows, more than the " + std::to_string(kMaxBlock) +
+                        "shared contact rows, more than the " +
+                        std::to_string(kMaxBlock) +
                         " it can balance together; use --method feti-c or active-set");
     grams[b].setZero(n, n);
   }

@@ -123,7 +123,8 @@ TEST_CASE("MPRGP counts applications of F, and preconditioning in face reduces t
 // must each carry what one beam alone carries.
 TEST_CASE("MPRGP: many copies of a beam held only by contacts each carry what one carries") {
   const auto copies_of_beam = [](int copies) {
-    std::string text = "model = \"frame\"\n[defaults]\nE = 2.1e11\narea = 2.0e-3\ninertia = 8.0e-6\n";
+    std::string text =
+        "model = \"frame\"\n[defaults]\nE = 2.1e11\narea = 2.0e-3\ninertia = 8.0e-6\n";
     for (int i = 0; i < copies; ++i) {
       const std::string n = std::to_string(i), y = std::to_string(3 * i),
                         top = std::to_string(3 * i + 1);
@@ -132,7 +133,8 @@ TEST_CASE("MPRGP: many copies of a beam held only by contacts each carry what on
         text += "[[strut]]\nname = \"" + name + n + "\"\nfrom = [" + from + "]\nto = [" + to +
                 "]\n" + rest;
       };
-      strut("beam", "0.0, " + top + ".002", "4.0, " + top + ".002", "elements = 16\nsubdomains = 4\n");
+      strut("beam", "0.0, " + top + ".002", "4.0, " + top + ".002",
+            "elements = 16\nsubdomains = 4\n");
       strut("postL", "0.5, " + y, "0.5, " + top, "elements = 4\nfixed = [\"from\"]\n");
       strut("postR", "3.5, " + y, "3.5, " + top, "elements = 4\nfixed = [\"from\"]\n");
       strut("wall", "-0.5, " + top + ".002", "-0.003, " + top + ".002",
