@@ -57,16 +57,13 @@ TEST_CASE("MPRGP agrees with FETI-C and the active-set method on every bundled s
 }
 
 TEST_CASE("MPRGP: floating struts held only by contacts, and one pushed away from them") {
-  const std::string chain = testing::kFloatingChain;
-  const auto escaping = testing::solve_text(
-      chain + "[[load]]\nstrut = \"tip\"\nat = \"to\"\nforce = [500.0, 0.0]\n", MethodKind::Mprgp);
+  const auto escaping = testing::solve_text(testing::floating_chain(500.0), MethodKind::Mprgp);
   CHECK(escaping->state.status == solver::Status::Failed);
   CHECK_THAT(escaping->state.message, Catch::Contains("unbounded") && Catch::Contains("'tip'"));
   // Pushed back, the tip rests on the middle strut, which rests on the base.
   for (Preconditioner p : kPreconditioners) {
-    const auto held = testing::solve_text(
-        chain + "[[load]]\nstrut = \"tip\"\nat = \"to\"\nforce = [-500.0, 0.0]\n",
-        MethodKind::Mprgp, 1.0, with(p));
+    const auto held =
+        testing::solve_text(testing::floating_chain(-500.0), MethodKind::Mprgp, 1.0, with(p));
     INFO(solver::to_string(p) << ": " << held->state.message);
     REQUIRE(held->state.status == solver::Status::Converged);
     CHECK(held->state.force[0] == Approx(1300.0));
@@ -77,21 +74,7 @@ TEST_CASE("MPRGP: floating struts held only by contacts, and one pushed away fro
 TEST_CASE("MPRGP: a warm start after a 5% load change needs fewer iterations than a cold one") {
   const auto model = solver::build_model(testing::bundled_scene("plane_pair.toml"));
   solver::Mprgp method(model, {});
-  method.start(1.0);
-  solver::run_to_end(method);
-  REQUIRE(method.status() == solver::Status::Converged);
-  const solver::Snapshot previous = method.snapshot();
-  method.start(1.05, &previous);
-  solver::run_to_end(method);
-  REQUIRE(method.status() == solver::Status::Converged);
-  const int warm = method.iteration();
-  const auto warm_u = solver::strut_displacements(model, method.snapshot());
-  method.start(1.05);
-  solver::run_to_end(method);
-  REQUIRE(method.status() == solver::Status::Converged);
-  CHECK(warm < method.iteration());
-  CHECK(solver::relative_error(warm_u, solver::strut_displacements(model, method.snapshot())) <=
-        1e-8);
+  testing::check_warm_start(method, model);
 }
 
 TEST_CASE("MPRGP counts applications of F, and preconditioning in face reduces them") {
