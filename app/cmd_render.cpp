@@ -85,14 +85,10 @@ std::string scale_basis(const render::FramePlan& plan, const render::RunExtent& 
 }
 
 int run_render(const RenderArgs& args) {
-  SavedView saved;
-  if (!args.view.empty()) try {
-      saved = read_view_file(args.view);
-    } catch (const ViewFileError& error) {
-      std::cerr << error.what() << '\n';
-      return interrupted() ? kExitInterrupted : kExitUsage;
-    }
   int status = kExitOk;
+  const std::optional<SavedView> view_file = read_view_or_report(args.view, status);
+  if (!view_file) return status;
+  const SavedView& saved = *view_file;
   const auto scene = load_scene_or_report(args.scene, status);
   if (!scene) return status;
   if (const std::string problem =
