@@ -131,13 +131,10 @@ class RenderRun {
 
 // Step 1: the view file, the scene, and the options checked against the scene.
 int RenderRun::read_inputs() {
-  if (!args_.view.empty()) try {
-      saved_ = read_view_file(args_.view);
-    } catch (const ViewFileError& error) {
-      std::cerr << error.what() << '\n';
-      return interrupted() ? kExitInterrupted : kExitUsage;
-    }
   int status = kExitOk;
+  const std::optional<SavedView> view_file = read_view_or_report(args_.view, status);
+  if (!view_file) return status;
+  saved_ = *view_file;
   scene_ = load_scene_or_report(args_.scene, status);
   if (!scene_) return status;
   if (const std::string problem =

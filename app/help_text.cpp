@@ -34,58 +34,92 @@ const char* kSceneUnits =
     "displacements [m], forces and reactions [N], loads per length [N/m], E and stresses\n"
     "[Pa], areas [m^2]; the load factor, tolerances and residuals have no unit.\n";
 
+// A command's footer: its examples, its exit statuses, notes, the scene's units (where it
+// reads a scene's numbers) and a last note.
+struct Footer {
+  const char* command;
+  const char* examples;
+  std::initializer_list<int> codes;
+  const char* notes;
+  bool units;
+  const char* last;
+};
+
+const Footer kFooters[] = {
+    {"solve",
+     "Examples:\n"
+     "  fetic solve scenes/two_bars.toml --json result.json\n"
+     "  fetic solve scenes/two_bars.toml --load-steps 0:2:21 --csv-steps curve.csv \\\n"
+     "              --vtu paraview/          # then: paraview paraview/struts.pvd\n\n",
+     {0, 1, 2, 3, 4, 5, 7, 130},
+     "  After SIGINT/SIGTERM the --json, --csv, --csv-steps and --vtu outputs are still\n"
+     "  written, with the current iterate marked \"interrupted\": true.\n\n",
+     true,
+     "Progress: a line on stderr when it is a terminal (--progress forces, --quiet "
+     "silences).\n"},
+    {"render",
+     "Examples:\n"
+     "  fetic render scenes/thesis.toml --out frames/ --movie thesis.mp4\n"
+     "  fetic render scenes/two_bars.toml --out frames/ --load-steps 0:2:21 --vtu vtu/\n\n",
+     {0, 1, 2, 3, 4, 5, 6, 7, 130},
+     "\n",
+     true,
+     "Image sizes are in pixels; --magnification scales displacements and gaps in the "
+     "picture.\n"},
+    {"figures",
+     "Example:\n"
+     "  fetic figures --out figures/     # works from any directory\n\n",
+     {0, 1, 2, 3, 5, 6, 7, 130},
+     "  Status 3: no figure could be drawn; figures that cannot be drawn are skipped\n"
+     "  with the reason.\n\nImage sizes are in pixels.\n",
+     false,
+     ""},
+    {"bench",
+     "Example:\n"
+     "  fetic bench --repeat 5 --csv bench.csv    # the bundled scenes\n\n",
+     {0, 1, 2, 3, 5, 7, 130},
+     "\nTimes are in milliseconds; ratios are to the active-set method measured in the\n"
+     "same run.\n",
+     false,
+     ""},
+    {"bench-render",
+     "Example:\n"
+     "  fetic bench-render --frames 60 --size 1280x720\n\n",
+     {0, 1, 2, 3, 5, 6, 7, 130},
+     "\nReports frames per second; image sizes are in pixels.\n",
+     false,
+     ""},
+    {"gui",
+     "Example:\n"
+     "  fetic gui scenes/thesis.toml --max-load 2\n\n",
+     {0, 1, 2, 3, 4, 5, 6, 7, 130},
+     "\n",
+     true,
+     ""},
+    {"generate",
+     "Example:\n"
+     "  fetic generate --model plane --pairs 20 --elements 40,8 --subdomains 4,2 -o "
+     "big.toml\n\n",
+     {0, 1, 5, 7, 130},
+     "\nThe scene is in SI units: lengths [m], E [Pa], forces [N].\n",
+     false,
+     ""},
+    {"scenes",
+     "Example:\n  fetic scenes             # then: fetic solve thesis --json r.json\n\n",
+     {0, 1, 2, 5},
+     "  Status 2: no bundled scene folder was found.\n",
+     false,
+     ""},
+    {"help", "Example:\n  fetic help solve\n\n", {0, 1, 5}, "", false, ""},
+};
+
 }  // namespace
 
 std::string help_footer(const std::string& command) {
-  if (command == "solve")
-    return "Examples:\n"
-           "  fetic solve scenes/two_bars.toml --json result.json\n"
-           "  fetic solve scenes/two_bars.toml --load-steps 0:2:21 --csv-steps curve.csv \\\n"
-           "              --vtu paraview/          # then: paraview paraview/struts.pvd\n\n" +
-           statuses({0, 1, 2, 3, 4, 5, 7, 130}) +
-           "  After SIGINT/SIGTERM the --json, --csv, --csv-steps and --vtu outputs are still\n"
-           "  written, with the current iterate marked \"interrupted\": true.\n\n" +
-           kSceneUnits +
-           "Progress: a line on stderr when it is a terminal (--progress forces, --quiet "
-           "silences).\n";
-  if (command == "render")
-    return "Examples:\n"
-           "  fetic render scenes/thesis.toml --out frames/ --movie thesis.mp4\n"
-           "  fetic render scenes/two_bars.toml --out frames/ --load-steps 0:2:21 --vtu vtu/\n\n" +
-           statuses({0, 1, 2, 3, 4, 5, 6, 7, 130}) + "\n" + kSceneUnits +
-           "Image sizes are in pixels; --magnification scales displacements and gaps in the "
-           "picture.\n";
-  if (command == "figures")
-    return "Example:\n"
-           "  fetic figures --out figures/     # works from any directory\n\n" +
-           statuses({0, 1, 2, 3, 5, 6, 7, 130}) +
-           "  Status 3: no figure could be drawn; figures that cannot be drawn are skipped\n"
-           "  with the reason.\n\nImage sizes are in pixels.\n";
-  if (command == "bench")
-    return "Example:\n"
-           "  fetic bench --repeat 5 --csv bench.csv    # the bundled scenes\n\n" +
-           statuses({0, 1, 2, 3, 5, 7, 130}) +
-           "\nTimes are in milliseconds; ratios are to the active-set method measured in the\n"
-           "same run.\n";
-  if (command == "bench-render")
-    return "Example:\n"
-           "  fetic bench-render --frames 60 --size 1280x720\n\n" +
-           statuses({0, 1, 2, 3, 5, 6, 7, 130}) +
-           "\nReports frames per second; image sizes are in pixels.\n";
-  if (command == "gui")
-    return "Example:\n"
-           "  fetic gui scenes/thesis.toml --max-load 2\n\n" +
-           statuses({0, 1, 2, 3, 4, 5, 6, 7, 130}) + "\n" + kSceneUnits;
-  if (command == "generate")
-    return "Example:\n"
-           "  fetic generate --model plane --pairs 20 --elements 40,8 --subdomains 4,2 -o "
-           "big.toml\n\n" +
-           statuses({0, 1, 5, 7, 130}) +
-           "\nThe scene is in SI units: lengths [m], E [Pa], forces [N].\n";
-  if (command == "scenes")
-    return "Example:\n  fetic scenes             # then: fetic solve thesis --json r.json\n\n" +
-           statuses({0, 1, 2, 5}) + "  Status 2: no bundled scene folder was found.\n";
-  if (command == "help") return "Example:\n  fetic help solve\n\n" + statuses({0, 1, 5});
+  for (const Footer& footer : kFooters)
+    if (command == footer.command)
+      return footer.examples + statuses(footer.codes) + footer.notes +
+             (footer.units ? kSceneUnits : "") + footer.last;
   return {};
 }
 

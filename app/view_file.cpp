@@ -2,10 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iostream>
 
 #include <nlohmann/json.hpp>
 
+#include "app/exit_codes.hpp"
 #include "app/image_size.hpp"
+#include "app/interrupt.hpp"
 #include "app/json_input.hpp"
 #include "app/output_file.hpp"
 #include "scenes/scene_error.hpp"
@@ -286,6 +289,17 @@ void apply_view(const SavedView& saved, render::View& view) {
     view.centered = true;
     view.center_x = *saved.center_x;
     view.center_y = *saved.center_y;
+  }
+}
+
+std::optional<SavedView> read_view_or_report(const std::string& path, int& status) {
+  if (path.empty()) return SavedView{};
+  try {
+    return read_view_file(path);
+  } catch (const ViewFileError& error) {
+    std::cerr << error.what() << '\n';
+    status = interrupted() ? kExitInterrupted : kExitUsage;
+    return std::nullopt;
   }
 }
 

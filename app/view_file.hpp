@@ -45,7 +45,11 @@ std::optional<render::ColorBy> color_from_name(const std::string& name);
 // Reads the file through app/json_input.hpp (8 MiB, FIFOs, signals); throws ViewFileError.
 SavedView read_view_file(const std::string& path);
 SavedView parse_view(const std::string& text, const std::string& path);  // the file's text
-std::string view_json(const SavedView& view);                            // the file's text
+// read_view_file() for a command: its error told on stderr, nullopt and `status` the exit
+// status (usage, or interrupted when a signal stopped the reading). An empty path: no
+// file, an empty view.
+std::optional<SavedView> read_view_or_report(const std::string& path, int& status);
+std::string view_json(const SavedView& view);  // the file's text
 // Writes atomically through the output targets (throws OutputError).
 void write_view_file(const std::string& path, const SavedView& view);
 

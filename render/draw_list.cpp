@@ -140,15 +140,13 @@ void DrawList::text(TextItem item) {
 
 void DrawList::text(const std::string& text, Point anchor, float size, Color color, HAlign h_align,
                     VAlign v_align, bool bold) {
-  TextItem item;
-  item.text = text;
-  item.anchor = anchor;
-  item.size = size;
-  item.color = color;
-  item.h_align = h_align;
-  item.v_align = v_align;
-  item.bold = bold;
-  this->text(std::move(item));
+  this->text(TextItem{.text = text,
+                      .anchor = anchor,
+                      .size = size,
+                      .color = color,
+                      .h_align = h_align,
+                      .v_align = v_align,
+                      .bold = bold});
 }
 
 void DrawList::append(const DrawList& other) {

@@ -21,17 +21,15 @@ Scene generate_portal_pairs(const GenerateOptions& o) {
   const double width = 4.0, height = 3.0, spacing = 3.0;
   const double E = 2.1e11, area = 2.85e-3, inertia = 1.94e-5;
   auto add = [&](const std::string& name, Point from, Point to, double modulus, bool clamp_from) {
-    Strut s;
-    s.name = name;
-    s.from = from;
-    s.to = to;
-    s.E = modulus;
-    s.area = area;
-    s.inertia = inertia;
-    s.elements = o.elements;
-    s.subdomains = o.subdomains;
-    s.fixed_from = clamp_from;
-    scene.struts.push_back(s);
+    scene.struts.push_back({.name = name,
+                            .from = from,
+                            .to = to,
+                            .E = modulus,
+                            .area = area,
+                            .elements = o.elements,
+                            .subdomains = o.subdomains,
+                            .fixed_from = clamp_from,
+                            .inertia = inertia});
     return static_cast<int>(scene.struts.size()) - 1;
   };
   auto joint = [&](EndRef a, EndRef b) {

@@ -24,8 +24,9 @@ struct GenerateOptions {
   int subdomains_across = 1;  // plane model
   std::uint32_t seed = 1;
   // Asked every 1024 pairs: when it returns true, the generation stops early and returns
-  // the pairs made so far (the caller, interrupted, discards them).
-  std::function<bool()> stop;
+  // the pairs made so far (the caller, interrupted, discards them). ({}: designated
+  // initializers may leave it out.)
+  std::function<bool()> stop{};
 };
 
 // Unknowns of the scene generate_scene() would make, computed without making it.

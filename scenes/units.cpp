@@ -40,6 +40,14 @@ bool metric(const Units& units) {
   return length && force && length->metric && force->metric;
 }
 
+template <std::size_t N>
+std::vector<std::string> names_of(const std::array<Named, N>& table) {
+  std::vector<std::string> names;
+  for (const Named& unit : table)
+    names.emplace_back(unit.name);
+  return names;
+}
+
 // SI prefixes from giga to micro.
 constexpr std::array<std::pair<double, const char*>, 6> kPrefixes{
     {{1e9, "G"}, {1e6, "M"}, {1e3, "k"}, {1.0, ""}, {1e-3, "m"}, {1e-6, "µ"}}};
@@ -47,22 +55,12 @@ constexpr std::array<std::pair<double, const char*>, 6> kPrefixes{
 }  // namespace
 
 const std::vector<std::string>& length_unit_names() {
-  static const std::vector<std::string> names = [] {
-    std::vector<std::string> out;
-    for (const Named& unit : kLengths)
-      out.emplace_back(unit.name);
-    return out;
-  }();
+  static const std::vector<std::string> names = names_of(kLengths);
   return names;
 }
 
 const std::vector<std::string>& force_unit_names() {
-  static const std::vector<std::string> names = [] {
-    std::vector<std::string> out;
-    for (const Named& unit : kForces)
-      out.emplace_back(unit.name);
-    return out;
-  }();
+  static const std::vector<std::string> names = names_of(kForces);
   return names;
 }
 

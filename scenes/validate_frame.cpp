@@ -19,16 +19,6 @@
 namespace fetic::scenes {
 namespace {
 
-bool outside_magnitude_range(double value) {
-  const double magnitude = std::abs(value);
-  return magnitude > kMagnitudeLimit || magnitude < 1.0 / kMagnitudeLimit;
-}
-
-std::string range_text() {
-  return "outside the range double precision solves reliably (" +
-         number_text(1.0 / kMagnitudeLimit) + " to " + number_text(kMagnitudeLimit) + ")";
-}
-
 // A (strut, node) key.
 using NodeKey = std::pair<int, int>;
 
@@ -46,7 +36,7 @@ void check_magnitudes(const Scene& scene, std::vector<Problem>& problems) {
                                           "length^3 = " +
                                           number_text(bending) + " " +
                                           force_per_length_unit(scene.units) + " is " +
-                                          range_text()});
+                                          magnitude_range_text()});
   }
   for (const Load& load : scene.loads) {
     if (load.moment == 0.0) continue;
@@ -54,7 +44,7 @@ void check_magnitudes(const Scene& scene, std::vector<Problem>& problems) {
       problems.push_back({load.line, "load on strut " + quoted(scene.struts[load.strut].name) +
                                          ": moment " + number_text(load.moment) + " " +
                                          scene.units.force + " " + scene.units.length + " is " +
-                                         range_text() + "; write 0 for no moment"});
+                                         magnitude_range_text() + "; write 0 for no moment"});
   }
 }
 

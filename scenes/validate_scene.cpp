@@ -47,17 +47,6 @@ void check_strut_geometry(const Scene& scene, std::vector<Problem>& problems) {
                                std::to_string(kMaxUnknowns)});
 }
 
-// kMagnitudeLimit: scenes/magnitudes.hpp.
-bool outside_magnitude_range(double value) {
-  const double magnitude = std::abs(value);
-  return magnitude > kMagnitudeLimit || magnitude < 1.0 / kMagnitudeLimit;
-}
-
-std::string magnitude_range_text() {
-  return "outside the range double precision solves reliably (" +
-         number_text(1.0 / kMagnitudeLimit) + " to " + number_text(kMagnitudeLimit) + ")";
-}
-
 // Stiffness of one element: E A / h for a bar (and a beam's axial stiffness), E t for a
 // plane element (independent of its size); the displacement scale is force over this.
 double element_stiffness(const Scene& scene, const Strut& strut) {

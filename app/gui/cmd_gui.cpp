@@ -64,19 +64,15 @@ int run_gui(const gui::Options& args) {
   }
   // 0 x 0: the monitor's work area (render::GlfwWindow).
   ImageSize size = args.size_given ? *parse_image_size(args.size) : ImageSize{0, 0};
-  if (!args.view.empty()) try {
-      // The window is the view's picture and the panel beside it (unless --size is given).
-      const SavedView view = read_view_file(args.view);
-      if (view.width && view.height && !args.size_given) {
-        size.width = *view.width + static_cast<int>(gui::kPanelWidth *
-                                                    (args.ui_scale > 0.0 ? args.ui_scale : 1.0));
-        size.height = *view.height;
-      }
-    } catch (const ViewFileError& error) {
-      std::cerr << error.what() << '\n';
-      return interrupted() ? kExitInterrupted : kExitUsage;
-    }
   int status = kExitOk;
+  const std::optional<SavedView> view = read_view_or_report(args.view, status);
+  if (!view) return status;
+  // The window is the view's picture and the panel beside it (unless --size is given).
+  if (view->width && view->height && !args.size_given) {
+    size.width = *view->width +
+                 static_cast<int>(gui::kPanelWidth * (args.ui_scale > 0.0 ? args.ui_scale : 1.0));
+    size.height = *view->height;
+  }
   const auto scene = load_scene_or_report(args.scene, status);
   if (!scene) return status;
   for (const auto& [option, value] :

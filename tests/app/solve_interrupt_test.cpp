@@ -55,8 +55,7 @@ TEST_CASE("an interrupted solve writes the current iterate, marked interrupted")
         60s, 20ms);
     std::this_thread::sleep_for(300ms);
     ::kill(child, signal);
-    const auto status = fetic::test::wait_bounded(child, 60s);
-    const std::string output = fetic::test::read_bytes(log);
+    const auto [status, output] = fetic::test::wait_ending(child, log, 60s);
     INFO(output);
     REQUIRE(status);
     REQUIRE(WIFEXITED(*status));
@@ -147,8 +146,7 @@ TEST_CASE("interrupted at any moment of a sweep, even the set-up: 130 and only t
     REQUIRE(wait_for_handler(child));
     std::this_thread::sleep_for(std::chrono::milliseconds(delay_ms));
     ::kill(child, SIGINT);
-    const auto status = fetic::test::wait_bounded(child, 60s);
-    const std::string output = fetic::test::read_bytes(log);
+    const auto [status, output] = fetic::test::wait_ending(child, log, 60s);
     INFO(output);
     REQUIRE(status);
     REQUIRE(WIFEXITED(*status));

@@ -54,12 +54,8 @@ TEST_CASE("the chart has a bar per loaded pair and a red mark per active pair") 
 }
 
 TEST_CASE("the chart is shown at 200 pairs and more, and takes its room from the scene") {
-  scenes::GenerateOptions options;
-  options.model = scenes::ModelKind::Bar;
-  options.pairs = 200;
-  options.elements = 4;
-  options.subdomains = 1;
-  const solver::Model dense = solver::build_model(scenes::generate_scene(options));
+  const solver::Model dense = solver::build_model(scenes::generate_scene(
+      {.model = scenes::ModelKind::Bar, .pairs = 200, .elements = 4, .subdomains = 1}));
   CHECK(dense.pairs.size() >= 200);
   CHECK(chart_shown(dense, -1));
   CHECK_FALSE(chart_shown(dense, 0));

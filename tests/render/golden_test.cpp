@@ -126,11 +126,8 @@ TEST_CASE("golden: plane model, deformed meshes in contact") {
 TEST_CASE("golden: dense scenes stay readable, at two frame sizes") {
   // 2,000 pairs of bars (20,000 unknowns): a column of struts a fraction of a pixel apart;
   // glyphs too dense to draw are left out and counted, the stress colours show.
-  scenes::GenerateOptions bars;
-  bars.model = scenes::ModelKind::Bar;
-  bars.pairs = 2000;
-  bars.elements = 4;
-  bars.subdomains = 2;
+  const scenes::GenerateOptions bars{
+      .model = scenes::ModelKind::Bar, .pairs = 2000, .elements = 4, .subdomains = 2};
   View small = view_of(640, 360), large = view_of(1280, 720);
   small.color_by = large.color_by = ColorBy::Stress;
   auto images =
@@ -145,12 +142,11 @@ TEST_CASE("golden: dense scenes stay readable, at two frame sizes") {
 
   // A plane scene of 101,000 unknowns (10 pairs of 100x24-element struts, bent and pushed
   // together): one row of load arrows per strut side, contact faces marked along the face.
-  scenes::GenerateOptions plane;
-  plane.model = scenes::ModelKind::Plane;
-  plane.pairs = 10;
-  plane.elements = 100;
-  plane.elements_across = 24;
-  plane.subdomains = 5;
+  const scenes::GenerateOptions plane{.model = scenes::ModelKind::Plane,
+                                      .pairs = 10,
+                                      .elements = 100,
+                                      .elements_across = 24,
+                                      .subdomains = 5};
   images = render_final(scenes::generate_scene(plane), solver::MethodKind::FetiC, {small, large});
   REQUIRE(images.size() == 2);
   problem = check_golden("plane_100k_640x360", images[0]);

@@ -90,12 +90,11 @@ struct Scene {
 // Three pairs of plane struts of 192 x 40 elements in 4 x 2 subdomains (61,000 unknowns).
 const Scene& fine_scene() {
   static const Scene scene = [] {
-    scenes::GenerateOptions options;
-    options.pairs = 3;
-    options.elements = 192;
-    options.elements_across = 40;
-    options.subdomains = 4;
-    options.subdomains_across = 2;
+    const scenes::GenerateOptions options{.pairs = 3,
+                                          .elements = 192,
+                                          .elements_across = 40,
+                                          .subdomains = 4,
+                                          .subdomains_across = 2};
     Scene s{solver::build_model(scenes::generate_scene(options)), {}, {}, {}};
     const auto method = solver::make_method(solver::MethodKind::FetiC, s.model, {});
     FramePlan plan;

@@ -29,12 +29,8 @@ struct Solved {
 // Two pairs of plane struts, 64 x 16 elements each, in 4 x 2 subdomains.
 const Solved& fine_planes() {
   static const Solved solved = [] {
-    scenes::GenerateOptions options;
-    options.pairs = 2;
-    options.elements = 64;
-    options.elements_across = 16;
-    options.subdomains = 4;
-    options.subdomains_across = 2;
+    const scenes::GenerateOptions options{
+        .pairs = 2, .elements = 64, .elements_across = 16, .subdomains = 4, .subdomains_across = 2};
     Solved s{solver::build_model(scenes::generate_scene(options)), {}, {}};
     const auto method = solver::make_method(solver::MethodKind::FetiC, s.model, {});
     FramePlan plan;

@@ -22,6 +22,7 @@
 #include <vector>
 
 #include <stb_image.h>
+#include "tests/support/child_process.hpp"
 #include "tests/support/skip.hpp"
 
 namespace fs = std::filesystem;
@@ -32,11 +33,6 @@ namespace {
 // Load steps of the chain scene, one frame each: long enough to be killed in the middle.
 constexpr int kFrames = 600;
 
-std::string read_bytes(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), {}};
-}
-
 int count_frames(const fs::path& directory) {
   int count = 0;
   std::error_code error;
@@ -46,41 +42,16 @@ int count_frames(const fs::path& directory) {
 }
 
 pid_t start_render(const fs::path& out, const fs::path& log, const std::string& movie = "") {
-  const std::string scene = std::string(FETIC_BUNDLED_SCENES_DIR) + "/chain.toml";
-  const std::string steps = "0.01:1:" + std::to_string(kFrames);
-  const pid_t child = ::fork();
-  if (child == 0) {
-    std::FILE* file = std::fopen(log.c_str(), "w");
-    if (file) {
-      ::dup2(::fileno(file), 1);
-      ::dup2(::fileno(file), 2);
-    }
-    if (movie.empty())
-      ::execl(FETIC_EXECUTABLE, "fetic", "render", scene.c_str(), "--method", "active-set",
-              "--load-steps", steps.c_str(), "--max-frames", "100000", "--size", "320x200",
-              "--threads", "2", "--out", out.c_str(), static_cast<char*>(nullptr));
-    else
-      ::execl(FETIC_EXECUTABLE, "fetic", "render", scene.c_str(), "--method", "active-set",
-              "--load-steps", steps.c_str(), "--max-frames", "100000", "--size", "320x200",
-              "--threads", "2", "--out", out.c_str(), "--movie", movie.c_str(),
-              static_cast<char*>(nullptr));
-    ::_exit(127);
-  }
-  return child;
-}
-
-// Waits for the child with a bound; on timeout kills it and returns nullopt.
-std::optional<int> wait_bounded(pid_t child, std::chrono::seconds limit) {
-  const auto deadline = std::chrono::steady_clock::now() + limit;
-  int status = 0;
-  while (std::chrono::steady_clock::now() < deadline) {
-    const pid_t done = ::waitpid(child, &status, WNOHANG);
-    if (done == child) return status;
-    std::this_thread::sleep_for(10ms);
-  }
-  ::kill(child, SIGKILL);
-  ::waitpid(child, &status, 0);
-  return std::nullopt;
+  std::vector<std::string> args{
+      "render",       std::string(FETIC_BUNDLED_SCENES_DIR) + "/chain.toml",
+      "--method",     "active-set",
+      "--load-steps", "0.01:1:" + std::to_string(kFrames),
+      "--max-frames", "100000",
+      "--size",       "320x200",
+      "--threads",    "2",
+      "--out",        out.string()};
+  if (!movie.empty()) args.insert(args.end(), {"--movie", movie});
+  return fetic::test::start_fetic(args, log);
 }
 
 void check_complete_pngs(const fs::path& directory) {
@@ -88,7 +59,7 @@ void check_complete_pngs(const fs::path& directory) {
   for (const auto& entry : fs::directory_iterator(directory)) {
     if (entry.path().extension() != ".png") continue;
     INFO(entry.path().string());
-    const std::string png = read_bytes(entry.path());
+    const std::string png = fetic::test::read_bytes(entry.path());
     REQUIRE(png.size() > iend.size());
     CHECK(png.compare(png.size() - iend.size(), iend.size(), iend) == 0);
     int width = 0, height = 0, channels = 0;
@@ -116,29 +87,16 @@ TEST_CASE("fetic render killed in the middle of a movie leaves only complete PNG
       REQUIRE(child > 0);
 
       // Wait (bounded) until a few frames exist, then signal in the middle of the movie.
-      const auto deadline = std::chrono::steady_clock::now() + 300s;
-      int status = 0;
-      bool exited = false;
-      while (count_frames(out) < 5 && std::chrono::steady_clock::now() < deadline) {
-        if (::waitpid(child, &status, WNOHANG) == child) {
-          exited = true;
-          break;
-        }
-        std::this_thread::sleep_for(5ms);
-      }
-      if (exited || count_frames(out) < 5) {
-        if (!exited) {
-          ::kill(child, SIGKILL);
-          ::waitpid(child, &status, 0);
-        }
-        FAIL("fetic render ended or stalled before 5 frames:\n" << read_bytes(log));
+      if (!fetic::test::wait_for(
+              child, [&] { return count_frames(out) >= 5; }, 300s, 5ms)) {
+        fetic::test::kill_child(child);
+        FAIL("fetic render ended or stalled before 5 frames:\n" << fetic::test::read_bytes(log));
       }
       REQUIRE(::kill(child, signal) == 0);
-      const std::optional<int> result = wait_bounded(child, 120s);
-      const std::string output = read_bytes(log);
+      const auto [result, output] = fetic::test::wait_ending(child, log, 120s);
       INFO(output);
       REQUIRE(result);
-      status = *result;
+      const int status = *result;
 
       const int frames = count_frames(out);
       CHECK(frames >= 5);
@@ -182,26 +140,12 @@ TEST_CASE("fetic render: SIGTERM while frames stream into ffmpeg stops it, leave
       if (entry.path().filename().string().rfind("movie.mp4.tmp", 0) == 0) return true;
     return false;
   };
-  const auto deadline = std::chrono::steady_clock::now() + 300s;
-  int status = 0;
-  bool exited = false;
-  while (!has_temporary_movie() && std::chrono::steady_clock::now() < deadline) {
-    if (::waitpid(child, &status, WNOHANG) == child) {
-      exited = true;
-      break;
-    }
-    std::this_thread::sleep_for(2ms);
-  }
-  if (exited || !has_temporary_movie()) {
-    if (!exited) {
-      ::kill(child, SIGKILL);
-      ::waitpid(child, &status, 0);
-    }
-    FAIL("ffmpeg was not seen at work:\n" << read_bytes(log));
+  if (!fetic::test::wait_for(child, has_temporary_movie, 300s, 2ms)) {
+    fetic::test::kill_child(child);
+    FAIL("ffmpeg was not seen at work:\n" << fetic::test::read_bytes(log));
   }
   REQUIRE(::kill(child, SIGTERM) == 0);
-  const std::optional<int> result = wait_bounded(child, 120s);
-  const std::string output = read_bytes(log);
+  const auto [result, output] = fetic::test::wait_ending(child, log, 120s);
   INFO(output);
   REQUIRE(result);
   REQUIRE(WIFEXITED(*result));

@@ -52,23 +52,17 @@ scenes::Scene bundled(const std::string& name) {
 }
 
 scenes::Scene dense_bars() {
-  scenes::GenerateOptions options;
-  options.model = scenes::ModelKind::Bar;
-  options.pairs = 2000;
-  options.elements = 4;
-  options.subdomains = 2;
-  return scenes::generate_scene(options);
+  return scenes::generate_scene(
+      {.model = scenes::ModelKind::Bar, .pairs = 2000, .elements = 4, .subdomains = 2});
 }
 
 scenes::Scene plane_100k() {
-  scenes::GenerateOptions options;
-  options.model = scenes::ModelKind::Plane;
-  options.pairs = 10;
-  options.elements = 100;
-  options.elements_across = 24;
-  options.subdomains = 5;
-  options.subdomains_across = 1;
-  return scenes::generate_scene(options);
+  return scenes::generate_scene({.model = scenes::ModelKind::Plane,
+                                 .pairs = 10,
+                                 .elements = 100,
+                                 .elements_across = 24,
+                                 .subdomains = 5,
+                                 .subdomains_across = 1});
 }
 
 Color id_color(int strut) {

@@ -128,12 +128,10 @@ TEST_CASE("frame: free motions are the rigid motions supports and joints allow")
 }
 
 TEST_CASE("frame: generated portal frames are valid and have the requested size") {
-  GenerateOptions options;
-  options.model = ModelKind::Frame;
-  options.pairs = 3;
-  options.elements = 10;
-  options.subdomains = 2;
-  const Scene scene = parse_scene(scene_to_toml(generate_scene(options)), "generated.toml");
+  const Scene scene = parse_scene(
+      scene_to_toml(
+          generate_scene({.model = ModelKind::Frame, .pairs = 3, .elements = 10, .subdomains = 2})),
+      "generated.toml");
   CHECK(scene.struts.size() == 18);
   CHECK(scene.joints.size() == 12);
   CHECK(scene.contacts.size() == 3);

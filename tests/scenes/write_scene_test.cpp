@@ -86,13 +86,12 @@ TEST_CASE("every bundled scene survives writing and reading back unchanged") {
 }
 
 TEST_CASE("generated scenes are valid and have the requested size") {
-  GenerateOptions options;
-  options.model = ModelKind::Plane;
-  options.pairs = 3;
-  options.elements = 20;
-  options.elements_across = 6;
-  options.subdomains = 4;
-  options.subdomains_across = 2;
+  GenerateOptions options{.model = ModelKind::Plane,
+                          .pairs = 3,
+                          .elements = 20,
+                          .elements_across = 6,
+                          .subdomains = 4,
+                          .subdomains_across = 2};
   const Scene scene = generate_scene(options);
   const Scene read = parse_scene(scene_to_toml(scene), "generated.toml");
   require_same(scene, read);

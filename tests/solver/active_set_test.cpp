@@ -133,11 +133,8 @@ TEST_CASE("active set: a clamped frame strut of 200 elements converges to the cl
 TEST_CASE("active set: generated frames of 200 and 1,000 elements per strut converge") {
   for (const auto& [pairs, elements] : {std::pair{2, 200}, std::pair{1, 1000}}) {
     INFO(pairs << " pairs, " << elements << " elements per strut");
-    scenes::GenerateOptions options;
-    options.model = scenes::ModelKind::Frame;
-    options.pairs = pairs;
-    options.elements = elements;
-    options.subdomains = 4;
+    const scenes::GenerateOptions options{
+        .model = scenes::ModelKind::Frame, .pairs = pairs, .elements = elements, .subdomains = 4};
     const scenes::Scene scene =
         scenes::parse_scene(scenes::scene_to_toml(scenes::generate_scene(options)), "g.toml");
     const auto model = solver::build_model(scene);

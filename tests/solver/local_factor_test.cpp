@@ -42,14 +42,12 @@ solver::SparseMatrix grid_matrix(int nx, int ny) {
 }
 
 scenes::Scene small_plane() {
-  scenes::GenerateOptions o;
-  o.model = scenes::ModelKind::Plane;
-  o.pairs = 2;
-  o.elements = 24;
-  o.elements_across = 8;
-  o.subdomains = 4;
-  o.subdomains_across = 2;
-  return scenes::generate_scene(o);
+  return scenes::generate_scene({.model = scenes::ModelKind::Plane,
+                                 .pairs = 2,
+                                 .elements = 24,
+                                 .elements_across = 8,
+                                 .subdomains = 4,
+                                 .subdomains_across = 2});
 }
 
 }  // namespace

@@ -56,6 +56,19 @@ inline std::optional<int> wait_bounded(pid_t child, std::chrono::seconds limit) 
   return std::nullopt;
 }
 
+// How a signalled child ended: its wait status (none: still running after the limit, then
+// killed) and everything it printed.
+struct Ending {
+  std::optional<int> status;
+  std::string output;
+};
+
+inline Ending wait_ending(pid_t child, const std::filesystem::path& log,
+                          std::chrono::seconds limit) {
+  const std::optional<int> status = wait_bounded(child, limit);
+  return {status, read_bytes(log)};
+}
+
 // Polls `reached` every `poll` until it holds (true), or the child has ended or `limit`
 // has passed (false). The child is left as it is: running, or ended and not collected.
 template <class Condition>
