@@ -236,7 +236,10 @@ void RenderRun::lay_out_view() {
   if (args_.labels) view_.show_labels = true;
   view_.show_chart = render::chart_shown(model_, args_.chart ? 1 : args_.no_chart ? 0 : -1);
   apply_scales(saved_.scales, extent_);
-  view_.scale_basis = scale_basis(plan_, extent_, saved_.scales.has_value());
+  // A view the window saved names what its scales are the largest over, as it said.
+  view_.scale_basis = saved_.scales && saved_.scale_basis
+                          ? *saved_.scale_basis
+                          : scale_basis(plan_, extent_, saved_.scales.has_value());
   render::OverlayInfo info;
   info.title =
       model_.title.empty() ? std::filesystem::path(args_.scene).filename().string() : model_.title;

@@ -159,7 +159,7 @@ SavedView parse_view(const std::string& text, const std::string& path) {
   const Reader r(path);
   r.only(root,
          {"fetic_view", "size", "center", "zoom", "magnification", "text_size", "color", "show",
-          "scales"},
+          "scales", "scale_basis"},
          "");
   SavedView view;
   r.number(root, "fetic_view", "", true);
@@ -177,6 +177,12 @@ SavedView parse_view(const std::string& text, const std::string& path) {
   }
   view.zoom = r.number(root, "zoom");
   view.text_size = r.number(root, "text_size");
+  if (const json* basis = r.find(root, "scale_basis")) {
+    if (!basis->is_string() || basis->get<std::string>().size() > 60 ||
+        scenes::printable(basis->get<std::string>()) != basis->get<std::string>())
+      r.fail("scale_basis", "must be a short line of text such as \"over loads 0-2\"");
+    view.scale_basis = basis->get<std::string>();
+  }
   // "auto" (or 0, as older files have it): chosen from the scales, as the window does.
   if (const json* m = r.find(root, "magnification"))
     view.magnification = (m->is_string() && m->get<std::string>() == "auto") ||
@@ -240,6 +246,7 @@ std::string view_json(const SavedView& view) {
       root["magnification"] = "auto";
   }
   if (view.text_size) root["text_size"] = *view.text_size;
+  if (view.scale_basis) root["scale_basis"] = *view.scale_basis;
   if (view.color_by) root["color"] = color_name(*view.color_by);
   nlohmann::ordered_json show = nlohmann::ordered_json::object();
   if (view.forces) show["forces"] = *view.forces;

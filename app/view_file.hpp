@@ -26,6 +26,8 @@ struct SavedView {
   std::optional<bool> forces, gaps, overlay, labels;
   // The run's scales the picture was drawn with (colour map and glyph ends, axes).
   std::optional<render::RunExtent> scales;
+  // What those scales are the largest over, as the window's legends say ("over loads 0-2").
+  std::optional<std::string> scale_basis;
 };
 
 // A view file that cannot be read or has a bad entry: the message names the file (and the

@@ -598,9 +598,7 @@ void draw_value_legend(DrawList& list, const SceneFraming& framing, const scenes
     return at + estimated_text_width(candidate, label) <= x1;
   };
   const std::string full = named + " (" + what + ")";
-  const std::string shown = fits(full)                        ? full
-                            : fits(named) || legend.keep_name ? named
-                                                              : end;
+  const std::string shown = fits(full) ? full : fits(named) || legend.keep_name ? named : end;
   list.text(shown, {at, y}, label, palette::ink, HAlign::Left, VAlign::Middle);
 }
 
@@ -751,12 +749,17 @@ void draw_glyph_legend(DrawList& list, const SceneFraming& framing, const GlyphT
     }
     return count;
   };
+  // Not below the smallest legible text (its text is 0.8 t): more rows instead, upward.
+  const float least = framing.smallest_text / 0.8f;
   float t = full;
-  while (t > 0.6f * full && rows_needed(t) > rows)
+  while (t > 0.6f * full && 0.9f * t >= least && rows_needed(t) > rows)
     t *= 0.9f;
+  t = std::max(t, least);
+  const int needed = rows_needed(t);
+  const bool grow = least > 0.0f && needed > rows;
   const float row_height =
-      std::min(1.3f * t, (band.y1 - band.y0) / std::max(1, rows_needed(t) - 1));
-  float x = band.x0, y = band.y0;
+      grow ? 1.3f * t : std::min(1.3f * t, (band.y1 - band.y0) / std::max(1, needed - 1));
+  float x = band.x0, y = grow ? band.y1 - row_height * static_cast<float>(needed - 1) : band.y0;
   for (const auto& item : items) {
     const float width = item_width(item, t);
     if (x > band.x0 && x + width > band.x1) {
@@ -772,7 +775,7 @@ void draw_glyph_legend(DrawList& list, const SceneFraming& framing, const GlyphT
 
 void draw_caption(DrawList& list, const solver::Snapshot& snapshot, const SceneFraming& framing,
                   const SceneCaption& caption, const scenes::Units& units) {
-  std::string text;
+  std::string text, limit;
   if (!caption.method.empty()) text += caption.method + "  ·  ";
   text += "load factor " + format("%.4g", snapshot.load_factor);
   if (!caption.load_step.empty()) text += " (" + caption.load_step + ")";
@@ -780,14 +783,27 @@ void draw_caption(DrawList& list, const solver::Snapshot& snapshot, const SceneF
   text += std::string("  ·  ") +
           (framing.gaps_magnified ? "displacements and gaps " : "displacements ") +
           times(framing.magnification);
-  if (framing.limited_by == "crossing") text += " (more would make struts cross)";
-  if (framing.limited_by == "gaps") text += " (more would not leave the struts room for the gaps)";
-  if (framing.limited_by == "elements") text += " (more would turn elements inside out)";
-  text += "  ·  " + units.length + ", " + units.force + ", " + scenes::stress_unit(units);
+  if (framing.limited_by == "crossing") limit = " (more would make struts cross)";
+  if (framing.limited_by == "gaps") limit = " (more would not leave the struts room for the gaps)";
+  if (framing.limited_by == "elements") limit = " (more would turn elements inside out)";
+  const std::string unit_names =
+      "  ·  " + units.length + ", " + units.force + ", " + scenes::stress_unit(units);
   const float room = framing.region.width() - 2.0f * framing.text_size;
-  float size = 0.85f * framing.text_size;
-  const float width = estimated_text_width(text, size);
-  if (width > room) size = std::max(0.6f * framing.text_size, size * room / width);
+  const auto fitted = [&](const std::string& line) {
+    const float size = 0.85f * framing.text_size;
+    const float width = estimated_text_width(line, size);
+    return width > room ? std::max(0.6f * framing.text_size, size * room / width) : size;
+  };
+  // Where the line would need text below the smallest legible size, the reason for the
+  // magnification goes first, then the units (the legends name them too).
+  float size = fitted(text + limit + unit_names);
+  if (size >= framing.smallest_text)
+    text += limit + unit_names;
+  else if ((size = fitted(text + unit_names)) >= framing.smallest_text)
+    text += unit_names;
+  else
+    size = fitted(text);
+  size = std::max(size, framing.smallest_text);
   list.text(text,
             {framing.region.x0 + framing.text_size, framing.region.y0 + 0.4f * framing.text_size},
             size, palette::muted, HAlign::Left, VAlign::Top);

@@ -271,6 +271,7 @@ SceneFraming frame_scene(const solver::Model& model, const View& view, const Run
   SceneFraming framing;
   framing.region = region;
   framing.text_size = text_size(view);
+  framing.smallest_text = view.min_text_size > 0.0f ? 0.68f * framing.text_size : 0.0f;
   framing.line_width = std::max(1.0f, framing.text_size / 15.0f);
   framing.widening = view.magnify_gaps ? gap_widening(model) : std::vector<std::vector<Vec2>>{};
   framing.clearance = side_clearances(model);

@@ -31,11 +31,14 @@ struct SceneFraming {
   double pixels_per_unit = 1.0;   // world length unit to pixels
   solver::Vec2 world_center{0, 0};
   Point pixel_center;
-  float bar_width = 6.0f;     // pixels
-  float widest_bar = 9.0f;    // bars are at most this wide (from the region), ...
-  bool fixed_bar = false;     // ... or exactly bar_width when the view fixes it
-  float lane = 1e9f;          // pixels between the axes of side-by-side parallel struts
-  float text_size = 14.0f;    // pixels
+  float bar_width = 6.0f;   // pixels
+  float widest_bar = 9.0f;  // bars are at most this wide (from the region), ...
+  bool fixed_bar = false;   // ... or exactly bar_width when the view fixes it
+  float lane = 1e9f;        // pixels between the axes of side-by-side parallel struts
+  float text_size = 14.0f;  // pixels
+  // No text is set smaller than this when the view asks for legible text (the window's
+  // View::min_text_size; 0: a legend or caption may shrink to fit).
+  float smallest_text = 0.0f;
   float line_width = 1.0f;    // pixels of a thin line; grows with the text
   double force_scale = 0.0;   // largest contact force of the run (glyph size 1)
   double stress_scale = 0.0;  // largest |axial stress| of the run (colour map end)

@@ -38,6 +38,7 @@ SavedView App::current_view() const {
   saved.magnification = magnification_;
   const render::View v = view(view_width_, view_height_);
   saved.color_by = v.color_by;
+  saved.scale_basis = v.scale_basis;
   saved.forces = forces_;
   saved.gaps = gaps_;
   saved.overlay = show_overlay_;

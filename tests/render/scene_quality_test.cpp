@@ -329,3 +329,31 @@ TEST_CASE("the GPU colours beams by moment as the CPU does") {
   REQUIRE(solved.extent.largest_moment > 0.0);
   check_gpu_draws_as_cpu(solved, ColorBy::Moment);
 }
+
+// Issue 26 item 2: in the window (which sets View::min_text_size so that its smallest
+// text, 0.68 of the base size, is 11 px at UI scale 1: app/gui/picture.cpp) no text of
+// the picture - caption, legends with their scale notes, overlay plots, chart - is drawn
+// smaller than 11 px, at the picture sizes of 1280x800, 1366x768 and a small window.
+TEST_CASE("the window's picture has no text under 11 pixels") {
+  const float smallest = 11.0f;
+  for (const char* name : {"thesis.toml", "frame_portal_sway.toml", "plane_pair.toml"}) {
+    const Solved solved = solve(bundled(name), solver::MethodKind::ActiveSet);
+    for (const auto& [width, height] : {std::pair{950, 800}, {1036, 740}, {560, 480}}) {
+      View view = view_of(width, height);
+      view.min_text_size = std::ceil(smallest / 0.68f);
+      view.show_overlay = true;
+      view.show_chart = true;
+      view.color_by = ColorBy::Stress;
+      view.scale_basis = "over loads 0-2";
+      const FrameComposer composer(solved.model, view, solved.extent,
+                                   {"feti-c (dirichlet)", "a scene with a long title", "", ""});
+      std::vector<solver::HistoryEntry> history;
+      const ComposedFrame frame = composer.compose(Frame{0, 0, solved.final, history});
+      for (const DrawList* list : {&frame.glyphs, &frame.overlay, &frame.chart})
+        for (const TextItem& text : list->texts()) {
+          INFO(name << " at " << width << "x" << height << ": '" << text.text << "'");
+          CHECK(text.size >= smallest);
+        }
+    }
+  }
+}
