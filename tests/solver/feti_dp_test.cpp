@@ -23,18 +23,6 @@ namespace {
 constexpr Preconditioner kPreconditioners[] = {Preconditioner::Dirichlet, Preconditioner::Lumped,
                                                Preconditioner::None};
 
-double rotation_error(const testing::Solved& solved, const testing::ReferenceSolution& reference) {
-  if (!solved.model.frame()) return 0.0;
-  const auto rotations = solver::strut_rotations(solved.model, solved.state);
-  double difference = 0.0, size = 0.0;
-  for (size_t s = 0; s < rotations.size(); ++s)
-    for (size_t n = 0; n < rotations[s].size(); ++n) {
-      difference += std::pow(rotations[s][n] - reference.rotation.at(s).at(n), 2);
-      size += std::pow(reference.rotation[s][n], 2);
-    }
-  return size > 0.0 ? std::sqrt(difference / size) : std::sqrt(difference);
-}
-
 // Solves `text` by FETI-DP (cluster_size as SolveOptions::corner_clusters) and checks it
 // against CGAL; returns the active pairs.
 int check_dp(const std::string& text, int trial, int cluster_size = -1) {

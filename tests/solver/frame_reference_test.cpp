@@ -16,17 +16,6 @@ using fetic::solver::MethodKind;
 
 namespace {
 
-double rotation_error(const testing::Solved& solved, const testing::ReferenceSolution& reference) {
-  const auto rotations = solver::strut_rotations(solved.model, solved.state);
-  double difference = 0.0, size = 0.0;
-  for (size_t s = 0; s < rotations.size(); ++s)
-    for (size_t n = 0; n < rotations[s].size(); ++n) {
-      difference += std::pow(rotations[s][n] - reference.rotation.at(s).at(n), 2);
-      size += std::pow(reference.rotation[s][n], 2);
-    }
-  return size > 0.0 ? std::sqrt(difference / size) : std::sqrt(difference);
-}
-
 // FETI-C stops on its dual residual; on frames the displacement error is up to ~1000
 // times that (bending makes F less well conditioned than in the bar model: at the
 // default 1e-10 the 120 random scenes agree to 4e-8), so the comparison to 1e-8 asks

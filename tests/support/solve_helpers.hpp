@@ -94,6 +94,20 @@ inline double displacement_error(const Solved& solved, const ReferenceSolution& 
   return size > 0.0 ? std::sqrt(difference / size) : std::sqrt(difference);
 }
 
+// ||theta - theta_ref|| / ||theta_ref|| over every node rotation of a frame; 0 for a scene
+// without beams.
+inline double rotation_error(const Solved& solved, const ReferenceSolution& reference) {
+  if (!solved.model.frame()) return 0.0;
+  const auto rotations = solver::strut_rotations(solved.model, solved.state);
+  double difference = 0.0, size = 0.0;
+  for (size_t s = 0; s < rotations.size(); ++s)
+    for (size_t n = 0; n < rotations[s].size(); ++n) {
+      difference += std::pow(rotations[s][n] - reference.rotation.at(s).at(n), 2);
+      size += std::pow(reference.rotation[s][n], 2);
+    }
+  return size > 0.0 ? std::sqrt(difference / size) : std::sqrt(difference);
+}
+
 // ||force - force_ref|| / max(||force_ref||, force_scale) over every contact pair.
 inline double force_error(const Solved& solved, const ReferenceSolution& reference,
                           double force_scale) {
