@@ -7,6 +7,7 @@
 #include <memory>
 #include <vector>
 
+#include "solver/compact_factor.hpp"
 #include "solver/stiffness.hpp"
 
 namespace fetic::solver {
@@ -44,6 +45,12 @@ class CholmodFactor {
   // becomes a simplicial LDL', whose pattern the update may not leave (C C' within the
   // analysed pattern). NotPositiveDefinite when a removal leaves A singular.
   Result update(const SparseMatrix& C, bool add);
+  // Replaces CHOLMOD's factor by a lean copy for solving only (CompactFactor: its
+  // nonzeros alone, 10 bytes each, and faster solves for small factors). Afterwards only
+  // solve(), solve_leading() and the queries work; refactorize() and update() throw.
+  // Returns false (and keeps CHOLMOD's factor) when the order is too large for it.
+  bool compact();
+  bool compacted() const { return compact_ != nullptr; }
   // Column where factorization broke down (valid after NotPositiveDefinite).
   int failed_column() const { return failed_column_; }
   // CHOLMOD's cheap estimate min(diag L) / max(diag L), squared for an LL' factor.
@@ -64,6 +71,8 @@ class CholmodFactor {
   Result numeric(const SparseMatrix& A);
   void solve_system(int system, const double* b) const;  // into impl_->x
   std::unique_ptr<Impl> impl_;
+  std::unique_ptr<CompactFactor> compact_;
+  std::size_t compact_peak_ = 0;  // CHOLMOD's peak before compact() released it
   int size_ = 0;
   int leading_ = 0;  // rows of the leading block (0: none)
   int failed_column_ = -1;

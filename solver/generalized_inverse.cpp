@@ -92,7 +92,7 @@ CholmodFactor::Result GeneralizedInverse::factorize_kept(const SparseMatrix& K,
     for (int dof : kept_)
       leading.push_back((*boundary)[dof] ? 0 : 1);
   }
-  if (fixed_.empty()) return boundary ? factor_.factorize(K, leading) : factor_.factorize(K);
+  if (fixed_.empty()) return compacted(boundary ? factor_.factorize(K, leading) : factor_.factorize(K));
   std::vector<Eigen::Triplet<double>> entries;
   entries.reserve(static_cast<size_t>(K.nonZeros()));
   for (int col = 0; col < K.outerSize(); ++col)
@@ -102,7 +102,13 @@ CholmodFactor::Result GeneralizedInverse::factorize_kept(const SparseMatrix& K,
   const int n = static_cast<int>(kept_.size());
   SparseMatrix reduced(n, n);
   reduced.setFromTriplets(entries.begin(), entries.end());
-  return boundary ? factor_.factorize(reduced, leading) : factor_.factorize(reduced);
+  return compacted(boundary ? factor_.factorize(reduced, leading) : factor_.factorize(reduced));
+}
+
+CholmodFactor::Result GeneralizedInverse::compacted(CholmodFactor::Result result) {
+  // K^+ is only ever solved with: the lean copy holds the factor from here on.
+  if (result == CholmodFactor::Result::Ok) factor_.compact();
+  return result;
 }
 
 void GeneralizedInverse::interior_solve(const double* x, double* y) const {

@@ -53,6 +53,7 @@ class GeneralizedInverse {
   std::vector<int> kept_;      // factorized DOFs, in order
   std::vector<int> interior_;  // per interior DOF its row in the factorized matrix
   CholmodFactor::Result factorize_kept(const SparseMatrix& K, const std::vector<char>* leading);
+  CholmodFactor::Result compacted(CholmodFactor::Result result);
   CholmodFactor factor_;
 };
 
