@@ -97,12 +97,7 @@ std::string limit_problem(const GenerateArgs& args, const scenes::GenerateOption
       sample.pairs;
   // Names and numbers grow by a few digits over the pairs: 10% on top.
   const double bytes = 1.1 * per_pair * options.pairs + static_cast<double>(header(args, 0).size());
-  if (const auto available = available_memory();
-      available && memory_check_enabled() &&
-      estimate_parse_memory(bytes) + bytes > available->bytes)
-    return "not enough memory: making and checking a scene of about " + memory_text(bytes) +
-           " needs about " + memory_text(estimate_parse_memory(bytes) + bytes) + ", and " +
-           memory_text(available->bytes) + " is available (" + available->limited_by + ")";
+  // The format's limit first: it refuses the same options on every machine.
   if (bytes > static_cast<double>(scenes::kMaxSceneFileBytes)) {
     char text[160];
     std::snprintf(text, sizeof text,
@@ -112,6 +107,12 @@ std::string limit_problem(const GenerateArgs& args, const scenes::GenerateOption
                   std::floor(static_cast<double>(scenes::kMaxSceneFileBytes) / (1.1 * per_pair)));
     return text;
   }
+  if (const auto available = available_memory();
+      available && memory_check_enabled() &&
+      estimate_parse_memory(bytes) + bytes > available->bytes)
+    return "not enough memory: making and checking a scene of about " + memory_text(bytes) +
+           " needs about " + memory_text(estimate_parse_memory(bytes) + bytes) + ", and " +
+           memory_text(available->bytes) + " is available (" + available->limited_by + ")";
   return "";
 }
 

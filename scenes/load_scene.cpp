@@ -15,6 +15,7 @@
 #include "scenes/frame_mechanisms.hpp"
 #include "scenes/message_text.hpp"
 #include "scenes/scene_text.hpp"
+#include "scenes/toml_guard.hpp"
 #include "scenes/units.hpp"
 #include "scenes/validate_scene.hpp"
 
@@ -815,165 +816,11 @@ class SceneParser {
   std::unordered_map<std::string, int> strut_index_;  // name -> first strut of that name
 };
 
-// toml++ 3.3 (Debian 12) asks whether a non-ASCII character is whitespace wherever it
-// expects a key, a value or the text after a line-ending backslash, and for most code
-// points (U+00A1..U+0499, U+FC66..U+FEFE, ...) that question reaches TOML_UNREACHABLE:
-// undefined behaviour (found by fuzz/fuzz_scene with UBSan). TOML allows non-ASCII
-// characters only inside strings and comments, so this lexer finds the first one anywhere
-// else, before toml++ sees it. Returns its line and what it is, or line 0.
-class NonAsciiLexer {
- public:
-  explicit NonAsciiLexer(std::string_view text) : text_(text) {}
-
-  Problem run() {
-    for (size_t i = 0; i < text_.size(); ++i) {
-      const char c = text_[i];
-      const bool ascii = static_cast<unsigned char>(c) < 0x80;
-      if (c == '\n') ++line_;
-      const char* problem = nullptr;
-      switch (state_) {
-        case State::Normal:
-          problem = normal(i, c, ascii);
-          break;
-        case State::Comment:
-          if (c == '\n') end_of_line_outside();
-          break;
-        case State::Basic:
-          if (c == '\\' && i + 1 < text_.size() && text_[i + 1] != '\n')
-            ++i;  // an escaped character
-          else if (c == '"' || c == '\n')
-            end_of_one_line_string(c);
-          break;
-        case State::Literal:
-          if (c == '\'' || c == '\n') end_of_one_line_string(c);
-          break;
-        case State::MultiBasic:
-          problem = multi_basic(i, c, ascii);
-          break;
-        case State::MultiLiteral:
-          if (starts(i, "'''")) end_of_multi_line_string(i, '\'');
-          break;
-      }
-      if (problem)
-        return {line_, std::string("TOML syntax error: a non-ASCII character ") + problem};
-    }
-    return {0, ""};
-  }
-
- private:
-  enum class State { Normal, Comment, Basic, Literal, MultiBasic, MultiLiteral };
-
-  bool starts(size_t i, std::string_view what) const {
-    return text_.substr(i, what.size()) == what;
-  }
-  void end_of_line_outside() {
-    state_ = State::Normal;
-    in_word_ = false;
-    if (depth_ == 0) value_ = false;
-  }
-  void end_of_one_line_string(char c) {
-    state_ = State::Normal;
-    in_word_ = true;  // a quote right after a string starts none
-    if (c == '\n' && depth_ == 0) value_ = false;
-  }
-  void end_of_multi_line_string(size_t& i, char quote) {
-    state_ = State::Normal;
-    i += 2;
-    for (int extra = 0; extra < 2 && i + 1 < text_.size() && text_[i + 1] == quote; ++extra)
-      ++i;  // up to 2 quotes before the end
-    in_word_ = true;
-  }
-
-  // Outside strings and comments.
-  const char* normal(size_t& i, char c, bool ascii) {
-    if (!ascii) return "outside a string or comment";
-    if (c == '#') {
-      state_ = State::Comment;
-      in_word_ = false;
-    } else if (c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == ',' || c == ']' ||
-               c == '}') {  // toml++'s value terminators
-      in_word_ = false;
-      if (value_ && (c == ']' || c == '}') && depth_ > 0) --depth_;
-      if (c == '\n' && depth_ == 0) value_ = false;
-    } else if (c == '"' || c == '\'') {
-      // In a bare word (0"x, a."b") toml++ scans on through the quote: no string.
-      if (in_word_) return nullptr;
-      const bool triple = starts(i, c == '"' ? "\"\"\"" : "'''");
-      state_ = c == '"' ? (triple ? State::MultiBasic : State::Basic)
-                        : (triple ? State::MultiLiteral : State::Literal);
-      if (triple) i += 2;
-    } else if (!value_) {  // keys and table headers
-      if (c == '=') {
-        value_ = true;
-        depth_ = 0;
-        in_word_ = false;
-      } else {
-        in_word_ = std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.';
-      }
-    } else if (!in_word_ && (c == '[' || c == '{')) {
-      ++depth_;
-    } else if (in_word_ || c != '=') {  // '=' between words: key = value in an inline table
-      in_word_ = true;
-    }
-    return nullptr;
-  }
-
-  // Inside a multi-line basic string: what follows a backslash.
-  const char* multi_basic(size_t& i, char c, bool ascii) {
-    if (continuation_) {
-      if (c == ' ' || c == '\t' || c == '\r' || c == '\n') return nullptr;
-      if (!ascii) return "right after a line-ending backslash in a multi-line string";
-      continuation_ = false;
-    }
-    if (c == '\\') {
-      size_t j = i + 1;
-      while (j < text_.size() && (text_[j] == ' ' || text_[j] == '\t' || text_[j] == '\r'))
-        ++j;
-      if (j < text_.size() && static_cast<unsigned char>(text_[j]) >= 0x80)
-        return "after a backslash in a multi-line string";
-      if (j < text_.size() && text_[j] == '\n')
-        continuation_ = true;
-      else if (i + 1 < text_.size())
-        ++i;  // an escaped character
-    } else if (starts(i, "\"\"\"")) {
-      end_of_multi_line_string(i, '"');
-    }
-    return nullptr;
-  }
-
-  std::string_view text_;
-  State state_ = State::Normal;
-  int line_ = 1;
-  bool continuation_ = false;  // after a line-ending backslash in a multi-line basic string
-  // Outside strings and comments: in a value (after '=', until the end of the line outside
-  // brackets), brackets open there, and inside a bare word (key, number, date, ...).
-  bool value_ = false;
-  int depth_ = 0;
-  bool in_word_ = false;
-};
-
-Problem misplaced_non_ascii(std::string_view text) {
-  return NonAsciiLexer(text).run();
-}
-
-}  // namespace
-
-namespace {
-
 // parse_scene(), with `stop` asked between the steps of checks that take long on large
 // scenes (the frame mechanism check): then a SceneError says the loading was interrupted.
 Scene parse_scene_text(std::string_view text, const std::string& path,
                        const std::function<bool()>& stop) {
-  // TOML allows no NUL byte anywhere; toml++ 3.3 trips over some (after '[' an internal
-  // assertion, found by fuzz/fuzz_scene). Refuse them up front with a clearer message.
-  if (const size_t nul = text.find('\0'); nul != std::string_view::npos) {
-    const auto line = 1 + std::count(text.begin(), text.begin() + static_cast<long>(nul), '\n');
-    throw SceneError(
-        path, {{static_cast<int>(line), "TOML syntax error: a NUL byte (not a text file?)"}});
-  }
-  if (Problem problem = misplaced_non_ascii(text); problem.line > 0)
-    throw SceneError(path, {std::move(problem)});
-  if (Problem problem = nesting_problem(text); problem.line > 0)
+  if (Problem problem = toml_guard_problem(text); problem.line > 0)
     throw SceneError(path, {std::move(problem)});
   toml::table root;
   try {

@@ -1,8 +1,6 @@
 #pragma once
-// The scene file as text, with the limits that protect everything after it: its size,
-// checked before reading, and the nesting of its TOML, checked before toml++ sees it
-// (toml++ 3.3 recurses once per level of dotted keys and table headers, without a cap:
-// 40,000 levels overflow the stack).
+// The scene file as text, read within a size limit checked before reading (what toml++
+// may then see is checked by scenes/toml_guard.hpp).
 
 #include <cstddef>
 #include <functional>
@@ -18,10 +16,6 @@ namespace fetic::scenes {
 // fits in far less text.
 inline constexpr std::size_t kMaxSceneFileBytes = std::size_t{64} << 20;
 
-// Deepest nesting accepted: tables (headers and dotted keys), arrays and inline tables
-// together. A scene needs 4 ([[strut]] in the root, a table, an array such as `from`).
-inline constexpr int kMaxNesting = 32;
-
 // Reads the file: a regular file's size is checked first, any other stream (a FIFO,
 // /dev/stdin, a device) is read up to the limit. Refuses a directory. Throws SceneError
 // naming the path. `stop` is asked whenever a signal interrupts a wait (opening a FIFO
@@ -33,10 +27,5 @@ std::string read_scene_text(const std::string& path, const std::function<bool()>
 // up to `max_bytes`.
 std::string read_text_file(const std::string& path, std::size_t max_bytes, const std::string& what,
                            const std::function<bool()>& stop = {});
-
-// The first place where the text nests deeper than kMaxNesting, or {0, ""}. It reads TOML
-// just far enough to count: strings and comments are skipped, every key segment, table
-// header segment, array of tables, array and inline table opens a level.
-Problem nesting_problem(std::string_view text);
 
 }  // namespace fetic::scenes

@@ -7,6 +7,7 @@ set(FETIC_SCENE_LOADER_SOURCES
   scene_geometry.cpp
   load_scene.cpp
   scene_text.cpp
+  toml_guard.cpp
   units.cpp
   validate_scene.cpp
   validate_frame.cpp

@@ -155,80 +155,82 @@ std::vector<ActiveSet::Component> ActiveSet::components() const {
   return list;
 }
 
-void ActiveSet::solve_subproblem() {
-  const RowSparseMatrix& A = problem_.contact_rows();
+// Step 1 of a subproblem: per component, the rigid-body modes the working set holds (the
+// row space of C = A_W R, rows of W x modes of the component) and those it does not; the
+// free ones that the load pushes give the amplitudes of a rigid motion.
+ActiveSet::ModeSplit ActiveSet::split_modes(const std::vector<Component>& parts) const {
   const SparseMatrix& R = problem_.kernel();
-  const int w = static_cast<int>(working_.size());
-  const int modes = static_cast<int>(R.cols());
-  const std::vector<Component> parts = components();
   const Eigen::VectorXd Rg = R.transpose() * g_;
-
-  // Rigid-body modes the working set does not hold: per component, the null space of
-  // C = A_W R (rows of W x modes of the component). C and R'g of each component are kept
-  // for its saddle system below.
-  std::vector<Eigen::MatrixXd> held(parts.size()), C(parts.size());
-  std::vector<Eigen::VectorXd> rg(parts.size());
-  Eigen::VectorXd amplitudes = Eigen::VectorXd::Zero(modes);  // of a rigid motion
-  bool pushed = false;
+  ModeSplit split;
+  split.held.resize(parts.size());
+  split.C.resize(parts.size());
+  split.rg.resize(parts.size());
+  split.amplitudes = Eigen::VectorXd::Zero(R.cols());
   for (size_t c = 0; c < parts.size(); ++c) {
     const Component& part = parts[c];
     const int cw = static_cast<int>(part.rows.size());
     const int cm = static_cast<int>(part.modes.size());
-    held[c].resize(cm, 0);
+    split.held[c].resize(cm, 0);
     if (cm == 0) continue;
-    C[c].resize(cw, cm);
-    rg[c].resize(cm);
+    Eigen::MatrixXd& C = split.C[c];
+    C.resize(cw, cm);
+    split.rg[c].resize(cm);
     for (int k = 0; k < cm; ++k) {
-      rg[c](k) = Rg(part.modes[k]);
+      split.rg[c](k) = Rg(part.modes[k]);
       for (int i = 0; i < cw; ++i)
-        C[c](i, k) = AR_.coeff(working_[part.rows[i]], part.modes[k]);
+        C(i, k) = AR_.coeff(working_[part.rows[i]], part.modes[k]);
     }
     Eigen::MatrixXd free_basis;
     if (cw == 0) {
       free_basis = Eigen::MatrixXd::Identity(cm, cm);
     } else {
-      Eigen::JacobiSVD<Eigen::MatrixXd> svd(C[c], Eigen::ComputeFullV);
+      Eigen::JacobiSVD<Eigen::MatrixXd> svd(C, Eigen::ComputeFullV);
       const Eigen::VectorXd& sigma = svd.singularValues();
       const double threshold = 1e-10 * (sigma.size() ? sigma(0) : 0.0);
       int rank = 0;
       while (rank < sigma.size() && sigma(rank) > threshold)
         ++rank;
       free_basis = svd.matrixV().rightCols(cm - rank);
-      held[c] = svd.matrixV().leftCols(rank);
+      split.held[c] = svd.matrixV().leftCols(rank);
     }
     if (free_basis.cols() == 0) continue;
-    const Eigen::VectorXd h = free_basis.transpose() * rg[c];
-    if (h.lpNorm<Eigen::Infinity>() > options_.tolerance * f_scale_) pushed = true;
+    const Eigen::VectorXd h = free_basis.transpose() * split.rg[c];
+    if (h.lpNorm<Eigen::Infinity>() > options_.tolerance * f_scale_) split.pushed = true;
     const Eigen::VectorXd a = -(free_basis * h);
     for (int k = 0; k < cm; ++k)
-      amplitudes(part.modes[k]) = a(k);
+      split.amplitudes(part.modes[k]) = a(k);
   }
-  if (pushed) {
-    // Unheld and pushed: move as a rigid body down the load (zero curvature).
-    p_ = R * amplitudes;
-    moving_struts_.clear();
-    for (int j = 0; j < modes; ++j)
-      if (std::abs(amplitudes(j)) > 1e-12 * amplitudes.lpNorm<Eigen::Infinity>())
-        for (int strut : problem_.kernel_struts()[j])
-          if (std::find(moving_struts_.begin(), moving_struts_.end(), strut) ==
-              moving_struts_.end())
-            moving_struts_.push_back(strut);
-    multiplier_.assign(w, 0.0);
-    move_ = Move::RigidMotion;
-    return;
-  }
+  return split;
+}
 
-  // Per component, the saddle system [S_W -C~; -C~' 0][mu; beta] = [-A_W K^+ g; R~'g],
-  // C~ = A_W R~ with R~ the held modes.
+// Unheld and pushed: the move is a rigid motion down the load (zero curvature).
+void ActiveSet::take_rigid_motion(const Eigen::VectorXd& amplitudes) {
+  p_ = problem_.kernel() * amplitudes;
+  moving_struts_.clear();
+  for (int j = 0; j < static_cast<int>(amplitudes.size()); ++j)
+    if (std::abs(amplitudes(j)) > 1e-12 * amplitudes.lpNorm<Eigen::Infinity>())
+      for (int strut : problem_.kernel_struts()[j])
+        if (std::find(moving_struts_.begin(), moving_struts_.end(), strut) == moving_struts_.end())
+          moving_struts_.push_back(strut);
+  multiplier_.assign(working_.size(), 0.0);
+  move_ = Move::RigidMotion;
+}
+
+// Step 2: per component, the saddle system [S_W -C~; -C~' 0][mu; beta] = [-A_W K^+ g;
+// R~'g], C~ = A_W R~ with R~ the held modes. Sets multiplier_; returns R~ beta in mode
+// amplitudes.
+Eigen::VectorXd ActiveSet::solve_saddle_systems(const std::vector<Component>& parts,
+                                                const ModeSplit& split) {
+  const RowSparseMatrix& A = problem_.contact_rows();
   Eigen::VectorXd v;
   problem_.apply_pseudo_inverse(g_, v);
   std::vector<int> position(A.rows(), -1);
-  multiplier_.assign(w, 0.0);
-  Eigen::VectorXd beta_modes = Eigen::VectorXd::Zero(modes);  // R~ beta, in mode amplitudes
+  multiplier_.assign(working_.size(), 0.0);
+  Eigen::VectorXd beta_modes = Eigen::VectorXd::Zero(problem_.kernel().cols());
   for (size_t c = 0; c < parts.size(); ++c) {
     const Component& part = parts[c];
     const int cw = static_cast<int>(part.rows.size());
-    const int r = static_cast<int>(held[c].cols());
+    const int r = static_cast<int>(split.held[c].cols());
     if (cw + r == 0) continue;
     for (int i = 0; i < cw; ++i)
       position[working_[part.rows[i]]] = i;
@@ -241,10 +243,10 @@ void ActiveSet::solve_subproblem() {
       rhs(j) = -A.row(row).dot(v);
     }
     if (r > 0) {
-      const Eigen::MatrixXd Ct = C[c] * held[c];
+      const Eigen::MatrixXd Ct = split.C[c] * split.held[c];
       M.topRightCorner(cw, r) = -Ct;
       M.bottomLeftCorner(r, cw) = -Ct.transpose();
-      rhs.tail(r) = held[c].transpose() * rg[c];
+      rhs.tail(r) = split.held[c].transpose() * split.rg[c];
     }
     const Eigen::VectorXd solution = M.partialPivLu().solve(rhs);
     for (int i = 0; i < cw; ++i) {
@@ -252,20 +254,27 @@ void ActiveSet::solve_subproblem() {
       position[working_[part.rows[i]]] = -1;
     }
     if (r > 0) {
-      const Eigen::VectorXd b = held[c] * solution.tail(r);
+      const Eigen::VectorXd b = split.held[c] * solution.tail(r);
       for (size_t k = 0; k < part.modes.size(); ++k)
         beta_modes(part.modes[k]) = b(static_cast<int>(k));
     }
   }
+  return beta_modes;
+}
+
+// Step 3: the step p = -K^+(g + A_W' mu) + R~ beta; taken unless it is rounding (checked
+// only for steps near the tolerance: one more solve with K), else drop the most negative
+// multiplier, or done.
+void ActiveSet::choose_move(const Eigen::VectorXd& beta_modes) {
+  const RowSparseMatrix& A = problem_.contact_rows();
+  const int w = static_cast<int>(working_.size());
   Eigen::VectorXd load_on_free = g_;
   for (int j = 0; j < w; ++j)
     load_on_free += multiplier_[j] * A.row(working_[j]).transpose();
   problem_.apply_pseudo_inverse(load_on_free, p_);
   p_ = -p_;
-  if (modes > 0) p_ += R * beta_modes;
+  if (beta_modes.size() > 0) p_ += problem_.kernel() * beta_modes;
 
-  // A step above the tolerance is taken unless it is rounding: checked only for steps
-  // near the tolerance (one more solve with K).
   const double step = p_.lpNorm<Eigen::Infinity>();
   if (step > options_.tolerance * u_scale_ &&
       (step > 1e4 * options_.tolerance * u_scale_ ||
@@ -282,6 +291,16 @@ void ActiveSet::solve_subproblem() {
       drop_ = j;
     }
   move_ = drop_ >= 0 ? Move::Drop : Move::Done;
+}
+
+void ActiveSet::solve_subproblem() {
+  const std::vector<Component> parts = components();
+  const ModeSplit split = split_modes(parts);
+  if (split.pushed) {
+    take_rigid_motion(split.amplitudes);
+    return;
+  }
+  choose_move(solve_saddle_systems(parts, split));
 }
 
 double ActiveSet::ratio_test(double limit) {

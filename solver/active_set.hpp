@@ -42,7 +42,21 @@ class ActiveSet final : public Method {
   };
   std::vector<Component> components() const;
 
+  // Per component of W: the modes W holds, the rows x modes block C = A_W R and R'g (for
+  // the saddle system), and the rigid motion of the modes it does not hold.
+  struct ModeSplit {
+    std::vector<Eigen::MatrixXd> held, C;
+    std::vector<Eigen::VectorXd> rg;
+    Eigen::VectorXd amplitudes;  // of the rigid motion, per mode
+    bool pushed = false;         // a free mode is pushed by the load
+  };
+
+  // One subproblem on the working set W, in three steps (below), which sets move_.
   void solve_subproblem();
+  ModeSplit split_modes(const std::vector<Component>& parts) const;
+  void take_rigid_motion(const Eigen::VectorXd& amplitudes);
+  Eigen::VectorXd solve_saddle_systems(const std::vector<Component>& parts, const ModeSplit& split);
+  void choose_move(const Eigen::VectorXd& beta_modes);
   void record_move();
   double slack(int row) const;
   // Smallest step along p_ (at most `limit`) that keeps rows outside W feasible; sets

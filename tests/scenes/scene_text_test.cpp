@@ -1,6 +1,6 @@
-// The limits checked before toml++ sees a scene (scenes/scene_text.hpp): nesting of every
-// kind toml++ recurses on, the file size (checked before reading), streams read only up
-// to the limit, directories refused. Inputs are made here, in private temporary folders.
+// The limits checked before toml++ sees a scene (scenes/toml_guard.hpp, scene_text.hpp): nesting of
+// every kind toml++ recurses on, the file size (checked before reading), streams read only up to
+// the limit, directories refused. Inputs are made here, in private temporary folders.
 
 #include <catch2/catch.hpp>
 
@@ -17,6 +17,7 @@
 
 #include "scenes/load_scene.hpp"
 #include "scenes/scene_text.hpp"
+#include "scenes/toml_guard.hpp"
 #include "tests/support/skip.hpp"
 
 using namespace fetic::scenes;
@@ -57,14 +58,14 @@ std::vector<std::pair<std::string, std::string>> nested(int levels) {
 TEST_CASE("nesting of every kind is refused beyond the limit, before toml++ parses it") {
   for (const auto& [shape, text] : nested(kMaxNesting + 2)) {
     INFO(shape << "\n" << text);
-    const Problem problem = nesting_problem(text);
+    const Problem problem = toml_guard_problem(text);
     CHECK(problem.line == (shape == "header, then a dotted key" ? 3 : 2));
     CHECK_THAT(problem.message, Catch::Contains("nests deeper than 32 levels"));
   }
   // Shallow versions are left to the TOML parser and the scene checks.
   for (const auto& [shape, text] : nested(6)) {
     INFO(shape << "\n" << text);
-    CHECK(nesting_problem(text).line == 0);
+    CHECK(toml_guard_problem(text).line == 0);
   }
 }
 
@@ -85,20 +86,20 @@ TEST_CASE("strings and comments do not count as nesting, valid scenes pass") {
   const std::string text = kHead + "title = \"[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[a.b.c\"\n" +
                            "# " + repeat("[{a.", 100) + "\n" + "x = '''\n" + repeat("[", 100) +
                            "\n'''\n" + "y = \"\"\"" + repeat("{\\\"", 50) + "\"\"\"\n";
-  CHECK(nesting_problem(text).line == 0);
+  CHECK(toml_guard_problem(text).line == 0);
   for (const auto& entry : fs::directory_iterator(FETIC_BUNDLED_SCENES_DIR)) {
     if (entry.path().extension() != ".toml") continue;
     std::ifstream in(entry.path());
     const std::string scene{std::istreambuf_iterator<char>(in), {}};
     INFO(entry.path());
-    CHECK(nesting_problem(scene).line == 0);
+    CHECK(toml_guard_problem(scene).line == 0);
   }
   // A scene written inline, at the depth a scene needs.
   const std::string inline_scene =
       kHead +
       "strut = [{name = \"a\", from = [0, 0], to = [1, 0], E = 1e9, area = 1e-4, elements = 2, "
       "fixed = [\"from\"]}]\n";
-  CHECK(nesting_problem(inline_scene).line == 0);
+  CHECK(toml_guard_problem(inline_scene).line == 0);
   CHECK(parse_scene(inline_scene, "inline.toml").struts.size() == 1);
 }
 
