@@ -61,6 +61,7 @@ cholmod_sparse view_of(const SparseMatrix& A) {
 CholmodFactor::Result CholmodFactor::factorize(const SparseMatrix& A,
                                                const std::vector<char>& leading) {
   if (!A.isCompressed()) throw std::logic_error("CholmodFactor: matrix must be compressed");
+  if (!impl_) impl_ = std::make_unique<Impl>();
   cholmod_free_factor(&impl_->factor, &impl_->common);
   compact_.reset();
   size_ = static_cast<int>(A.rows());
@@ -100,6 +101,7 @@ CholmodFactor::Result CholmodFactor::factorize(const SparseMatrix& A,
 
 CholmodFactor::Result CholmodFactor::factorize(const SparseMatrix& A) {
   if (!A.isCompressed()) throw std::logic_error("CholmodFactor: matrix must be compressed");
+  if (!impl_) impl_ = std::make_unique<Impl>();
   cholmod_free_factor(&impl_->factor, &impl_->common);
   compact_.reset();
   leading_ = 0;
@@ -279,6 +281,7 @@ void add_supernodal_column(const cholmod_factor* L, int s, int j, CompactFactor&
 
 bool CholmodFactor::compact() {
   if (compact_) return true;
+  if (!impl_) return false;
   cholmod_factor* L = impl_->factor;
   if (!L || size_ == 0 || size_ > CompactFactor::kMaxSize) return false;
   cholmod_common& c = impl_->common;
@@ -288,8 +291,8 @@ bool CholmodFactor::compact() {
     return false;
   }
   const std::size_t hint = L->is_super ? L->xsize : L->nzmax;
-  auto out = std::make_unique<CompactFactor>(size_, static_cast<const int*>(L->Perm), leading_,
-                                             hint);
+  auto out =
+      std::make_unique<CompactFactor>(size_, static_cast<const int*>(L->Perm), leading_, hint);
   if (L->is_super) {
     const int* super = static_cast<const int*>(L->super);
     for (int s = 0; s < static_cast<int>(L->nsuper); ++s)
@@ -313,10 +316,7 @@ bool CholmodFactor::compact() {
   out->finish();
   compact_peak_ = c.memory_usage;
   compact_ = std::move(out);
-  cholmod_free_dense(&impl_->x, &c);
-  cholmod_free_dense(&impl_->y, &c);
-  cholmod_free_dense(&impl_->e, &c);
-  cholmod_free_factor(&impl_->factor, &c);
+  impl_.reset();  // CHOLMOD's factor, workspaces and common: none is needed any more
   return true;
 }
 

@@ -46,9 +46,9 @@ class CompactFactor {
 
   int size_ = 0;
   int leading_ = 0;
-  std::vector<int> permutation_;       // P: row k of P A P' is row permutation_[k] of A
-  std::vector<int> column_start_;      // into rows_/values_, size + 1
-  std::vector<int> leading_end_;       // per leading column: end of its rows < leading
+  std::vector<int> permutation_;   // P: row k of P A P' is row permutation_[k] of A
+  std::vector<int> column_start_;  // into rows_/values_, size + 1
+  std::vector<int> leading_end_;   // per leading column: end of its rows < leading
   std::vector<double> inverse_diagonal_;
   std::vector<std::uint16_t> rows_;
   std::vector<double> values_;

@@ -5,11 +5,11 @@
 #include <map>
 #include <string>
 
+#include "solver/interruption.hpp"
 #include "solver/primal_problem.hpp"
 #include "solver/rigid_modes.hpp"
 #include "solver/stopwatch.hpp"
 #include "solver/threads.hpp"
-#include "solver/interruption.hpp"
 
 namespace fetic::solver {
 namespace {
@@ -412,6 +412,7 @@ LocalMemory FetiSystem::memory() const {
   for (const SubdomainOperator& op : subdomains_) {
     m.stiffness += sparse_bytes(op.K);
     m.factor += static_cast<double>(op.K_plus.factor_memory());
+    m.preconditioner_factor += static_cast<double>(op.K_plus.interior_memory());
     m.index += static_cast<double>(op.K_plus.index_memory());
     m.rigid_modes += static_cast<double>(op.R.size()) * sizeof(double);
     m.incidence += static_cast<double>(op.incidence.capacity()) * sizeof(Incidence);

@@ -64,8 +64,8 @@ class FetiSystem {
  public:
   // Builds and factorizes this process' subdomains; throws SolverError naming the strut
   // when a subdomain (of any process) is singular beyond its rigid-body modes.
-  // `interior_first`: factorize each K_j so that its leading block is the factor of the
-  // interior K_ii that the Dirichlet preconditioner needs (GeneralizedInverse).
+  // `interior_first`: factorize each K_j's interior block K_ii too, for the Dirichlet
+  // preconditioner (GeneralizedInverse), and keep only K_j's boundary columns after.
   explicit FetiSystem(const Model& model, const Communicator& communicator = Communicator::self(),
                       bool interior_first = false);
   FetiSystem(const FetiSystem&) = delete;

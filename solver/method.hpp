@@ -41,8 +41,9 @@ struct SolveOptions {
   int max_iterations = 0;    // 0: the method's default cap
   Preconditioner preconditioner = Preconditioner::Dirichlet;
   bool scaling = true;  // stiffness scaling of the FETI preconditioners
-  // Dirichlet: solve with K_ii through K_j's factor (its leading block) instead of a
-  // second factor per subdomain; off only to measure the difference (fetic-bench-scale).
+  // Dirichlet: factorize K_ii beside K_j (GeneralizedInverse), so that K_j can be cut
+  // to its boundary columns at once; off: the preconditioner factorizes K_ii from the
+  // whole K_j, kept until then (only to measure the difference: fetic-bench-scale).
   bool shared_interior_factor = true;
 };
 
