@@ -8,6 +8,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "app/parse_number.hpp"
 #include "solver/method.hpp"
 
 namespace fetic::app {
@@ -35,10 +36,6 @@ struct LoadSteps {
   int count = 1;
 };
 std::optional<LoadSteps> parse_load_steps(const std::string& text);
-
-// A finite number: the whole text, as strtod reads it (subnormal values such as 1e-320
-// included), or nullopt.
-std::optional<double> parse_number(const std::string& text);
 
 // CLI11 checks with short messages that name the range (CLI11's own print the bounds of
 // an unbounded range with all 309 digits of the largest double).

@@ -33,7 +33,9 @@ std::optional<ImageSize> parse_image_size(const std::string& text) {
   if (std::sscanf(text.c_str(), "%d%c%d%c", &width, &x, &height, &extra) != 3 ||
       (x != 'x' && x != 'X'))
     return std::nullopt;
-  if (width < 16 || height < 16 || width > 8192 || height > 8192) return std::nullopt;
+  if (width < kMinImageSide || height < kMinImageSide || width > kMaxImageSide ||
+      height > kMaxImageSide)
+    return std::nullopt;
   return ImageSize{width, height};
 }
 

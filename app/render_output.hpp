@@ -9,6 +9,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "app/image_size.hpp"
 #include "render/egl_context.hpp"
 #include "render/font.hpp"
 #include "render/gl_renderer.hpp"

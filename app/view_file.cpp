@@ -2,11 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
-#include <sstream>
 
 #include <nlohmann/json.hpp>
 
+#include "app/image_size.hpp"
+#include "app/json_input.hpp"
 #include "app/output_file.hpp"
 #include "scenes/scene_error.hpp"
 
@@ -14,6 +14,44 @@ namespace fetic::app {
 namespace {
 
 using nlohmann::json;
+
+// The numeric entries of a view file and their ranges (the same as the command line's
+// where it has the option: --size 16..8192).
+struct NumberRange {
+  const char* entry;  // as parse_json_input names it: "zoom", "center[0]", "scales.force"
+  double low, high;
+  const char* text;
+};
+constexpr double kLargestScale = 1e300;  // scales: any finite non-negative value
+const NumberRange kRanges[] = {
+    {"size[0]", kMinImageSide, kMaxImageSide, "a whole number of pixels from 16 to 8192"},
+    {"size[1]", kMinImageSide, kMaxImageSide, "a whole number of pixels from 16 to 8192"},
+    {"center[0]", -1e15, 1e15, "from -1e15 to 1e15 (the scene's length unit)"},
+    {"center[1]", -1e15, 1e15, "from -1e15 to 1e15 (the scene's length unit)"},
+    {"zoom", 0.01, 1000.0, "from 0.01 to 1000"},
+    {"magnification", 1e-12, 1e15, "\"auto\" or a number from 1e-12 to 1e15"},
+    {"fetic_view", 1, 1, "1 (the format's version)"},
+    {"text_size", 0, 200, "a number of pixels from 0 to 200"},
+    {"scales.displacement", 0, kLargestScale, "a number from 0 to 1e300"},
+    {"scales.force", 0, kLargestScale, "a number from 0 to 1e300"},
+    {"scales.stress", 0, kLargestScale, "a number from 0 to 1e300"},
+    {"scales.moment", 0, kLargestScale, "a number from 0 to 1e300"},
+    {"scales.residual_low", 0, kLargestScale, "a number from 0 to 1e300"},
+    {"scales.residual_high", 0, kLargestScale, "a number from 0 to 1e300"},
+    {"scales.stretch", 0, kLargestScale, "a number from 0 to 1e300"},
+    {"scales.iterations", 0, 1e9, "a whole number from 0 to 1e9"},
+    {"scales.active_set", 0, 1e9, "a whole number from 0 to 1e9"},
+    {"scales.lateral[]", 0, kLargestScale, "a list of numbers from 0 to 1e300, one per strut"},
+};
+
+// "scales.lateral[3]" -> "scales.lateral[]": one range for every element of a list.
+const NumberRange* view_range_of(const std::string& entry) {
+  const bool element = entry.rfind("scales.lateral[", 0) == 0;
+  for (const NumberRange& range : kRanges)
+    if (entry == range.entry || (element && std::string(range.entry) == "scales.lateral[]"))
+      return &range;
+  return nullptr;
+}
 
 // Reads one entry, checking its type and range; the message names the entry.
 class Reader {
@@ -27,15 +65,22 @@ class Reader {
     const auto it = in.find(key);
     return it == in.end() ? nullptr : &*it;
   }
-  std::optional<double> number(const json& in, const std::string& key, double low,
-                               bool positive = false) const {
+  // A number within its range (kRanges[entry]); whole numbers only for `whole`.
+  double checked(const json& value, const std::string& entry, bool whole = false) const {
+    const NumberRange* range = view_range_of(entry);
+    const std::string must = "must be " + std::string(range ? range->text : "a number");
+    if (!value.is_number()) fail(entry, must + ", not " + quoted_value(value.dump()));
+    const double x = value.get<double>();
+    const bool integral = value.is_number_integer() || (whole && x == std::floor(x));
+    if (!std::isfinite(x) || (whole && !integral) || (range && (x < range->low || x > range->high)))
+      fail(entry, must + ", not " + quoted_value(value.dump()));
+    return x;
+  }
+  std::optional<double> number(const json& in, const std::string& key,
+                               const std::string& prefix = "", bool whole = false) const {
     const json* value = find(in, key);
     if (!value) return std::nullopt;
-    if (!value->is_number()) fail(key, "must be a number");
-    const double x = value->get<double>();
-    if (!std::isfinite(x) || x < low || (positive && x <= 0.0))
-      fail(key, positive ? "must be a positive number" : "must be at least " + std::to_string(low));
-    return x;
+    return checked(*value, prefix + key, whole);
   }
   std::optional<bool> boolean(const json& in, const std::string& key) const {
     const json* value = find(in, key);
@@ -53,8 +98,8 @@ class Reader {
         std::string list;
         for (const char* k : keys)
           list += (list.empty() ? "" : ", ") + std::string(k);
-        throw ViewFileError(scenes::printable(path_) + ": unknown entry '" +
-                            scenes::printable(key) + "'" + where + " (known: " + list + ")");
+        throw ViewFileError(scenes::printable(path_) + ": unknown entry '" + quoted_value(key) +
+                            "'" + where + " (known: " + list + ")");
       }
     }
   }
@@ -87,50 +132,54 @@ std::optional<render::ColorBy> color_from_name(const std::string& name) {
 }
 
 SavedView read_view_file(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw ViewFileError(scenes::printable(path) + ": cannot read the view file");
-  std::stringstream text;
-  text << in.rdbuf();
+  std::string text;
+  try {
+    text = read_input_file(path, "view file");
+  } catch (const InputFileError& error) {
+    throw ViewFileError(error.what());
+  }
+  return parse_view(text, path);
+}
+
+SavedView parse_view(const std::string& text, const std::string& path) {
   json root;
   try {
-    root = json::parse(text.str());
-  } catch (const json::parse_error& error) {
-    // nlohmann gives the byte; say the line.
-    const std::string content = text.str();
-    const std::size_t byte = std::min<std::size_t>(error.byte, content.size());
-    const long line =
-        1 + std::count(content.begin(),
-                       content.begin() + static_cast<long>(byte > 0 ? byte - 1 : 0), '\n');
-    throw ViewFileError(scenes::printable(path) + ":" + std::to_string(line) +
-                        ": not a JSON view file (" + error.what() + ")");
+    root = parse_json_input(text, path, "view file", [](const std::string& entry) {
+      const NumberRange* range = view_range_of(entry);
+      return range ? std::string(range->text) : std::string();
+    });
+  } catch (const InputFileError& error) {
+    throw ViewFileError(error.what());
   }
   if (!root.is_object())
     throw ViewFileError(scenes::printable(path) + ": a view file is a JSON object");
   const Reader r(path);
-  r.only(root, {"fetic_view", "size", "center", "zoom", "magnification", "color", "show", "scales"},
+  r.only(root,
+         {"fetic_view", "size", "center", "zoom", "magnification", "text_size", "color", "show",
+          "scales"},
          "");
   SavedView view;
+  r.number(root, "fetic_view", "", true);
   if (const json* size = r.find(root, "size")) {
-    if (!size->is_array() || size->size() != 2 || !(*size)[0].is_number_integer() ||
-        !(*size)[1].is_number_integer() || (*size)[0].get<long>() < 16 ||
-        (*size)[1].get<long>() < 16 || (*size)[0].get<long>() > 16384 ||
-        (*size)[1].get<long>() > 16384)
-      r.fail("size", "must be [width, height] in pixels, each 16 to 16384");
-    view.width = (*size)[0].get<int>();
-    view.height = (*size)[1].get<int>();
+    if (!size->is_array() || size->size() != 2)
+      r.fail("size", "must be [width, height] in pixels, each 16 to 8192");
+    view.width = static_cast<int>(r.checked((*size)[0], "size[0]", true));
+    view.height = static_cast<int>(r.checked((*size)[1], "size[1]", true));
   }
   if (const json* center = r.find(root, "center")) {
-    if (!center->is_array() || center->size() != 2 || !(*center)[0].is_number() ||
-        !(*center)[1].is_number() || !std::isfinite((*center)[0].get<double>()) ||
-        !std::isfinite((*center)[1].get<double>()))
+    if (!center->is_array() || center->size() != 2)
       r.fail("center", "must be [x, y] in the scene's length unit");
-    view.center_x = (*center)[0].get<double>();
-    view.center_y = (*center)[1].get<double>();
+    view.center_x = r.checked((*center)[0], "center[0]");
+    view.center_y = r.checked((*center)[1], "center[1]");
   }
-  view.zoom = r.number(root, "zoom", 0.0, true);
-  if (view.zoom && (*view.zoom < 0.01 || *view.zoom > 1000.0))
-    r.fail("zoom", "must be between 0.01 and 1000");
-  view.magnification = r.number(root, "magnification", 0.0);
+  view.zoom = r.number(root, "zoom");
+  view.text_size = r.number(root, "text_size");
+  // "auto" (or 0, as older files have it): chosen from the scales, as the window does.
+  if (const json* m = r.find(root, "magnification"))
+    view.magnification = (m->is_string() && m->get<std::string>() == "auto") ||
+                                 (m->is_number() && m->get<double>() == 0.0)
+                             ? 0.0
+                             : r.checked(*m, "magnification");
   if (const json* color = r.find(root, "color")) {
     view.color_by = color_from_name(color->is_string() ? color->get<std::string>() : "");
     if (!view.color_by)
@@ -150,24 +199,25 @@ SavedView read_view_file(const std::string& path) {
            {"displacement", "force", "stress", "moment", "iterations", "active_set", "residual_low",
             "residual_high", "stretch", "lateral"},
            " in 'scales'");
+    const auto scale = [&](const char* key, bool whole = false) {
+      return r.number(*scales, key, "scales.", whole).value_or(0.0);
+    };
     render::RunExtent extent;
-    extent.largest_displacement = r.number(*scales, "displacement", 0.0).value_or(0.0);
-    extent.largest_force = r.number(*scales, "force", 0.0).value_or(0.0);
-    extent.largest_stress = r.number(*scales, "stress", 0.0).value_or(0.0);
-    extent.largest_moment = r.number(*scales, "moment", 0.0).value_or(0.0);
-    extent.largest_iteration = static_cast<int>(r.number(*scales, "iterations", 0.0).value_or(0.0));
-    extent.largest_active_set =
-        static_cast<int>(r.number(*scales, "active_set", 0.0).value_or(0.0));
-    extent.smallest_residual = r.number(*scales, "residual_low", 0.0).value_or(0.0);
-    extent.largest_residual = r.number(*scales, "residual_high", 0.0).value_or(0.0);
-    extent.largest_stretch = r.number(*scales, "stretch", 0.0).value_or(0.0);
+    extent.largest_displacement = scale("displacement");
+    extent.largest_force = scale("force");
+    extent.largest_stress = scale("stress");
+    extent.largest_moment = scale("moment");
+    extent.largest_iteration = static_cast<int>(scale("iterations", true));
+    extent.largest_active_set = static_cast<int>(scale("active_set", true));
+    extent.smallest_residual = scale("residual_low");
+    extent.largest_residual = scale("residual_high");
+    extent.largest_stretch = scale("stretch");
     if (const json* lateral = r.find(*scales, "lateral")) {
-      if (!lateral->is_array()) r.fail("lateral", "must be a list of numbers, one per strut");
-      for (const json& x : *lateral) {
-        if (!x.is_number() || !std::isfinite(x.get<double>()) || x.get<double>() < 0.0)
-          r.fail("lateral", "must be a list of numbers, one per strut");
-        extent.strut_lateral.push_back(x.get<double>());
-      }
+      if (!lateral->is_array())
+        r.fail("scales.lateral", "must be a list of numbers, one per strut");
+      for (std::size_t i = 0; i < lateral->size(); ++i)
+        extent.strut_lateral.push_back(
+            r.checked((*lateral)[i], "scales.lateral[" + std::to_string(i) + "]"));
     }
     view.scales = extent;
   }
@@ -180,7 +230,13 @@ std::string view_json(const SavedView& view) {
   if (view.width && view.height) root["size"] = {*view.width, *view.height};
   if (view.center_x && view.center_y) root["center"] = {*view.center_x, *view.center_y};
   if (view.zoom) root["zoom"] = *view.zoom;
-  if (view.magnification) root["magnification"] = *view.magnification;
+  if (view.magnification) {
+    if (*view.magnification > 0.0)
+      root["magnification"] = *view.magnification;
+    else
+      root["magnification"] = "auto";
+  }
+  if (view.text_size) root["text_size"] = *view.text_size;
   if (view.color_by) root["color"] = color_name(*view.color_by);
   nlohmann::ordered_json show = nlohmann::ordered_json::object();
   if (view.forces) show["forces"] = *view.forces;
@@ -218,6 +274,7 @@ void apply_view(const SavedView& saved, render::View& view) {
   if (saved.overlay) view.show_overlay = *saved.overlay;
   if (saved.labels) view.show_labels = *saved.labels;
   if (saved.zoom) view.zoom = *saved.zoom;
+  if (saved.text_size) view.min_text_size = static_cast<float>(*saved.text_size);
   if (saved.center_x && saved.center_y) {
     view.centered = true;
     view.center_x = *saved.center_x;

@@ -21,6 +21,7 @@ struct SavedView {
   std::optional<double> center_x, center_y;  // world point at the centre of the scene region
   std::optional<double> zoom;                // 1: the scene fits the region
   std::optional<double> magnification;       // 0: automatic
+  std::optional<double> text_size;           // the smallest base text size (the window's)
   std::optional<render::ColorBy> color_by;
   std::optional<bool> forces, gaps, overlay, labels;
   // The run's scales the picture was drawn with (colour map and glyph ends, axes).
@@ -39,8 +40,10 @@ class ViewFileError : public std::runtime_error {
 const char* color_name(render::ColorBy color);
 std::optional<render::ColorBy> color_from_name(const std::string& name);
 
+// Reads the file through app/json_input.hpp (8 MiB, FIFOs, signals); throws ViewFileError.
 SavedView read_view_file(const std::string& path);
-std::string view_json(const SavedView& view);  // the file's text
+SavedView parse_view(const std::string& text, const std::string& path);  // the file's text
+std::string view_json(const SavedView& view);                            // the file's text
 // Writes atomically through the output targets (throws OutputError).
 void write_view_file(const std::string& path, const SavedView& view);
 

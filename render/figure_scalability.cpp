@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include "render/colormap.hpp"
@@ -55,8 +56,17 @@ DrawList figure_iterations_by_subdomains(const std::vector<ScalabilityCurve>& cu
   PlotSpec spec;
   spec.frame = {0.0f, 2.0f * text, static_cast<float>(width), static_cast<float>(height)};
   spec.text_size = text;
-  spec.x = {"subdomains (4 plane struts of 2x1, 4x2, 8x4, ... subdomains)", std::nan(""),
-            std::nan(""), true, false};
+  // The x axis spans the data (8 to 512 subdomains) with a little room, not whole decades
+  // (10^0 to 10^3 would leave most of the plot empty).
+  double fewest = std::numeric_limits<double>::infinity(), most = 0.0;
+  for (const ScalabilityCurve& curve : curves)
+    for (const double s : curve.subdomains) {
+      fewest = std::min(fewest, s);
+      most = std::max(most, s);
+    }
+  const bool any = most > 0.0 && std::isfinite(fewest);
+  spec.x = {"subdomains (4 plane struts of 2x1, 4x2, 8x4, ... subdomains)",
+            any ? fewest / 1.6 : std::nan(""), any ? most * 1.6 : std::nan(""), true, false};
   spec.y = {"iterations, applications of F", 0.0, std::nan(""), false, true};
   spec.legend = Corner::TopLeft;
   for (size_t c = 0; c < curves.size(); ++c) {

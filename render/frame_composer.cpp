@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "render/contact_chart.hpp"
+#include "render/overlay.hpp"
 #include "render/scene_drawing.hpp"
 
 namespace fetic::render {
@@ -11,6 +13,7 @@ std::vector<Layer> ComposedFrame::layers() const {
   if (mesh) out.emplace_back(mesh.get(), &values, uniforms, region);
   out.emplace_back(&glyphs, region);
   if (!overlay.empty()) out.emplace_back(&overlay);
+  if (!chart.empty()) out.emplace_back(&chart);
   return out;
 }
 
@@ -19,6 +22,7 @@ DrawList ComposedFrame::flattened() const {
   if (mesh) expand_mesh(*mesh, values, uniforms, list);
   list.append(glyphs);
   list.append(overlay);
+  list.append(chart);
   return list;
 }
 
@@ -51,6 +55,9 @@ ComposedFrame FrameComposer::compose(const Frame& frame) const {
     caption.load_step = info.load_step;
   }
   composed.glyphs = draw_glyphs(model_, frame.snapshot, view_, placed_, caption);
+  if (view_.show_chart)
+    composed.chart =
+        draw_contact_chart(model_, frame.snapshot, chart_region(view_), text_size(view_));
   if (view_.show_overlay) {
     if (load_steps_ > 1) {
       // Plots against the load factor: the steps done so far, this one as it stands.

@@ -24,6 +24,7 @@ struct ComposedFrame {
   Rect region;  // the scene's part of the image (the mesh and glyphs are clipped to it)
   DrawList glyphs;
   DrawList overlay;  // empty without the overlay
+  DrawList chart;    // the per-contact chart (View::show_chart), empty without it
   // The layers to draw, in order.
   std::vector<Layer> layers() const;
   // The whole frame as one draw list (the mesh expanded on the CPU), for tests.

@@ -1,5 +1,6 @@
 #include "render/glfw_window.hpp"
 
+#include <algorithm>
 #include <cstdlib>
 #include <string>
 
@@ -37,7 +38,23 @@ GlfwWindow::GlfwWindow(int width, int height, const std::string& title) {
   glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
   glfwWindowHint(GLFW_SAMPLES, 0);  // the renderer multisamples its own frame buffer
   glfwWindowHint(GLFW_DOUBLEBUFFER, GLFW_TRUE);
+  glfwWindowHint(GLFW_RESIZABLE, GLFW_TRUE);
+  int x = 0, y = 0;
+  const bool fill = width <= 0 || height <= 0;
+  if (fill) {
+    width = 1280;
+    height = 800;
+    if (GLFWmonitor* monitor = glfwGetPrimaryMonitor()) {
+      int w = 0, h = 0;
+      glfwGetMonitorWorkarea(monitor, &x, &y, &w, &h);
+      if (w >= 16 && h >= 16) {
+        width = w;
+        height = h;
+      }
+    }
+  }
   window_ = glfwCreateWindow(width, height, title.c_str(), nullptr, nullptr);
+  if (window_ && fill) glfwSetWindowPos(window_, x, y);
   if (!window_) {
     const std::string reason = "cannot open a " + std::to_string(width) + "x" +
                                std::to_string(height) +
@@ -51,6 +68,12 @@ GlfwWindow::GlfwWindow(int width, int height, const std::string& title) {
 GlfwWindow::~GlfwWindow() {
   if (window_) glfwDestroyWindow(window_);
   glfwTerminate();
+}
+
+float GlfwWindow::content_scale() const {
+  float x = 1.0f, y = 1.0f;
+  glfwGetWindowContentScale(window_, &x, &y);
+  return std::max(x, y) > 0.0f ? std::max(x, y) : 1.0f;
 }
 
 void GlfwWindow::make_current() {

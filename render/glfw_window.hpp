@@ -12,8 +12,10 @@ namespace fetic::render {
 
 class GlfwWindow final : public GlContext {
  public:
-  // Opens a window of width x height pixels. Throws NoDisplayError when GLFW cannot reach a
-  // display (no X server, DISPLAY unset), naming GLFW's reason.
+  // Opens a resizable window of width x height pixels; width or height 0: the primary
+  // monitor's work area (the screen without panels and docks), placed on it. Throws
+  // NoDisplayError when GLFW cannot reach a display (no X server, DISPLAY unset), naming
+  // GLFW's reason.
   GlfwWindow(int width, int height, const std::string& title);
   ~GlfwWindow() override;
   GlfwWindow(const GlfwWindow&) = delete;
@@ -22,6 +24,8 @@ class GlfwWindow final : public GlContext {
   void make_current() override;
   std::string description() const override;
   GLFWwindow* handle() const { return window_; }
+  // The monitor's content scale (1 on an ordinary screen, 2 on a doubled "HiDPI" one).
+  float content_scale() const;
 
  private:
   GLFWwindow* window_ = nullptr;

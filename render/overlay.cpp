@@ -15,16 +15,29 @@ Rect overlay_panel(const View& view) {
   const auto width = static_cast<float>(view.width), height = static_cast<float>(view.height);
   // 28% of the width, up to 24 text heights (360 pixels at 1280x720), so that it grows
   // with the text on large frames.
-  const float text = base_text_size(view.width, view.height);
+  const float text = text_size(view);
   const float panel = std::max(150.0f, std::min(0.28f * width, 24.0f * text));
-  const float margin = std::max(4.0f, 0.5f * base_text_size(view.width, view.height));
+  const float margin = std::max(4.0f, 0.5f * text_size(view));
   return {width - panel - margin, margin, width - margin, height - margin};
+}
+
+Rect chart_region(const View& view) {
+  if (!view.show_chart) return {};
+  const auto width = static_cast<float>(view.width), height = static_cast<float>(view.height);
+  const float right = view.show_overlay ? overlay_panel(view).x0 : width;
+  const float text = text_size(view);
+  const float margin = std::max(4.0f, 0.5f * text);
+  // 40% of what the panel leaves, at least 20 text heights (the axes need them).
+  const float chart = std::min(0.6f * right, std::max(0.4f * right, 20.0f * text));
+  return {right - chart, margin, right - margin, height - margin};
 }
 
 Rect scene_region(const View& view) {
   const auto width = static_cast<float>(view.width), height = static_cast<float>(view.height);
-  if (!view.show_overlay) return {0.0f, 0.0f, width, height};
-  return {0.0f, 0.0f, overlay_panel(view).x0, height};
+  const float right = view.show_chart     ? chart_region(view).x0
+                      : view.show_overlay ? overlay_panel(view).x0
+                                          : width;
+  return {0.0f, 0.0f, right, height};
 }
 
 namespace {
@@ -114,7 +127,7 @@ DrawList draw_overlay(const OverlayInfo& info, const solver::Model& model,
   std::vector<PlotArea>& plots = areas ? *areas : ignored;
   DrawList list;
   const Rect panel = overlay_panel(view);
-  const float t = base_text_size(view.width, view.height);
+  const float t = text_size(view);
   const float pad = 0.6f * t;
   list.rect(panel, palette::panel);
   list.rect_outline(panel, 1.0f, palette::grid);
@@ -150,7 +163,7 @@ DrawList draw_overlay(const OverlayInfo& info, const solver::Model& model,
   if (!model.pairs.empty())
     row("active set",
         std::to_string(snapshot.active_set_size()) + " of " + std::to_string(model.pairs.size()),
-        palette::contact);
+        palette::ink);  // not red: red is for a failed status, and 0 of 1 is no error
   const Color status_color = snapshot.status == solver::Status::Failed      ? palette::contact
                              : snapshot.status == solver::Status::Converged ? Color{0, 130, 70, 255}
                                                                             : palette::ink;

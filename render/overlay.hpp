@@ -28,6 +28,9 @@ struct OverlayInfo {
 // The panel's place (right side of the image) and the scene's (the rest).
 Rect overlay_panel(const View& view);
 Rect scene_region(const View& view);
+// The per-contact chart's part (View::show_chart; empty without it): right of the scene,
+// left of the panel.
+Rect chart_region(const View& view);
 
 // A run over several load factors (load steps, a sweep): the plots show the final state
 // of each step against the load factor instead of the iterations of one solve.

@@ -8,8 +8,10 @@
 #include <numeric>
 
 #include "render/colormap.hpp"
+#include "render/frame_sequence.hpp"
 #include "render/text_format.hpp"
 #include "scenes/units.hpp"
+#include "solver/element_results.hpp"
 
 namespace fetic::render {
 namespace {
@@ -87,6 +89,7 @@ struct GlyphTally {
   int loads_left_out = 0, contacts_left_out = 0, labels_left_out = 0;
   double largest_load = 0.0;         // point loads drawn, at this load factor
   double largest_distributed = 0.0;  // per length
+  double largest_force_now = 0.0;    // the largest contact force of the state shown
 };
 
 // --- supports ---------------------------------------------------------------------------
@@ -449,8 +452,26 @@ void draw_gaps_and_contacts(DrawList& list, const solver::Model& model,
 // --- labels, legends, caption, scale ----------------------------------------------------
 
 // Strut names beside the struts, where there is room for them without covering a strut.
+// The boxes of the triangles drawn into `list` from vertex `first` on (the load arrows):
+// what a strut label must not cover. Empty when there are too many to check cheaply.
+std::vector<Rect> drawn_boxes(const DrawList& list, std::size_t first, std::size_t labels) {
+  const auto& v = list.vertices();
+  std::vector<Rect> boxes;
+  if ((v.size() - first) / 3 * labels > 4'000'000) return boxes;
+  for (std::size_t i = first; i + 2 < v.size(); i += 3) {
+    const Point a = v[i].position, b = v[i + 1].position, c = v[i + 2].position;
+    boxes.push_back({std::min({a.x, b.x, c.x}), std::min({a.y, b.y, c.y}),
+                     std::max({a.x, b.x, c.x}), std::max({a.y, b.y, c.y})});
+  }
+  return boxes;
+}
+
+bool overlaps(const Rect& a, const Rect& b) {
+  return a.x0 < b.x1 && b.x0 < a.x1 && a.y0 < b.y1 && b.y0 < a.y1;
+}
+
 void draw_labels(DrawList& list, const solver::Model& model, const SceneFraming& framing,
-                 const NodeLookup& nodes, GlyphTally& tally) {
+                 const NodeLookup& nodes, GlyphTally& tally, const std::vector<Rect>& taken) {
   const float size = std::round(0.75f * framing.text_size);
   for (std::size_t s = 0; s < model.struts.size(); ++s) {
     const solver::StrutMesh& mesh = model.struts[s];
@@ -461,30 +482,90 @@ void draw_labels(DrawList& list, const solver::Model& model, const SceneFraming&
       ++tally.labels_left_out;
       continue;
     }
-    // At a third of the strut (the middle is where loads and contacts are least).
-    const int i = mesh.nx / 3;
-    const int node = mesh.node(i, mesh.dofs_per_node == 1 ? 0 : mesh.ny / 2);
-    const Point at = framing.node(model, static_cast<int>(s), node,
-                                  nodes.displacement(static_cast<int>(s), node));
-    const Point side = upper_side(framing, mesh);
-    const Point anchor =
-        at + (half_width_px(framing, mesh) + 0.6f * size + framing.line_width) * side;
+    // At a third of the strut (the middle is where loads and contacts are least), on its
+    // upper side - or, where a load arrow lies there, the first other place along either
+    // side that is clear of them.
+    const Point upper = upper_side(framing, mesh);
+    const auto anchor_at = [&](int i, Point side) {
+      const int node = mesh.node(i, mesh.dofs_per_node == 1 ? 0 : mesh.ny / 2);
+      const Point at = framing.node(model, static_cast<int>(s), node,
+                                    nodes.displacement(static_cast<int>(s), node));
+      return at + (half_width_px(framing, mesh) + 0.6f * size + framing.line_width) * side;
+    };
+    const auto clear = [&](Point anchor) {
+      const Rect box{anchor.x - 0.5f * width, anchor.y - 0.6f * size, anchor.x + 0.5f * width,
+                     anchor.y + 0.6f * size};
+      return std::none_of(taken.begin(), taken.end(),
+                          [&](const Rect& t) { return overlaps(box, t); });
+    };
+    Point anchor = anchor_at(mesh.nx / 3, upper);
+    if (!clear(anchor)) {
+      for (const Point side : {upper, -1.0f * upper}) {
+        bool found = false;
+        for (const int i :
+             {mesh.nx / 3, mesh.nx / 2, 2 * mesh.nx / 3, mesh.nx / 6, 5 * mesh.nx / 6})
+          if (clear(anchor_at(i, side))) {
+            anchor = anchor_at(i, side);
+            found = true;
+            break;
+          }
+        if (found) break;
+      }
+    }
     list.text(name, anchor, size, palette::muted, HAlign::Center, VAlign::Middle);
   }
 }
 
-// What a value colouring shows: its quantity, the colour map's end and its name.
+// What a value colouring shows: its quantity, the colour map's end, its name, and the
+// largest value of the state shown (the scale's "now" when the scale is fixed).
 struct ValueLegend {
   scenes::Quantity quantity;
   double scale;
   const char* name;
+  double now = 0.0;
+  bool keep_name = false;  // drawn even past x1
 };
+
+std::string quantity(double value, scenes::Quantity kind, const scenes::Units& units);
+
+// What a scale is: "largest 16.8 kN" (the state shown's), or for a fixed one "scale 78.7 kN:
+// largest over loads 0-2; now 16.8 kN" (issue 23, item 4).
+std::string scale_note(double scale, double now, const std::string& basis, scenes::Quantity kind,
+                       const scenes::Units& units) {
+  if (basis.empty()) return "largest " + quantity(scale, kind, units);
+  return "scale " + quantity(scale, kind, units) + ": largest " + basis + "; now " +
+         quantity(now, kind, units);
+}
+
+// Largest |value| of the state shown, per quantity a legend names.
+double largest_force_now(const solver::Snapshot& snapshot) {
+  double largest = 0.0;
+  for (const double f : snapshot.force)
+    if (std::isfinite(f)) largest = std::max(largest, std::abs(f));
+  return largest;
+}
+
+double largest_value_now(const solver::Model& model, const solver::Snapshot& snapshot,
+                         ColorBy color) {
+  double largest = 0.0;
+  if (color == ColorBy::Stress)
+    for (const auto& piece : piece_stresses(model, snapshot))
+      for (const double s : piece)
+        if (std::isfinite(s)) largest = std::max(largest, std::abs(s));
+  if (color == ColorBy::Moment && model.frame())
+    for (const solver::BeamMoments& piece : solver::piece_moments(model, snapshot))
+      for (const auto& ends : piece.ends)
+        for (const double m : ends)
+          if (std::isfinite(m)) largest = std::max(largest, std::abs(m));
+  return largest;
+}
 
 // One line: "-420 [colour bar] 420 MPa  axial stress", centred on y; without the name
 // when it would run past x1 (into the length scale of a small frame; the information
 // panel names the colouring too).
 void draw_value_legend(DrawList& list, const SceneFraming& framing, const scenes::Units& units,
-                       const ValueLegend& legend, float x0, float x1, float y) {
+                       const ValueLegend& legend, const std::string& basis, float x0, float x1,
+                       float y) {
   const float text = framing.text_size, label = 0.8f * text;
   const double scale = legend.scale;
   const scenes::DisplayUnit unit = scenes::display_unit(legend.quantity, units, scale);
@@ -506,9 +587,21 @@ void draw_value_legend(DrawList& list, const SceneFraming& framing, const scenes
             kOutline);
   const std::string end = format("%.3g", scale / unit.divisor) + " " + unit.name;
   const std::string named = end + "   " + legend.name;
+  // The ends are the largest |value| of the state shown, or a fixed scale named as such.
+  const std::string what =
+      basis.empty() ? "largest shown"
+                    : "largest " + basis + "; now " + quantity(legend.now, legend.quantity, units);
   const float at = bar0 + width + 0.3f * text;
-  list.text(at + estimated_text_width(named, label) <= x1 ? named : end, {at, y}, label,
-            palette::ink, HAlign::Left, VAlign::Middle);
+  // What fits before x1: the name and what the scale is, the name alone, the end alone;
+  // the stress legend always keeps its name (as pictures and tests of it have it).
+  const auto fits = [&](const std::string& candidate) {
+    return at + estimated_text_width(candidate, label) <= x1;
+  };
+  const std::string full = named + " (" + what + ")";
+  const std::string shown = fits(full)                        ? full
+                            : fits(named) || legend.keep_name ? named
+                                                              : end;
+  list.text(shown, {at, y}, label, palette::ink, HAlign::Left, VAlign::Middle);
 }
 
 // The moment colouring of a scene without beams: a grey swatch and why it is grey.
@@ -617,8 +710,10 @@ void draw_glyph_legend(DrawList& list, const SceneFraming& framing, const GlyphT
                 palette::contact);
     });
   if (tally.forces && view.show_forces)
-    items.emplace_back("contact force (largest " +
-                           quantity(framing.force_scale, scenes::Quantity::Force, units) + ")",
+    items.emplace_back("contact force (" +
+                           scale_note(framing.force_scale, tally.largest_force_now,
+                                      view.scale_basis, scenes::Quantity::Force, units) +
+                           ")",
                        [&](Point p, float t) {
                          list.disc(p + Point{0.8f * t, 0}, 0.35f * t, palette::force);
                        });
@@ -747,6 +842,7 @@ DrawList draw_glyphs(const solver::Model& model, const solver::Snapshot& snapsho
   const NodeLookup nodes(model, snapshot);
   if (view.show_supports) draw_supports(list, model, framing, nodes, tally);
   draw_gaps_and_contacts(list, model, snapshot, view, framing, tally);
+  const std::size_t loads_from = list.vertices().size();
   if (view.show_loads)
     for (const scenes::Load& load : model.scene_loads) {
       if (load.per_length)
@@ -754,7 +850,9 @@ DrawList draw_glyphs(const solver::Model& model, const solver::Snapshot& snapsho
       else
         draw_point_load(list, model, framing, nodes, load, snapshot.load_factor, tally);
     }
-  if (view.show_labels) draw_labels(list, model, framing, nodes, tally);
+  if (view.show_labels)
+    draw_labels(list, model, framing, nodes, tally,
+                drawn_boxes(list, loads_from, model.struts.size()));
 
   // What the frame shows: the caption above; below, two rows of glyph legend, then the
   // stress or moment colours (left) and the length scale (right).
@@ -764,9 +862,8 @@ DrawList draw_glyphs(const solver::Model& model, const solver::Snapshot& snapsho
   const float bottom_row = region.y1 - 0.9f * t;
   if (view.show_scale)
     draw_scale_bar(list, framing, model.units, region.x1 - t, bottom_row + 0.4f * t);
-  // The moment legend ends half a text size before the scale bar's label, its long name
-  // dropped in a small frame. (The stress legend has always kept its name, as pictures
-  // and tests of it expect; in the smallest frames it may touch the scale bar.)
+  // The value legends end half a text size before the scale bar's label: what their scale
+  // is, then their long name, dropped in a small frame.
   const float legend_end =
       view.show_scale
           ? region.x1 - t -
@@ -774,14 +871,17 @@ DrawList draw_glyphs(const solver::Model& model, const solver::Snapshot& snapsho
           : region.x1 - t;
   if (view.color_by == ColorBy::Stress)
     draw_value_legend(list, framing, model.units,
-                      {scenes::Quantity::Stress, framing.stress_scale, "axial stress"},
-                      region.x0 + t, std::numeric_limits<float>::infinity(), bottom_row);
+                      {scenes::Quantity::Stress, framing.stress_scale, "axial stress",
+                       largest_value_now(model, snapshot, ColorBy::Stress), true},
+                      view.scale_basis, region.x0 + t, legend_end, bottom_row);
   if (view.color_by == ColorBy::Moment && model.frame())
     draw_value_legend(list, framing, model.units,
-                      {scenes::Quantity::Moment, framing.moment_scale, "bending moment"},
-                      region.x0 + t, legend_end, bottom_row);
+                      {scenes::Quantity::Moment, framing.moment_scale, "bending moment",
+                       largest_value_now(model, snapshot, ColorBy::Moment)},
+                      view.scale_basis, region.x0 + t, legend_end, bottom_row);
   else if (view.color_by == ColorBy::Moment)
     draw_no_moment_legend(list, framing, region.x0 + t, bottom_row);
+  tally.largest_force_now = largest_force_now(snapshot);
   if (view.show_legend)
     draw_glyph_legend(list, framing, tally, model.units, view,
                       {region.x0 + t, region.y1 - 3.5f * t, region.x1 - t, region.y1 - 2.2f * t});

@@ -270,7 +270,7 @@ SceneFraming frame_scene(const solver::Model& model, const View& view, const Run
                          const Rect& region) {
   SceneFraming framing;
   framing.region = region;
-  framing.text_size = base_text_size(view.width, view.height);
+  framing.text_size = text_size(view);
   framing.line_width = std::max(1.0f, framing.text_size / 15.0f);
   framing.widening = view.magnify_gaps ? gap_widening(model) : std::vector<std::vector<Vec2>>{};
   framing.clearance = side_clearances(model);

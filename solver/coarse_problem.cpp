@@ -208,7 +208,7 @@ void CoarseProblem::factorize() {
     const Decomposition& d = system_.decomposition();
     std::vector<Eigen::Triplet<double>> extra;
     for (const UnheldGroup& group : pins) {
-      const Eigen::VectorXd& z = group.direction;
+      const Eigen::SparseVector<double>& z = group.direction;
       for (int a : group.subdomains)
         for (int b : group.subdomains) {
           // Every mode of both (one per subdomain in the bar model, three in the frame
@@ -217,7 +217,7 @@ void CoarseProblem::factorize() {
           const Subdomain& sb = d.subdomains[b];
           for (int ma = sa.mode_offset; ma < sa.mode_offset + sa.mode_count; ++ma)
             for (int mb = sb.mode_offset; mb < sb.mode_offset + sb.mode_count; ++mb)
-              if (ma >= mb) extra.emplace_back(ma, mb, z(ma) * z(mb));
+              if (ma >= mb) extra.emplace_back(ma, mb, z.coeff(ma) * z.coeff(mb));
         }
     }
     SparseMatrix Z(matrix_.rows(), matrix_.cols());
@@ -295,10 +295,15 @@ void CoarseProblem::find_unheld_groups() {
       }
     }
     if (held) continue;
-    group.direction = Eigen::VectorXd::Zero(d.total_modes);
+    std::vector<std::pair<int, double>> entries;
     for (int s : group.subdomains)
-      group.direction(d.subdomains[s].mode_offset) = value[s];
-    group.direction.normalize();
+      entries.emplace_back(d.subdomains[s].mode_offset, value[s]);
+    std::sort(entries.begin(), entries.end());
+    group.direction.resize(d.total_modes);
+    group.direction.reserve(static_cast<Eigen::Index>(entries.size()));
+    for (const auto& [mode, amplitude] : entries)
+      group.direction.insertBack(mode) = amplitude;
+    group.direction /= group.direction.norm();
     unheld_.push_back(std::move(group));
   }
 }

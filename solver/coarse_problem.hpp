@@ -35,6 +35,7 @@
 #include <vector>
 
 #include <Eigen/Core>
+#include <Eigen/SparseCore>
 
 #include "solver/cholmod_factor.hpp"
 #include "solver/feti_system.hpp"
@@ -43,7 +44,9 @@ namespace fetic::solver {
 
 struct UnheldGroup {
   std::vector<int> subdomains;
-  Eigen::VectorXd direction;  // over all modes, unit length, zero outside the group
+  // Over all modes, unit length; sparse, as it is nonzero only in the group (dense, a
+  // thousand floating beams' directions took gigabytes).
+  Eigen::SparseVector<double> direction;
 };
 
 class FreeMotionSpace;

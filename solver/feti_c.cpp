@@ -60,7 +60,7 @@ bool FetiC::hold_loaded_groups() {
     for (const UnheldGroup& group : coarse_.unheld()) {
       const double push = group.direction.dot(e_);
       if (std::abs(push) <= 1e-12 * (e_.lpNorm<1>() + 1e-300)) continue;
-      const Eigen::VectorXd along = system_.G().transpose() * group.direction;
+      const Eigen::VectorXd along = system_.G().transpose() * Eigen::VectorXd(group.direction);
       for (int k = first_contact; k < system_.rows(); ++k)
         if (!active[k] && along(k) * push > 0.0) {
           active[k] = 1;

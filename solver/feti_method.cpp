@@ -33,7 +33,7 @@ Eigen::VectorXd FetiMethod::rigid_amplitudes() const {
     system_.apply_B(u, Bu);
     // Gap of every row under the current placement, and its rate of change per unit
     // translation s of the group along its direction z: gap(s) = gap(0) - s (G'z)_k.
-    const Eigen::VectorXd rate = system_.G().transpose() * group.direction;
+    const Eigen::VectorXd rate = system_.G().transpose() * Eigen::VectorXd(group.direction);
     double low = -std::numeric_limits<double>::infinity();
     double high = std::numeric_limits<double>::infinity();
     for (int r = space.first_contact(); r < space.rows(); ++r) {
@@ -52,8 +52,10 @@ Eigen::VectorXd FetiMethod::rigid_amplitudes() const {
       const int i = system_.own_index(j);
       if (i < 0) continue;
       const Subdomain& sub = d.subdomains[j];
-      const Eigen::VectorXd motion =
-          system_.subdomains()[i].R * group.direction.segment(sub.mode_offset, sub.mode_count);
+      Eigen::VectorXd amplitudes(sub.mode_count);
+      for (int m = 0; m < sub.mode_count; ++m)
+        amplitudes(m) = group.direction.coeff(sub.mode_offset + m);
+      const Eigen::VectorXd motion = system_.subdomains()[i].R * amplitudes;
       const Eigen::VectorXd part = u.segment(system_.dof_offset(i), sub.dof_count);
       sums[0].merge(exact_dot(motion.data(), part.data(), motion.size()));
       sums[1].merge(exact_dot(motion.data(), motion.data(), motion.size()));

@@ -34,23 +34,10 @@ Mprgp::Mprgp(const Model& model, const SolveOptions& options, const Communicator
   estimate_operator_norm();
 }
 
-// Groups of bar struts the equality rows leave free to translate: their balance z'G x = 0
-// involves only contact rows, c = G'z.
+// Groups of struts the equality rows leave free: their balance z'G x = 0 involves only
+// contact rows, c = G'z (group_balance.hpp).
 void Mprgp::find_group_constraints() {
-  for (const UnheldGroup& group : coarse_.unheld()) {
-    throw_if_stopped("finding MPRGP's group constraints");
-    Eigen::VectorXd c = system_.G().transpose() * group.direction;
-    for (int k = 0; k < space().rows(); ++k)
-      if (!space().is_contact(k)) c(k) = 0.0;
-    if (!(space().norm(c) > 0.0)) continue;  // no contact: boundedness decides
-    group_directions_.push_back(group.direction);
-    group_rows_.push_back(c);
-    Eigen::VectorXd basis = c;
-    for (const Eigen::VectorXd& q : group_basis_)
-      basis -= space().dot(q, basis) * q;
-    const double size = space().norm(basis);
-    if (size > 1e-12 * space().norm(c)) group_basis_.push_back(basis / size);
-  }
+  groups_ = GroupBalance(system_, coarse_.unheld());
 }
 
 Eigen::VectorXd Mprgp::to_multipliers(const Eigen::VectorXd& x) const {
@@ -59,13 +46,6 @@ Eigen::VectorXd Mprgp::to_multipliers(const Eigen::VectorXd& x) const {
 
 Eigen::VectorXd Mprgp::to_gradient(const Eigen::VectorXd& w) const {
   return w - system_.G().transpose() * coarse_.solve(coarse_.apply_G(w));
-}
-
-Eigen::VectorXd Mprgp::group_part(const Eigen::VectorXd& x) const {
-  Eigen::VectorXd q = Eigen::VectorXd::Zero(x.size());
-  for (const Eigen::VectorXd& c : group_basis_)
-    q += space().dot(c, x) * c;
-  return q;
 }
 
 // ||H|| by the power method on the feasible subspace (PERMON: relative change 1e-4, at
@@ -103,7 +83,7 @@ void Mprgp::estimate_operator_norm() {
   power_steps_ = static_cast<int>(system_.f_applications() - before);
   norm_H_ = estimate > 0.0 ? estimate : 1.0;
   norm_A_ = norm_H_;
-  if (!group_basis_.empty()) {
+  if (!groups_.empty()) {
     rho_ = parameters_.rho_factor * norm_H_;
     norm_A_ = std::max(norm_H_, rho_);
   }
@@ -115,8 +95,8 @@ void Mprgp::apply_A(const Eigen::VectorXd& x, Eigen::VectorXd& out, Eigen::Vecto
   system_.apply_F(to_multipliers(x), ftx);
   out = to_gradient(ftx);
   system_.project_onto_range_of_B(out);
-  if (group_basis_.empty()) return;
-  qx = group_part(x);
+  if (groups_.empty()) return;
+  qx = groups_.project(x);
   out += rho_ * qx;
 }
 
@@ -194,21 +174,8 @@ void Mprgp::begin(const Snapshot* warm) {
   // lambda0: balances the loads through the equality rows, and through the contact rows
   // of the groups they leave free: w = sum_z beta_z c_z with c_y'w = z_y'e.
   lambda0_ = coarse_.particular(e_);
-  if (!group_rows_.empty()) {
-    const int k = static_cast<int>(group_rows_.size());
-    Eigen::MatrixXd gram(k, k);
-    Eigen::VectorXd push(k);
-    for (int i = 0; i < k; ++i) {
-      push(i) = group_directions_[i].dot(e_);
-      for (int j = 0; j < k; ++j)
-        gram(i, j) = space().dot(group_rows_[i], group_rows_[j]);
-    }
-    const Eigen::VectorXd beta = gram.completeOrthogonalDecomposition().solve(push);
-    Eigen::VectorXd w = Eigen::VectorXd::Zero(rows);
-    for (int i = 0; i < k; ++i)
-      w += beta(i) * group_rows_[i];
-    lambda0_ += to_multipliers(w);
-  }
+  if (!groups_.empty())
+    lambda0_ += to_multipliers(groups_.times(groups_.gram_solve(groups_.direction_dots(e_))));
   system_.residual(lambda0_, load_factor_, r0_);
   b_ = to_gradient(r0_);
   system_.project_onto_range_of_B(b_);
@@ -287,7 +254,7 @@ void Mprgp::conjugate_gradient_or_expansion() {
     x_ -= a_cg * p_;
     g_ -= a_cg * Ap;
     ftx_ -= a_cg * ftp;
-    if (!group_basis_.empty()) qx_ -= a_cg * qp;
+    if (!groups_.empty()) qx_ -= a_cg * qp;
     split_gradient();
     precondition_free_gradient(z_);
     const double beta = space().dot(z_, Ap) / pAp;
@@ -344,7 +311,7 @@ void Mprgp::proportioning() {
   x_ -= a * d;  // d <= 0 on rows at their bound: they move up, off it
   g_ -= a * Ad;
   ftx_ -= a * ftd;
-  if (!group_basis_.empty()) qx_ -= a * qd;
+  if (!groups_.empty()) qx_ -= a * qd;
   restart_direction();
 }
 
@@ -362,12 +329,12 @@ int Mprgp::free_contact_rows() const {
 
 void Mprgp::finish_iteration() {
   double gradient = space().norm(g_free_ + g_chopped_);
-  const double imbalance = group_basis_.empty() ? 0.0 : space().norm(qx_);
+  const double imbalance = groups_.empty() ? 0.0 : space().norm(qx_);
   const double tolerance = options_.tolerance * scale_;
   r_ = r0_ - ftx_;
   if (gradient <= tolerance && norm_H_ * imbalance <= tolerance) {
     converge();
-  } else if (!group_basis_.empty() &&
+  } else if (!groups_.empty() &&
              (gradient <= std::min(m_ * imbalance, eta_) || gradient <= tolerance)) {
     // (Once the projected gradient is within the tolerance, further inner iterations
     // cannot help; M may have fallen below what rounding allows.)
@@ -417,18 +384,8 @@ void Mprgp::repeat_outer_update(double tolerance) {
 // balance (C nu = c_nu_).
 Eigen::VectorXd Mprgp::solution_amplitudes() const {
   Eigen::VectorXd alpha = -coarse_.amplitudes(r_);
-  const int k = static_cast<int>(group_rows_.size());
-  if (k == 0) return alpha;
-  Eigen::MatrixXd gram(k, k);
-  Eigen::VectorXd projection(k);
-  for (int i = 0; i < k; ++i) {
-    projection(i) = space().dot(group_rows_[i], c_nu_);
-    for (int j = 0; j < k; ++j)
-      gram(i, j) = space().dot(group_rows_[i], group_rows_[j]);
-  }
-  const Eigen::VectorXd nu = gram.completeOrthogonalDecomposition().solve(projection);
-  for (int i = 0; i < k; ++i)
-    alpha -= nu(i) * group_directions_[i];
+  if (groups_.empty()) return alpha;
+  groups_.add_directions(-groups_.gram_solve(groups_.transpose_times(c_nu_)), alpha);
   return alpha;
 }
 

@@ -40,6 +40,7 @@
 
 #include "solver/face_projector.hpp"
 #include "solver/feti_method.hpp"
+#include "solver/group_balance.hpp"
 
 namespace fetic::solver {
 
@@ -85,7 +86,6 @@ class Mprgp final : public FetiMethod {
   void estimate_operator_norm();
   Eigen::VectorXd to_multipliers(const Eigen::VectorXd& x) const;  // T x
   Eigen::VectorXd to_gradient(const Eigen::VectorXd& w) const;     // T'w
-  Eigen::VectorXd group_part(const Eigen::VectorXd& x) const;      // Q_C x
   // out = A x, with F T x (for the residual) and Q_C x.
   void apply_A(const Eigen::VectorXd& x, Eigen::VectorXd& out, Eigen::VectorXd& ftx,
                Eigen::VectorXd& qx) const;
@@ -108,9 +108,8 @@ class Mprgp final : public FetiMethod {
   std::optional<FaceProjector> face_;  // projector of the current face, for preconditioning
   double norm_H_ = 0.0, norm_A_ = 0.0, rho_ = 0.0, alpha_bar_ = 0.0;
   int power_steps_ = 0;
-  // Balance of bar groups held only by contacts: their directions z (coarse space) and
-  // c = G'z, and an orthonormal basis of span{c} for Q_C.
-  std::vector<Eigen::VectorXd> group_directions_, group_rows_, group_basis_;
+  // Balance of the groups held only by contacts: C = [G'z] and Q_C.
+  GroupBalance groups_;
 
   // Per solve.
   Eigen::VectorXd lambda0_, r0_, lower_, b_;

@@ -19,6 +19,7 @@
 //   paraview_export.cpp  the shown iterate as ParaView files
 
 #include <array>
+#include <atomic>
 #include <chrono>
 #include <cstdint>
 #include <filesystem>
@@ -27,6 +28,7 @@
 #include <optional>
 #include <string>
 #include <thread>
+#include <utility>
 #include <vector>
 
 #include "app/gui/bench.hpp"
@@ -59,7 +61,10 @@ namespace fetic::app::gui {
 
 using Clock = std::chrono::steady_clock;
 
-constexpr float kPanelWidth = 330.0f;  // ImGui panel on the left; the picture fills the rest
+constexpr float kPanelWidth =
+    330.0f;  // ImGui panel on the left (at scale 1); the picture fills the rest
+// The smallest text of the picture (plot ticks, 0.68 of the base text size) at scale 1.
+constexpr float kSmallestText = 11.0f;
 
 inline double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
@@ -72,6 +77,9 @@ class App {
   int run(render::GlfwWindow& window, std::vector<ScriptAction> script);
 
  private:
+  // The panel's width: kPanelWidth times the scale of text and controls (--ui-scale).
+  float panel_width() const { return kPanelWidth * ui_scale_; }
+
   // sync_point.cpp
   void push(Request request) { queue_.push_back(std::move(request)); }
   void send_to_worker();
@@ -79,6 +87,10 @@ class App {
   void open_monitor();
   std::string close_monitor();  // "" when every line arrived
   void apply(const Request& request);
+  void apply_solver_request(const Request& request);   // load, method, preconditioner, compare
+  void apply_history_request(const Request& request);  // play, step, scrub, live, cancel
+  void apply_display_request(const Request& request);  // magnification, colours, toggles, views
+  void apply_output_request(const Request& request);   // screenshots, recordings, exports, quit
   void sync();  // the sync point: applies the queued requests, takes the newest state
   int shown_index() const;
   int last_index() const;  // the newest iterate of the shown solve
@@ -110,12 +122,16 @@ class App {
   // input.cpp
   static void key_event(GLFWwindow* window, int key, int scancode, int action, int mods);
   void mouse(float view_x, float view_width, float view_height);
-  void run_script(std::vector<ScriptAction>& script, std::size_t& next, double now, bool& failed);
+  void run_script(std::vector<ScriptAction>& script, std::size_t& next, double now);
 
   // recording.cpp
   void start_recording(const Request& request);
   void screenshot(const std::string& path);
   void step_recording();
+
+  // A request that cannot do what it says: the status line in red and an "error" event;
+  // from a script, the message on stderr (script:line) and the run ends with `status`.
+  void fail(const Request& request, const std::string& message, int status);
 
   // The status line under the panel; errors are shown in red.
   void say(std::string line, bool error = false) {
@@ -133,13 +149,21 @@ class App {
   // views.cpp
   SavedView current_view() const;
   void save_view(const std::string& path);  // "": the next fetic_view_NNNN.json
-  void load_view(const std::string& path);
+  void load_view(const Request& request);   // text: the view file
   void use_view(const SavedView& saved);
   void set_color(render::ColorBy color);
   void place_pending_center();  // a loaded view's centre, into pan_ (framing_ is fitted)
   void view_buttons();          // in the panel: save and load views
-  std::string next_view_name();
   std::string in_screenshot_dir(const std::string& path) const;
+  // Numbered outputs in --screenshot-dir (recording.cpp): the first name from `from` on
+  // ("fetic_view_%04d.json") that is not taken, and its number. A counter moves past a
+  // number only when its output was written, so the first success is _0000.
+  std::pair<std::string, int> numbered_name(const char* pattern, int from) const;
+  // Creates the folder of an output (--screenshot-dir on first use); false, the output
+  // reported lost, when it cannot.
+  bool output_folder_ready(const std::string& path);
+  // A reserved number given back after its output failed (unless a later one was taken).
+  static void give_back(std::atomic<int>& counter, int number);
 
   // picking.cpp
   void index_picture(const solver::Snapshot& snapshot, const render::SceneFraming& framing);
@@ -153,7 +177,7 @@ class App {
   // window_shot.cpp
   void capture_window(int width, int height);
   // paraview_export.cpp
-  void export_paraview(const std::string& directory);
+  void export_paraview(const Request& request);  // text: the directory ("": --vtu-dir)
 
   // bench.cpp
   void bench_step(double now);
@@ -218,6 +242,7 @@ class App {
   bool subdomains_ = true, stress_ = false, moment_ = false;
   bool forces_ = true, gaps_ = true, show_overlay_ = true;
   bool labels_ = false;
+  bool chart_ = false;  // the per-contact chart beside the picture (render/contact_chart.hpp)
   bool help_ = false;
   bool dragging_slider_ = false, draft_ = false;
   bool typing_load_ = false;
@@ -245,7 +270,7 @@ class App {
 
   // Screenshots and recordings.
   std::unique_ptr<render::PngEncoderPool> screenshot_pool_;
-  int screenshot_count_ = 0;
+  std::atomic<int> screenshot_count_{0};  // written by the encoder threads on failure
   std::string pending_screenshot_;
   bool screenshot_requested_ = false;
   std::unique_ptr<Recording> recording_;
@@ -254,8 +279,10 @@ class App {
   int sweep_steps_ = 20;
 
   render::GlRenderer* renderer_ = nullptr;
+  float ui_scale_ = 1.0f;  // --ui-scale, else the monitor's content scale
   bool quit_ = false;
   double wait_started_ = -1.0;  // when the script's current "wait" began
+  int script_status_ = 0;       // a script's action failed: the run's exit status
   float slider_[4] = {0, 0, 0, 0};
   bool ready_reported_ = false;
   Clock::time_point start_ = Clock::now();
@@ -284,7 +311,7 @@ class App {
   double pick_query_ms_ = 0.0;
   bool window_shot_requested_ = false;
   std::string pending_window_shot_;
-  int window_shots_ = 0;
+  std::atomic<int> window_shots_{0};
   std::string view_path_;  // the view file the panel loads: --view, or the last saved
   // ParaView export: one series per directory and model.
   std::unique_ptr<VtuSeries> vtu_;

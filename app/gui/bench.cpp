@@ -98,7 +98,7 @@ void App::print_bench(const render::GlfwWindow& window) const {
   std::printf("scene          %s (%zu struts, %zu contact pairs)\n", args_.scene.c_str(),
               target_.model->struts.size(), target_.model->pairs.size());
   std::printf("renderer       %s, window %dx%d\n", window.description().c_str(),
-              view_width_ + static_cast<int>(kPanelWidth), view_height_);
+              view_width_ + static_cast<int>(panel_width()), view_height_);
   std::printf(
       "drag           %d load changes at 60 per second: %.1f frames/s (frame time median "
       "%.2f ms, max %.2f ms)\n",

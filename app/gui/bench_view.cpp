@@ -76,7 +76,7 @@ void App::print_view_bench(const render::GlfwWindow& window) const {
   std::printf("scene          %s (%zu struts, %lld unknowns)\n", args_.scene.c_str(),
               target_.model->struts.size(), static_cast<long long>(target_.model->dof_count()));
   std::printf("renderer       %s, window %dx%d\n", window.description().c_str(),
-              view_width_ + static_cast<int>(kPanelWidth), view_height_);
+              view_width_ + static_cast<int>(panel_width()), view_height_);
   const char* names[2] = {"panning", "zooming"};
   for (int p = 0; p < 2; ++p) {
     const double s = b.seconds[p];

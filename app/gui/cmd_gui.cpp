@@ -16,6 +16,7 @@
 #include "app/gui/options.hpp"
 #include "app/gui/script.hpp"
 #include "app/interrupt.hpp"
+#include "app/json_input.hpp"
 #include "app/load_factor_check.hpp"
 #include "app/method_options.hpp"
 #include "app/out_of_memory.hpp"
@@ -26,7 +27,6 @@
 #include "app/view_file.hpp"
 #include "render/glfw_window.hpp"
 #include "scenes/load_scene.hpp"
-#include "scenes/scene_text.hpp"
 
 namespace fetic::app {
 namespace {
@@ -34,17 +34,16 @@ namespace {
 namespace fs = std::filesystem;
 
 int run_gui(const gui::Options& args) {
-  if (!parse_image_size(args.size)) {
+  if (args.size_given && !parse_image_size(args.size)) {
     std::cerr << "--size: expected WxH\n";
     return kExitUsage;
   }
   std::vector<gui::ScriptAction> script;
   if (!args.script.empty()) {
     std::string text;
-    try {  // bounded like a scene file: a script of /dev/zero ends at the limit
-      text = scenes::read_text_file(args.script, std::size_t{1} << 20, "script",
-                                    [] { return interrupted(); });
-    } catch (const scenes::SceneError& error) {
+    try {  // bounded like a view file: a FIFO fed from /dev/zero ends at the limit
+      text = read_input_file(args.script, "script");
+    } catch (const InputFileError& error) {
       std::cerr << error.what() << '\n';
       return interrupted() ? kExitInterrupted : kExitUsage;
     }
@@ -63,17 +62,19 @@ int run_gui(const gui::Options& args) {
     std::cerr << "fetic gui: --monitor - and --state-file - cannot both go to standard output\n";
     return kExitUsage;
   }
-  ImageSize size = *parse_image_size(args.size);
+  // 0 x 0: the monitor's work area (render::GlfwWindow).
+  ImageSize size = args.size_given ? *parse_image_size(args.size) : ImageSize{0, 0};
   if (!args.view.empty()) try {
       // The window is the view's picture and the panel beside it (unless --size is given).
       const SavedView view = read_view_file(args.view);
       if (view.width && view.height && !args.size_given) {
-        size.width = *view.width + static_cast<int>(gui::kPanelWidth);
+        size.width = *view.width + static_cast<int>(gui::kPanelWidth *
+                                                    (args.ui_scale > 0.0 ? args.ui_scale : 1.0));
         size.height = *view.height;
       }
     } catch (const ViewFileError& error) {
       std::cerr << error.what() << '\n';
-      return kExitUsage;
+      return interrupted() ? kExitInterrupted : kExitUsage;
     }
   int status = kExitOk;
   const auto scene = load_scene_or_report(args.scene, status);
@@ -85,6 +86,16 @@ int run_gui(const gui::Options& args) {
       std::cerr << scenes::printable(args.scene) << ": " << problem << '\n';
       return kExitUsage;
     }
+  // The script's loads are held to the same range as --load (a typed 1e300 would overflow
+  // the solve; 1e-320 underflows it).
+  for (const gui::ScriptAction& action : script)
+    if (action.request.kind == gui::RequestKind::SetLoad)
+      if (const std::string problem = load_factor_problem(*scene, {action.request.value}, "load");
+          !problem.empty()) {
+        std::cerr << scenes::printable(args.script) << ":" << action.line << ": " << problem
+                  << '\n';
+        return kExitUsage;
+      }
   // The window may switch to any method and keeps the iterates of a solve for scrubbing.
   if (!memory_suffices(
           *scene, args.scene,
@@ -142,9 +153,16 @@ void register_gui(CLI::App& app, int& exit_code) {
       ->check(number_in(0.0, 0.0, Bound::Closed, Bound::None));
   command->add_option("--magnification", args->magnification, "Lock the magnification (0: auto)")
       ->check(number_in(0.0, 0.0, Bound::Closed, Bound::None));
-  CLI::Option* size = command->add_option("--size", args->size, "Window size in pixels")
-                          ->check(image_size_check())
-                          ->capture_default_str();
+  CLI::Option* size =
+      command
+          ->add_option("--size", args->size,
+                       "Window size in pixels, WxH (default: the monitor's work area)")
+          ->check(image_size_check());
+  command
+      ->add_option("--ui-scale", args->ui_scale,
+                   "Scale of the text, controls and lines (default: the monitor's content scale, "
+                   "1 on most screens, 2 on doubled ones)")
+      ->check(number_in(0.5, 4.0, Bound::Closed, Bound::Closed));
   command->add_option("--view", args->view,
                       "Start with a saved view (JSON; the window's Save view, docs/WINDOW.md)");
   command->add_option("--state-file", args->state_file,

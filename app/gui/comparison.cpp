@@ -72,8 +72,8 @@ int App::compare_index() const {
 
 void App::draw_comparison(int width, int height) {
   const auto w = static_cast<float>(width), h = static_cast<float>(height);
-  const float text = render::base_text_size(width, height);
   render::View v = view(width, height);
+  const float text = render::text_size(v);
   v.show_overlay = false;
   const float plot_top = 0.68f * h;
   const SolveState* states[2] = {shown_.get(), compare_shown_.get()};

@@ -10,7 +10,10 @@
 #include <GLFW/glfw3.h>
 #include <imgui.h>
 
+#include "app/exit_codes.hpp"
 #include "app/gui/app.hpp"
+#include "app/gui/bindings.hpp"
+#include "app/json_input.hpp"
 #include "scenes/scene_error.hpp"
 
 namespace fetic::app::gui {
@@ -21,49 +24,11 @@ void App::key_event(GLFWwindow* window, int key, int /*scancode*/, int action, i
   auto* app = static_cast<App*>(glfwGetWindowUserPointer(window));
   if (!app || action == GLFW_RELEASE) return;
   if (ImGui::GetCurrentContext() && ImGui::GetIO().WantTextInput) return;
-  const bool repeat = action == GLFW_REPEAT;
-  switch (key) {
-    case GLFW_KEY_SPACE:
-      if (!repeat) app->push({RequestKind::TogglePlay, 0.0, {}});
-      break;
-    case GLFW_KEY_RIGHT:
-      app->push({RequestKind::Step, 0.0, {}});
-      break;
-    case GLFW_KEY_LEFT:
-      app->push({RequestKind::StepBack, 0.0, {}});
-      break;
-    case GLFW_KEY_R:
-      if (!repeat) app->push({RequestKind::Reset, 0.0, {}});
-      break;
-    case GLFW_KEY_S:
-      if (!repeat) app->push({RequestKind::Screenshot, 0.0, {}});
-      break;
-    case GLFW_KEY_C:
-      if (!repeat) app->push({RequestKind::Cancel, 0.0, {}});
-      break;
-    case GLFW_KEY_F5:
-      if (!repeat) app->push({RequestKind::Reload, 0.0, {}});
-      break;
-    case GLFW_KEY_H:
-    case GLFW_KEY_F1:
-      if (!repeat) app->push({RequestKind::Toggle, 0.0, "help"});
-      break;
-    case GLFW_KEY_W:
-      if (!repeat) app->push({RequestKind::ScreenshotWindow, 0.0, {}});
-      break;
-    case GLFW_KEY_V:
-      if (!repeat) app->push({RequestKind::SaveView, 0.0, {}});
-      break;
-    case GLFW_KEY_HOME:
-      app->push({RequestKind::ResetView, 0.0, {}});
-      break;
-    case GLFW_KEY_Q:
-    case GLFW_KEY_ESCAPE:
-      app->push({RequestKind::Quit, 0.0, {}});
-      break;
-    default:
-      break;
-  }
+  for (const KeyBinding& binding : key_bindings())
+    if (binding.key == key && (binding.repeats || action != GLFW_REPEAT)) {
+      app->push(binding.request);
+      return;
+    }
 }
 
 void App::mouse(float view_x, float view_width, float view_height) {
@@ -93,8 +58,7 @@ void App::mouse(float view_x, float view_width, float view_height) {
   if (ImGui::IsMouseDoubleClicked(ImGuiMouseButton_Left)) push({RequestKind::ResetView, 0.0, {}});
 }
 
-void App::run_script(std::vector<ScriptAction>& script, std::size_t& next, double now,
-                     bool& failed) {
+void App::run_script(std::vector<ScriptAction>& script, std::size_t& next, double now) {
   while (next < script.size()) {
     const ScriptAction& action = script[next];
     if (action.at >= 0 && now < action.at) return;
@@ -104,12 +68,14 @@ void App::run_script(std::vector<ScriptAction>& script, std::size_t& next, doubl
       // newest iterate is on screen.
       const bool settled_live = live_ && worker_.paused() && shown_ && shown_ == worker_.latest() &&
                                 shown_index() == last_index();
-      const bool settled = (solved_on_screen_ && !worker_.busy()) || settled_live;
+      // On screen: with the picture's scales (the survey at the slider's top) too.
+      const bool pictured = !shown_ || shown_->extent != nullptr;
+      const bool settled = (solved_on_screen_ && !worker_.busy() && pictured) || settled_live;
       if (!settled || recording_ || !queue_.empty()) {
         if (now - wait_started_ > 120.0) {
           std::cerr << scenes::printable(args_.script) << ":" << action.line
                     << ": wait: the solve did not finish within 120 s\n";
-          failed = true;
+          if (script_status_ == 0) script_status_ = kExitNotConverged;
           quit_ = true;
         }
         return;
@@ -121,6 +87,22 @@ void App::run_script(std::vector<ScriptAction>& script, std::size_t& next, doubl
     ++next;
     if (!action.wait) return;  // one request a frame, like a user
   }
+}
+
+void App::fail(const Request& request, const std::string& message, int status) {
+  say(message, true);
+  nlohmann::json event{{"event", "error"}, {"message", message}};
+  if (request.script_line > 0) {
+    event["script_line"] = request.script_line;
+    std::cerr << scenes::printable(args_.script) << ":" << request.script_line << ": "
+              << quoted_value(message, 400) << '\n';
+    if (script_status_ == 0) script_status_ = status;
+    quit_ = true;
+  }
+  if (status == kExitOutput)  // the run ends with status 5, scripted or not
+    log_.output_lost(message);
+  else
+    log_.write(event);
 }
 
 }  // namespace fetic::app::gui

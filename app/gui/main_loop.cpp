@@ -57,8 +57,12 @@ int App::run(render::GlfwWindow& window, std::vector<ScriptAction> script) {
   } catch (const OutputError& error) {
     return report_output_error(error);
   }
-  // The window's text stays at the default sizes (up to 22 pixels).
-  render::FontAtlas font(22.0f, font_file("DejaVuSans.ttf"), font_file("DejaVuSans-Bold.ttf"));
+  // Text and controls scale with --ui-scale or the monitor's content scale; the picture's
+  // text is at least kSmallestText (App::view), its glyphs rasterized at up to 22 pixels
+  // times the scale.
+  ui_scale_ = args_.ui_scale > 0.0 ? static_cast<float>(args_.ui_scale) : window.content_scale();
+  render::FontAtlas font(22.0f * std::max(1.0f, ui_scale_), font_file("DejaVuSans.ttf"),
+                         font_file("DejaVuSans-Bold.ttf"));
   render::GlRenderer renderer(window, font);
   renderer_ = &renderer;
 
@@ -67,8 +71,9 @@ int App::run(render::GlfwWindow& window, std::vector<ScriptAction> script) {
   ImGuiIO& io = ImGui::GetIO();
   io.IniFilename = nullptr;
   const std::string regular = font_file("DejaVuSans.ttf");
-  if (fs::exists(regular)) io.Fonts->AddFontFromFileTTF(regular.c_str(), 15.0f);
+  if (fs::exists(regular)) io.Fonts->AddFontFromFileTTF(regular.c_str(), 15.0f * ui_scale_);
   ImGui::StyleColorsLight();
+  ImGui::GetStyle().ScaleAllSizes(ui_scale_);
   // Our key callback first: ImGui's callbacks chain to the one installed before them.
   glfwSetWindowUserPointer(window.handle(), this);
   glfwSetKeyCallback(window.handle(), &App::key_event);
@@ -78,7 +83,6 @@ int App::run(render::GlfwWindow& window, std::vector<ScriptAction> script) {
 
   send_to_worker();  // the first solve
   std::size_t next_action = 0;
-  bool script_failed = false;
   const bool scripted = !script.empty();
   int frames = 0;
   while (!quit_) {
@@ -98,14 +102,14 @@ int App::run(render::GlfwWindow& window, std::vector<ScriptAction> script) {
     ImGui::NewFrame();
     int fb_width = 0, fb_height = 0;
     glfwGetFramebufferSize(window.handle(), &fb_width, &fb_height);
-    const int view_x = static_cast<int>(kPanelWidth);
+    const int view_x = static_cast<int>(panel_width());
     const int view_width = std::max(16, fb_width - view_x);
     const int view_height = std::max(16, fb_height);
     mouse(static_cast<float>(view_x), static_cast<float>(view_width),
           static_cast<float>(view_height));
     picking(static_cast<float>(view_x), static_cast<float>(view_width),
             static_cast<float>(view_height));
-    if (scripted) run_script(script, next_action, now, script_failed);
+    if (scripted) run_script(script, next_action, now);
     if (args_.bench > 0) bench_step(now);
     if (args_.bench_view > 0) view_bench_step();
     panels(static_cast<float>(fb_height));
@@ -137,7 +141,8 @@ int App::run(render::GlfwWindow& window, std::vector<ScriptAction> script) {
     // software renderer) is redrawn at most every other such period, so the panels and
     // the slider keep answering between pictures.
     const bool picture_due =
-        last_picture_ms_ < 16.0 || screenshot_requested_ || recording_ || !after_picture_.empty() ||
+        last_picture_ms_ < 16.0 || screenshot_requested_ || window_shot_requested_ || recording_ ||
+        !after_picture_.empty() ||
         std::chrono::duration<double, std::milli>(Clock::now() - last_picture_end_).count() >=
             last_picture_ms_;
     if (redraw_ && picture_due) {
@@ -187,6 +192,8 @@ int App::run(render::GlfwWindow& window, std::vector<ScriptAction> script) {
                   {"view", {view_x, 0, view_width_, view_height_}},
                   {"slider", {slider_[0], slider_[1], slider_[2], slider_[3]}},
                   {"max_load", slider_max_},
+                  {"ui_scale", ui_scale_},
+                  {"text_size", render::text_size(view(view_width_, view_height_))},
                   {"renderer", window.description()}});
     }
   }
@@ -217,7 +224,7 @@ int App::run(render::GlfwWindow& window, std::vector<ScriptAction> script) {
     std::cerr << "fetic gui: interrupted by " << interrupt_name() << "; the window closed\n";
     return kExitInterrupted;
   }
-  if (script_failed) return kExitNotConverged;
+  if (script_status_ != 0) return script_status_;
   return kExitOk;
 }
 

@@ -13,8 +13,9 @@ struct Options {
   double load = 1.0;
   double max_load = 0.0;  // 0: chosen from the scene (solver::automatic_max_load)
   double magnification = 0.0;
-  std::string size = "1280x800";
+  std::string size;         // "WxH"; empty: the monitor's work area
   bool size_given = false;  // --size on the command line (it wins over a view's size)
+  double ui_scale = 0.0;    // text and controls; 0: the monitor's content scale
   std::string state_file;
   std::string script;
   std::string screenshot_dir = ".";

@@ -11,13 +11,14 @@
 #include <imgui.h>
 
 #include "app/gui/app.hpp"
+#include "app/gui/bindings.hpp"
 #include "solver/method.hpp"
 
 namespace fetic::app::gui {
 
 void App::panels(float height) {
   ImGui::SetNextWindowPos(ImVec2(0, 0));
-  ImGui::SetNextWindowSize(ImVec2(kPanelWidth, height));
+  ImGui::SetNextWindowSize(ImVec2(panel_width(), height));
   ImGui::Begin("fetic", nullptr,
                ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse |
                    ImGuiWindowFlags_NoSavedSettings);
@@ -168,6 +169,8 @@ void App::display_toggles() {
   if (ImGui::Checkbox("info", &value)) push({RequestKind::Toggle, 0.0, "overlay"});
   value = labels_;
   if (ImGui::Checkbox("strut labels", &value)) push({RequestKind::Toggle, 0.0, "labels"});
+  value = chart_;
+  if (ImGui::Checkbox("contact chart", &value)) push({RequestKind::Toggle, 0.0, "chart"});
 }
 
 // Screenshots, reload and recordings.
@@ -245,26 +248,16 @@ void App::status_text() {
 }
 
 void App::help_window() {
-  ImGui::SetNextWindowPos(ImVec2(kPanelWidth + 40, 40));
+  ImGui::SetNextWindowPos(ImVec2(panel_width() + 40, 40));
   ImGui::Begin("Keys", &help_,
                ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoSavedSettings);
-  static const char* keys[][2] = {{"Space", "play / pause the iterations"},
-                                  {"Right, Left", "one iteration forward / back"},
-                                  {"R", "reset to iteration 0"},
-                                  {"C", "cancel the running solve"},
-                                  {"S", "screenshot (PNG of the picture)"},
-                                  {"F5", "reload the scene file"},
-                                  {"Home", "reset pan and zoom (or double-click)"},
-                                  {"mouse drag", "pan the picture; wheel: zoom"},
-                                  {"H, F1", "this help"},
-                                  {"Q, Esc", "quit"}};
   if (ImGui::BeginTable("keys", 2)) {
-    for (const auto& key : keys) {
+    for (const auto& [keys, does] : help_rows()) {  // the table the key handler uses
       ImGui::TableNextRow();
       ImGui::TableSetColumnIndex(0);
-      ImGui::TextUnformatted(key[0]);
+      ImGui::TextUnformatted(keys.c_str());
       ImGui::TableSetColumnIndex(1);
-      ImGui::TextUnformatted(key[1]);
+      ImGui::TextUnformatted(does.c_str());
     }
     ImGui::EndTable();
   }

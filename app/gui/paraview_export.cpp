@@ -7,16 +7,17 @@
 
 #include <nlohmann/json.hpp>
 
+#include "app/exit_codes.hpp"
 #include "app/gui/app.hpp"
 
 namespace fetic::app::gui {
 
-void App::export_paraview(const std::string& requested) {
+void App::export_paraview(const Request& request) {
   if (!shown_ || shown_->iterates.empty()) {
-    status_line_ = "nothing to export yet";
+    fail(request, "export-vtu: nothing to export yet: no solve is on screen", kExitUsage);
     return;
   }
-  const std::string directory = requested.empty() ? args_.vtu_dir : requested;
+  const std::string directory = request.text.empty() ? args_.vtu_dir : request.text;
   const int iteration = shown_index();
   const solver::Snapshot& state = *shown_->iterates[static_cast<std::size_t>(iteration)];
   try {
@@ -35,8 +36,7 @@ void App::export_paraview(const std::string& requested) {
                 {"iteration", iteration}});
   } catch (const std::exception& error) {
     vtu_.reset();
-    status_line_ = error.what();
-    log_.write({{"event", "error"}, {"message", error.what()}});
+    fail(request, error.what(), kExitOutput);
   }
 }
 

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -17,6 +18,7 @@
 #include "render/frame_sequence.hpp"
 #include "render/overlay.hpp"
 #include "render/scene_framing.hpp"
+#include "solver/element_results.hpp"
 #include "solver/method.hpp"
 
 namespace fetic::app::gui {
@@ -48,6 +50,25 @@ std::string number(double x) {
   char text[32];
   std::snprintf(text, sizeof text, "%.6g", x);
   return text;
+}
+
+// A frame node's rotation and bending moment, as the result file and the moment colouring
+// have them: M of the element before the node (at its end) and of the one after (at its
+// start); the two differ where a load or a joint acts on the node.
+void frame_node_values(const solver::Model& model, const solver::Snapshot& snapshot,
+                       const Pickable& item, nlohmann::json& values) {
+  const auto strut = static_cast<std::size_t>(item.a);
+  const auto rotations = solver::strut_rotations(model, snapshot);
+  if (strut < rotations.size() && static_cast<std::size_t>(item.b) < rotations[strut].size())
+    values["rotation"] = rotations[strut][static_cast<std::size_t>(item.b)];
+  const auto moments = solver::strut_moments(model, snapshot);
+  if (strut >= moments.size() || moments[strut].empty()) return;
+  const solver::BeamMoments& m = moments[strut];
+  const int last = m.first_element + static_cast<int>(m.ends.size()) - 1;
+  nlohmann::json at = nlohmann::json::array();
+  if (item.b - 1 >= m.first_element && item.b - 1 <= last) at.push_back(m.at(item.b - 1, 1.0));
+  if (item.b >= m.first_element && item.b <= last) at.push_back(m.at(item.b, 0.0));
+  values["bending_moment"] = at;  // [after the element before, before the element after]
 }
 
 }  // namespace
@@ -117,6 +138,7 @@ nlohmann::json App::pick_values(const Pickable& item) const {
       ++piece_of_strut;
     }
     values["subdomains"] = pieces;
+    if (model.frame()) frame_node_values(model, snapshot, item, values);
   } else {
     const solver::ContactPair& pair = model.pairs[static_cast<std::size_t>(item.a)];
     const solver::Vec2 ua = displacement_of(pair.strut_a, pair.node_a);
@@ -128,10 +150,24 @@ nlohmann::json App::pick_values(const Pickable& item) const {
     values["contact_index"] = pair.contact;
     values["pair"] = pair.pair;
     values["gap"] = pair.gap;
-    // (u_a - u_b) . n <= gap: what is left of it now.
-    values["current_gap"] = pair.gap - (ua - ub).dot(pair.normal);
+    // (u_a - u_b) . n <= gap: what is left of it now. A closed contact leaves a difference
+    // of rounding errors (-1.6e-16 m), which is no penetration: shown as 0.
+    const double closing = (ua - ub).dot(pair.normal);
+    const double left = pair.gap - closing;
+    const double rounding =
+        64.0 * std::numeric_limits<double>::epsilon() * (std::abs(pair.gap) + std::abs(closing));
+    values["current_gap"] = std::abs(left) <= rounding ? 0.0 : left;
     values["force"] = k < snapshot.force.size() ? snapshot.force[k] : 0.0;
     values["active"] = k < snapshot.in_working_set.size() && snapshot.in_working_set[k] != 0;
+    // The rest of what the result file has for a pair (docs/SCENES.md, "Result file").
+    const auto point = [](const solver::Vec2& p) { return nlohmann::json::array({p.x(), p.y()}); };
+    values["node_a"] = pair.node_a;
+    values["node_b"] = pair.node_b;
+    values["point_a"] = point(model.struts[static_cast<std::size_t>(pair.strut_a)]
+                                  .nodes[static_cast<std::size_t>(pair.node_a)]);
+    values["point_b"] = point(model.struts[static_cast<std::size_t>(pair.strut_b)]
+                                  .nodes[static_cast<std::size_t>(pair.node_b)]);
+    values["normal"] = point(pair.normal);
   }
   return values;
 }
@@ -152,6 +188,14 @@ std::string App::pick_text(const Pickable& item) const {
     for (const auto& p : v["subdomains"])
       text += std::to_string(p.get<int>()) + " ";
     text += "\n";
+    if (v.contains("rotation")) text += "rotation      " + number(v["rotation"]) + " rad\n";
+    if (v.contains("bending_moment") && !v["bending_moment"].empty()) {
+      const auto& m = v["bending_moment"];
+      text += "bending moment " + number(m[0]);
+      if (m.size() > 1 && m[1].get<double>() != m[0].get<double>())
+        text += " | " + number(m[1]) + " (either side)";
+      text += " " + force + " " + length + "\n";
+    }
   } else {
     text = "contact " + v["contact"].get<std::string>() + ", pair " +
            std::to_string(v["pair"].get<int>()) + " (#" + std::to_string(item.a) + ")\n";
@@ -159,6 +203,9 @@ std::string App::pick_text(const Pickable& item) const {
     text += "current gap   " + number(v["current_gap"]) + " " + length + "\n";
     text += "force         " + number(v["force"]) + " " + force + "\n";
     text += std::string("active        ") + (v["active"].get<bool>() ? "yes" : "no") + "\n";
+    text += "nodes         " + std::to_string(v["node_a"].get<int>()) + " - " +
+            std::to_string(v["node_b"].get<int>()) + "\n";
+    text += "normal        " + number(v["normal"][0]) + ", " + number(v["normal"][1]) + "\n";
   }
   text += "load " + number(v["load_factor"]) + ", iteration " +
           std::to_string(v["iteration"].get<int>());
@@ -234,10 +281,19 @@ void App::pinned_window(float view_x, float view_width, float view_height) {
   if (show_overlay_)
     right =
         render::overlay_panel(view(static_cast<int>(view_width), static_cast<int>(view_height))).x0;
-  ImGui::SetNextWindowPos(ImVec2(view_x + std::max(0.0f, right - 300.0f), 10.0f),
+  // Below the caption band (the caption is never covered), sized to what it lists, at
+  // most as tall as the picture below the caption (then it scrolls).
+  const render::View v = view(static_cast<int>(view_width), static_cast<int>(view_height));
+  const float below_caption =
+      render::scene_region(v).y0 + render::caption_band(render::text_size(v));
+  ImGui::SetNextWindowPos(ImVec2(view_x + std::max(0.0f, right - 320.0f), below_caption),
                           ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSize(ImVec2(290.0f, 0.0f), ImGuiCond_FirstUseEver);
-  ImGui::Begin("Picked", nullptr, ImGuiWindowFlags_NoSavedSettings);
+  ImGui::SetNextWindowSizeConstraints(
+      ImVec2(0.0f, 0.0f), ImVec2(view_width, std::max(100.0f, view_height - below_caption)));
+  ImGui::Begin("Picked", nullptr,
+               ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_AlwaysAutoResize);
+  if (ImGui::GetWindowPos().y < below_caption)
+    ImGui::SetWindowPos(ImVec2(ImGui::GetWindowPos().x, below_caption));
   std::string all;
   int remove = -1;
   for (std::size_t i = 0; i < pinned_.size(); ++i) {
@@ -275,7 +331,7 @@ void App::locate(const std::string& what) {
   const auto at = picks_.position(item);
   nlohmann::json event{{"event", "located"}, {"what", what}, {"found", at.has_value()}};
   if (at) {
-    event["x"] = at->x + kPanelWidth;
+    event["x"] = at->x + panel_width();
     event["y"] = at->y;
   }
   log_.write(event);

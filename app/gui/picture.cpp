@@ -3,11 +3,14 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <cstdio>
 #include <string>
 #include <vector>
 
 #include "app/gui/app.hpp"
 #include "render/colormap.hpp"
+#include "render/contact_chart.hpp"
 #include "render/gl_renderer.hpp"
 #include "render/overlay.hpp"
 #include "render/scene_drawing.hpp"
@@ -29,6 +32,12 @@ render::View App::view(int width, int height) const {
   v.show_gaps = gaps_;
   v.show_overlay = show_overlay_;
   v.show_labels = labels_;
+  v.show_chart = chart_;
+  v.min_text_size = std::ceil(kSmallestText / 0.68f * ui_scale_);
+  // The scales are fixed for the whole slider (the survey at its top) or by a loaded view.
+  char basis[96];
+  std::snprintf(basis, sizeof basis, "over loads 0-%g", slider_max_);
+  v.scale_basis = scales_ ? "of the loaded view" : basis;
   return v;
 }
 
@@ -138,12 +147,16 @@ void App::draw_picture(int width, int height) {
   if (args_.bench > 0 && bench_.phase == 0)
     bench_.lists_ms.push_back(
         std::chrono::duration<double, std::milli>(Clock::now() - lists_start).count());
+  const render::DrawList chart =
+      v.show_chart ? render::draw_contact_chart(*shown_->model, snapshot, render::chart_region(v),
+                                                render::text_size(v))
+                   : render::DrawList{};
   const render::Rect region = render::scene_region(v);
-  renderer_->draw(
-      width, height,
-      {render::Layer(mesh_.get(), &mesh_values_, render::mesh_uniforms(*mesh_, framing), region),
-       render::Layer(&glyphs, region), render::Layer(&overlay)},
-      render::palette::background);
+  std::vector<render::Layer> layers{
+      render::Layer(mesh_.get(), &mesh_values_, render::mesh_uniforms(*mesh_, framing), region),
+      render::Layer(&glyphs, region), render::Layer(&overlay)};
+  if (!chart.empty()) layers.emplace_back(&chart);
+  renderer_->draw(width, height, layers, render::palette::background);
 }
 
 }  // namespace fetic::app::gui

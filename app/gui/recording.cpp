@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <memory>
 #include <string>
+#include <tuple>
 
 #include <nlohmann/json.hpp>
 
@@ -23,7 +24,7 @@ namespace fs = std::filesystem;
 // --record-dir; step_recording then renders one frame per UI frame.
 void App::start_recording(const Request& r) {
   if (recording_) {
-    say("a recording is already running", true);
+    fail(r, "a recording is already running", kExitUsage);
     return;
   }
   auto rec = std::make_unique<Recording>();
@@ -47,7 +48,7 @@ void App::start_recording(const Request& r) {
       rec->loads.push_back(slider_max_ * i / (n - 1));
   } else {
     if (!shown_ || shown_->iterates.empty()) {
-      say("nothing to record yet", true);
+      fail(r, "nothing to record yet: no solve is on screen", kExitUsage);
       return;
     }
     rec->iterations = shown_;
@@ -59,12 +60,16 @@ void App::start_recording(const Request& r) {
 void App::screenshot(const std::string& requested) {
   // A name without a directory goes into --screenshot-dir, like the numbered ones.
   std::string path = requested;
+  int number = -1;
   if (path.empty()) {
-    char name[64];
-    std::snprintf(name, sizeof name, "fetic_screenshot_%04d.png", screenshot_count_++);
-    path = (fs::path(args_.screenshot_dir) / name).string();
+    std::tie(path, number) = numbered_name("fetic_screenshot_%04d.png", screenshot_count_);
+    screenshot_count_ = number + 1;
   } else if (fs::path(path).is_relative()) {
     path = (fs::path(args_.screenshot_dir) / path).string();
+  }
+  if (!output_folder_ready(path)) {
+    if (number >= 0) give_back(screenshot_count_, number);
+    return;
   }
   if (!screenshot_pool_) screenshot_pool_ = std::make_unique<render::PngEncoderPool>(1, 4);
   const double load = shown_ ? shown_->load_factor : 0.0;
@@ -72,7 +77,7 @@ void App::screenshot(const std::string& requested) {
   const int newest = last_index();  // how far the shown solve has got
   say("screenshot " + path);
   screenshot_pool_->submit(renderer_->read_back(),
-                           [this, path, load, iteration, newest](render::PngBytes png) {
+                           [this, path, load, iteration, newest, number](render::PngBytes png) {
                              try {
                                write_png_atomically(path, png);
                                log_.write({{"event", "screenshot"},
@@ -81,9 +86,38 @@ void App::screenshot(const std::string& requested) {
                                            {"iteration", iteration},
                                            {"newest_iteration", newest}});
                              } catch (const std::exception& error) {
+                               if (number >= 0) give_back(screenshot_count_, number);
                                log_.output_lost(error.what());
                              }
                            });
+}
+
+std::pair<std::string, int> App::numbered_name(const char* pattern, int from) const {
+  for (int number = from;; ++number) {
+    char name[64];
+    std::snprintf(name, sizeof name, pattern, number);
+    const std::string path = (fs::path(args_.screenshot_dir) / name).string();
+    std::error_code ignored;
+    if (!fs::exists(path, ignored)) return {path, number};
+  }
+}
+
+bool App::output_folder_ready(const std::string& path) {
+  const fs::path folder = fs::path(path).parent_path();
+  std::error_code error;
+  if (folder.empty() || fs::is_directory(folder, error)) return true;
+  fs::create_directories(folder, error);
+  if (!error) return true;
+  const std::string message =
+      path + ": cannot create the folder " + folder.string() + " (" + error.message() + ")";
+  say(message, true);
+  log_.output_lost(message);
+  return false;
+}
+
+void App::give_back(std::atomic<int>& counter, int number) {
+  int expected = number + 1;
+  counter.compare_exchange_strong(expected, number);
 }
 
 void App::step_recording() {

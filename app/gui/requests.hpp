@@ -9,7 +9,7 @@
 namespace fetic::app::gui {
 
 enum class RequestKind {
-  SetLoad,            // value: load factor (clamped to 0 .. the slider's maximum)
+  SetLoad,            // value: load factor (0 .. the slider's maximum; a script's beyond it fails)
   SetMethod,          // text: "feti-c", "active-set", ...
   SetPreconditioner,  // text: "dirichlet", "lumped", "none"
   SetCompare,         // text: a second method solving beside the first, or "none"
@@ -42,6 +42,7 @@ struct Request {
   RequestKind kind = RequestKind::Quit;
   double value = 0.0;
   std::string text;
+  int script_line = 0;  // > 0: from this line of --script; a failure ends the run (App::fail)
 };
 
 using RequestQueue = std::vector<Request>;

@@ -1,11 +1,13 @@
 #include "app/gui/script.hpp"
 
-#include <algorithm>
-#include <cmath>
+#include <charconv>
 #include <cstdio>
-#include <cstdlib>
 #include <sstream>
+#include <string_view>
+#include <vector>
 
+#include "app/json_input.hpp"
+#include "app/parse_number.hpp"
 #include "solver/method.hpp"
 
 namespace fetic::app::gui {
@@ -13,25 +15,159 @@ namespace {
 
 constexpr int kMaxScriptSeconds = 3600;
 
-std::optional<double> number(const std::string& text) {
-  if (text.empty()) return std::nullopt;
-  char* end = nullptr;
-  const double value = std::strtod(text.c_str(), &end);
-  if (end != text.c_str() + text.size() || !std::isfinite(value)) return std::nullopt;
-  return value;
-}
-
 std::string short_number(double value) {
   char text[32];
   std::snprintf(text, sizeof text, "%g", value);
   return text;
 }
 
+// What an action takes after its name.
+enum class Argument {
+  None,      // play, pause, ...
+  Number,    // load 0.5: a finite number within [low, high] (the command line's parser)
+  Choice,    // toggle forces: one of `choices` (or what `known` accepts)
+  Optional,  // screenshot [FILE]
+  Required,  // view FILE
+  Locate,    // pair:K | node:STRUT:N
+};
+
+struct ActionSpec {
+  const char* verb;
+  RequestKind kind;
+  Argument argument;
+  double low = 0.0, high = 0.0;                 // Number
+  const char* choices = nullptr;                // Choice: "a, b or c", for the message
+  bool (*known)(const std::string&) = nullptr;  // Choice: accepted names
+};
+
+bool is_method(const std::string& name) {
+  return solver::parse_method(name).has_value();
+}
+bool is_preconditioner(const std::string& name) {
+  return solver::parse_preconditioner(name).has_value();
+}
+bool is_compare(const std::string& name) {
+  return name == "none" || is_method(name);
+}
+bool is_on_off(const std::string& name) {
+  return name == "on" || name == "off";
+}
+bool is_toggle(const std::string& name) {
+  for (const char* t :
+       {"subdomains", "forces", "gaps", "stress", "moment", "overlay", "labels", "chart", "help"})
+    if (name == t) return true;
+  return false;
+}
+bool is_color(const std::string& name) {
+  return name == "subdomain" || name == "strut" || name == "stress" || name == "moment";
+}
+
+// Every action of the script format; docs/WINDOW.md lists the same.
+const ActionSpec kActions[] = {
+    {"load", RequestKind::SetLoad, Argument::Number, 0.0, 1e300},
+    {"method", RequestKind::SetMethod, Argument::Choice, 0, 0,
+     "feti-c, mprgp, active-set, feti, cg or sd", &is_method},
+    {"preconditioner", RequestKind::SetPreconditioner, Argument::Choice, 0, 0,
+     "dirichlet, lumped or none", &is_preconditioner},
+    {"compare", RequestKind::SetCompare, Argument::Choice, 0, 0,
+     "a method (feti-c, mprgp, active-set, feti, cg or sd) or none", &is_compare},
+    {"magnification", RequestKind::SetMagnification, Argument::Number, 1e-12, 1e15},
+    {"play", RequestKind::Play, Argument::None},
+    {"pause", RequestKind::Pause, Argument::None},
+    {"step", RequestKind::Step, Argument::None},
+    {"back", RequestKind::StepBack, Argument::None},
+    {"reset", RequestKind::Reset, Argument::None},
+    {"cancel", RequestKind::Cancel, Argument::None},
+    {"live", RequestKind::SetLive, Argument::Choice, 0, 0, "on or off", &is_on_off},
+    {"scrub", RequestKind::Scrub, Argument::Number, 0.0, 1e9},
+    {"toggle", RequestKind::Toggle, Argument::Choice, 0, 0,
+     "subdomains, forces, gaps, stress, moment, overlay, labels, chart or help", &is_toggle},
+    {"color", RequestKind::SetColor, Argument::Choice, 0, 0, "subdomain, strut, stress or moment",
+     &is_color},
+    {"screenshot", RequestKind::Screenshot, Argument::Optional},
+    {"screenshot-window", RequestKind::ScreenshotWindow, Argument::Optional},
+    {"view", RequestKind::LoadView, Argument::Required},
+    {"save-view", RequestKind::SaveView, Argument::Optional},
+    {"locate", RequestKind::Locate, Argument::Locate},
+    {"record-iterations", RequestKind::RecordIterations, Argument::None},
+    {"record-sweep", RequestKind::RecordSweep, Argument::Number, 2.0, 10000.0},
+    {"export-vtu", RequestKind::ExportParaView, Argument::Optional},
+    {"reload", RequestKind::Reload, Argument::None},
+    {"wait", RequestKind::Quit, Argument::None},
+    {"quit", RequestKind::Quit, Argument::None},
+};
+
+// A whole number that fits (from_chars: no sign, no spaces, no overflow).
+bool whole_number(std::string_view text) {
+  long value = 0;
+  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+  return error == std::errc() && end == text.data() + text.size() && value >= 0;
+}
+
+// "pair:K" or "node:STRUT:N", K, STRUT, N whole numbers.
+bool locate_target(const std::string& text) {
+  std::vector<std::string_view> parts;
+  std::string_view rest = text;
+  for (std::size_t colon; (colon = rest.find(':')) != std::string_view::npos;) {
+    parts.push_back(rest.substr(0, colon));
+    rest.remove_prefix(colon + 1);
+  }
+  parts.push_back(rest);
+  if (parts[0] == "pair") return parts.size() == 2 && whole_number(parts[1]);
+  if (parts[0] == "node")
+    return parts.size() == 3 && whole_number(parts[1]) && whole_number(parts[2]);
+  return false;
+}
+
+// The argument checked against the action's kind; "" when it fits, else the problem.
+std::string argument_problem(const ActionSpec& spec, const std::string& verb,
+                             const std::string& argument, Request& r) {
+  const std::string got = argument.empty() ? "" : ", not '" + quoted_value(argument) + "'";
+  switch (spec.argument) {
+    case Argument::None:
+      return argument.empty() ? "" : "'" + verb + "' takes no argument";
+    case Argument::Number: {
+      if (spec.kind == RequestKind::SetMagnification && argument == "auto") {
+        r.value = 0.0;
+        return "";
+      }
+      const auto value = parse_number(argument);
+      if (!value || *value < spec.low || *value > spec.high)
+        return "'" + verb + "' needs " +
+               (spec.kind == RequestKind::SetMagnification ? "auto or " : "") + "a number from " +
+               short_number(spec.low) + " to " + short_number(spec.high) + got;
+      r.value = *value;
+      return "";
+    }
+    case Argument::Choice:
+      if (!spec.known(argument)) {
+        if (argument.empty()) return "'" + verb + "' needs " + spec.choices;
+        if (spec.kind == RequestKind::SetMethod || spec.kind == RequestKind::SetPreconditioner)
+          return "unknown " + verb + " '" + quoted_value(argument) + "' (" + spec.choices + ")";
+        return "'" + verb + "' needs " + spec.choices + got;
+      }
+      r.text = argument;
+      r.value = argument == "on" ? 1.0 : 0.0;
+      return "";
+    case Argument::Optional:
+      r.text = argument;
+      return "";
+    case Argument::Required:
+      r.text = argument;
+      return argument.empty() ? "'" + verb + "' needs a view file" : "";
+    case Argument::Locate:
+      r.text = argument;
+      return locate_target(argument) ? "" : "'locate' needs pair:K or node:STRUT:N" + got;
+  }
+  return "";
+}
+
 }  // namespace
 
 std::vector<ScriptAction> parse_script(const std::string& text, std::vector<ScriptError>& errors) {
   std::vector<ScriptAction> actions;
-  std::istringstream in(text);
+  // A byte order mark some editors put first is not part of the first action.
+  std::istringstream in(text.rfind("\xEF\xBB\xBF", 0) == 0 ? text.substr(3) : text);
   std::string raw;
   int line = 0;
   while (std::getline(in, raw)) {
@@ -44,13 +180,14 @@ std::vector<ScriptAction> parse_script(const std::string& text, std::vector<Scri
     if (w.empty()) continue;
     ScriptAction action;
     action.line = line;
+    action.request.script_line = line;
     std::size_t i = 0;
-    if (const auto time = number(w[0])) {
+    if (const auto time = parse_number(w[0])) {
       // A script is a demo or a test: an hour is plenty, and a time like 1e308 would
       // keep the window open for ever.
       if (!(*time >= 0 && *time <= kMaxScriptSeconds)) {
         errors.push_back({line, "the time must be from 0 to " + std::to_string(kMaxScriptSeconds) +
-                                    " seconds, not '" + w[0] + "'"});
+                                    " seconds, not '" + quoted_value(w[0]) + "'"});
         continue;
       }
       action.at = *time;
@@ -60,149 +197,27 @@ std::vector<ScriptAction> parse_script(const std::string& text, std::vector<Scri
       errors.push_back({line, "a time without an action"});
       continue;
     }
-    const std::string verb = w[i];
+    const std::string& verb = w[i];
     const std::string argument = i + 1 < w.size() ? w[i + 1] : "";
+    const ActionSpec* spec = nullptr;
+    for (const ActionSpec& s : kActions)
+      if (verb == s.verb) spec = &s;
+    if (!spec) {
+      errors.push_back({line, "unknown action '" + quoted_value(verb) + "'"});
+      continue;
+    }
     if (i + 2 < w.size()) {
       errors.push_back({line, "too many words after '" + verb + "'"});
       continue;
     }
-    Request& r = action.request;
-    const auto need_number = [&](RequestKind kind, double low, double high) {
-      const auto value = number(argument);
-      if (!value || *value < low || *value > high) {
-        errors.push_back({line, "'" + verb + "' needs a number from " + short_number(low) + " to " +
-                                    short_number(high) +
-                                    (argument.empty() ? "" : ", not '" + argument + "'")});
-        return false;
-      }
-      r.kind = kind;
-      r.value = *value;
-      return true;
-    };
-    const auto no_argument = [&](RequestKind kind) {
-      if (!argument.empty()) {
-        errors.push_back({line, "'" + verb + "' takes no argument"});
-        return false;
-      }
-      r.kind = kind;
-      return true;
-    };
-    bool ok = false;
-    if (verb == "load") {
-      ok = need_number(RequestKind::SetLoad, 0.0, 1e300);
-    } else if (verb == "method" || verb == "preconditioner") {
-      const bool method = verb == "method";
-      const bool known = method ? solver::parse_method(argument).has_value()
-                                : solver::parse_preconditioner(argument).has_value();
-      ok = !argument.empty() && known;
-      if (argument.empty())
-        errors.push_back({line, "'" + verb + "' needs a name"});
-      else if (!known)
-        errors.push_back({line, "unknown " + verb + " '" + argument + "' (" +
-                                    (method ? "feti-c, mprgp, active-set, feti, cg or sd"
-                                            : "dirichlet, lumped or none") +
-                                    ")"});
-      r.kind = method ? RequestKind::SetMethod : RequestKind::SetPreconditioner;
-      r.text = argument;
-    } else if (verb == "compare") {
-      ok = argument == "none" || solver::parse_method(argument).has_value();
-      if (!ok)
-        errors.push_back({line, "'compare' needs a method or 'none', got '" + argument + "'"});
-      r.kind = RequestKind::SetCompare;
-      r.text = argument;
-    } else if (verb == "magnification") {
-      if (argument == "auto") {
-        r.kind = RequestKind::SetMagnification;
-        r.value = 0.0;
-        ok = true;
-      } else {
-        ok = need_number(RequestKind::SetMagnification, 1e-300, 1e300);
-      }
-    } else if (verb == "play") {
-      ok = no_argument(RequestKind::Play);
-    } else if (verb == "pause") {
-      ok = no_argument(RequestKind::Pause);
-    } else if (verb == "step") {
-      ok = no_argument(RequestKind::Step);
-    } else if (verb == "back") {
-      ok = no_argument(RequestKind::StepBack);
-    } else if (verb == "reset") {
-      ok = no_argument(RequestKind::Reset);
-    } else if (verb == "cancel") {
-      ok = no_argument(RequestKind::Cancel);
-    } else if (verb == "live") {
-      ok = argument == "on" || argument == "off";
-      if (!ok) errors.push_back({line, "'live' needs on or off"});
-      r.kind = RequestKind::SetLive;
-      r.value = argument == "on" ? 1.0 : 0.0;
-    } else if (verb == "scrub") {
-      ok = need_number(RequestKind::Scrub, 0.0, 1e9);
-    } else if (verb == "toggle") {
-      ok = argument == "subdomains" || argument == "forces" || argument == "gaps" ||
-           argument == "stress" || argument == "moment" || argument == "overlay" ||
-           argument == "labels" || argument == "help";
-      if (!ok)
-        errors.push_back({line,
-                          "'toggle' needs subdomains, forces, gaps, stress, moment, overlay, "
-                          "labels or help"});
-      r.kind = RequestKind::Toggle;
-      r.text = argument;
-    } else if (verb == "color") {
-      ok = argument == "subdomain" || argument == "strut" || argument == "stress" ||
-           argument == "moment";
-      if (!ok) errors.push_back({line, "'color' needs subdomain, strut, stress or moment"});
-      r.kind = RequestKind::SetColor;
-      r.text = argument;
-    } else if (verb == "screenshot") {
-      r.kind = RequestKind::Screenshot;
-      r.text = argument;
-      ok = true;
-    } else if (verb == "view") {
-      ok = !argument.empty();
-      if (!ok) errors.push_back({line, "'view' needs a view file"});
-      r.kind = RequestKind::LoadView;
-      r.text = argument;
-    } else if (verb == "locate") {
-      // "locate pair:K" or "locate node:STRUT:N" (indices): reported in the state file.
-      std::string spaced = argument;
-      std::replace(spaced.begin(), spaced.end(), ':', ' ');
-      std::istringstream parts(spaced);
-      std::string kind;
-      long a = -1, b = -1;
-      parts >> kind >> a;
-      if (kind == "node") parts >> b;
-      std::string rest;
-      ok = ((kind == "pair" && a >= 0) || (kind == "node" && a >= 0 && b >= 0)) && !(parts >> rest);
-      if (!ok) errors.push_back({line, "'locate' needs pair:K or node:STRUT:N"});
-      r.kind = RequestKind::Locate;
-      r.text = argument;
-    } else if (verb == "screenshot-window") {
-      r.kind = RequestKind::ScreenshotWindow;
-      r.text = argument;
-      ok = true;
-    } else if (verb == "save-view") {
-      r.kind = RequestKind::SaveView;
-      r.text = argument;
-      ok = true;
-    } else if (verb == "record-iterations") {
-      ok = no_argument(RequestKind::RecordIterations);
-    } else if (verb == "record-sweep") {
-      ok = need_number(RequestKind::RecordSweep, 2.0, 10000.0);
-    } else if (verb == "export-vtu") {
-      r.kind = RequestKind::ExportParaView;
-      r.text = argument;
-      ok = true;
-    } else if (verb == "reload") {
-      ok = no_argument(RequestKind::Reload);
-    } else if (verb == "wait") {
-      action.wait = no_argument(RequestKind::Quit);
-      ok = action.wait;
-    } else if (verb == "quit") {
-      ok = no_argument(RequestKind::Quit);
-    } else {
-      errors.push_back({line, "unknown action '" + verb + "'"});
+    action.request.kind = spec->kind;
+    action.wait = verb == "wait";
+    if (const std::string problem = argument_problem(*spec, verb, argument, action.request);
+        !problem.empty()) {
+      errors.push_back({line, problem});
+      continue;
     }
-    if (ok) actions.push_back(action);
+    actions.push_back(action);
   }
   return actions;
 }

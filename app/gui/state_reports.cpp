@@ -49,9 +49,9 @@ void App::report_frame() {
   // Comparing, a solve counts as on screen once the second method has answered it too.
   const bool second_done = !compare_ || (compare_shown_ && compare_shown_->finished &&
                                          compare_shown_->request >= shown_->request);
-  solved_on_screen_ =
-      (shown_->finished && second_done && shown_->request == requests_sent_ && follow_) ||
-      (error_ && error_->request == requests_sent_);
+  solved_on_screen_ = (shown_->finished && second_done && shown_->request == requests_sent_ &&
+                       (follow_ || !playing_)) ||
+                      (error_ && error_->request == requests_sent_);
   if (!shown_->finished || !second_done || shown_->request <= reported_request_ ||
       shown_->iterates.empty())
     return;

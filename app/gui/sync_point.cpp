@@ -3,6 +3,7 @@
 // applies all queued requests and takes the newest state the solver published.
 
 #include <algorithm>
+#include <cstdio>
 #include <filesystem>
 #include <memory>
 #include <string>
@@ -10,7 +11,9 @@
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
 
+#include "app/exit_codes.hpp"
 #include "app/gui/app.hpp"
+#include "render/contact_chart.hpp"
 #include "solver/method.hpp"
 
 namespace fetic::app::gui {
@@ -20,6 +23,12 @@ namespace fs = std::filesystem;
 
 // How long the sync point waits for a quick solve to finish within the frame.
 constexpr std::chrono::microseconds kQuickSolve{5000};
+
+std::string number_text(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", value);
+  return text;
+}
 
 }  // namespace
 
@@ -38,7 +47,10 @@ App::App(const Options& args, std::shared_ptr<const solver::Model> model, std::s
   if (!args.compare.empty()) compare_ = solver::parse_method(args.compare);
   magnification_ = args.magnification;
   show_overlay_ = !args.no_overlay;
-  if (!args.view.empty()) load_view(args.view);  // checked by cmd_gui before the window opened
+  chart_ = render::chart_shown(*target_.model, -1);
+  if (!args.view.empty())
+    load_view(
+        {RequestKind::LoadView, 0.0, args.view});  // checked by cmd_gui before the window opened
   std::error_code ignored;
   scene_time_ = fs::last_write_time(args.scene, ignored);
 }
@@ -85,11 +97,46 @@ std::string App::shown_status() const {
   return status;
 }
 
+// One request into state; each kind of request has its function below.
 void App::apply(const Request& r) {
-  const int last = shown_ ? std::max(0, static_cast<int>(shown_->iterates.size()) - 1) : 0;
-  const bool finished = shown_ && shown_->finished;
+  switch (r.kind) {
+    case RequestKind::SetLoad:
+    case RequestKind::SetMethod:
+    case RequestKind::SetPreconditioner:
+    case RequestKind::SetCompare:
+      return apply_solver_request(r);
+    case RequestKind::TogglePlay:
+    case RequestKind::Play:
+    case RequestKind::Pause:
+    case RequestKind::Step:
+    case RequestKind::StepBack:
+    case RequestKind::Reset:
+    case RequestKind::SetLive:
+    case RequestKind::Cancel:
+    case RequestKind::Scrub:
+      return apply_history_request(r);
+    case RequestKind::SetMagnification:
+    case RequestKind::Toggle:
+    case RequestKind::SetColor:
+    case RequestKind::ResetView:
+    case RequestKind::LoadView:
+      return apply_display_request(r);
+    default:
+      return apply_output_request(r);
+  }
+}
+
+// What is solved: the load, the method, its preconditioner, the second method.
+void App::apply_solver_request(const Request& r) {
   switch (r.kind) {
     case RequestKind::SetLoad: {
+      if (r.script_line > 0 && r.value > slider_max_) {
+        fail(r,
+             "load " + number_text(r.value) + " is beyond the slider's maximum " +
+                 number_text(slider_max_) + " (--max-load sets it)",
+             kExitUsage);
+        break;
+      }
       const double t = std::clamp(r.value, 0.0, slider_max_);
       if (t == target_.load_factor && requests_sent_ > 0) break;
       target_.load_factor = t;
@@ -133,10 +180,16 @@ void App::apply(const Request& r) {
       redraw_ = true;
       break;
     }
-    case RequestKind::SetMagnification:
-      magnification_ = r.value;
-      redraw_ = true;
+    default:
       break;
+  }
+}
+
+// The iterations of the shown solve: playback, stepping (live or stored), scrubbing.
+void App::apply_history_request(const Request& r) {
+  const int last = shown_ ? std::max(0, static_cast<int>(shown_->iterates.size()) - 1) : 0;
+  const bool finished = shown_ && shown_->finished;
+  switch (r.kind) {
     case RequestKind::TogglePlay:
       apply(Request{playing_ ? RequestKind::Pause : RequestKind::Play, 0.0, {}});
       break;
@@ -188,9 +241,26 @@ void App::apply(const Request& r) {
       playing_ = false;
       break;
     case RequestKind::Scrub:
+      // Beyond the last iteration: the last (a script's "scrub 1000" shows the end).
+      if (r.script_line > 0 && !shown_) {
+        fail(r, "scrub: no solve is on screen yet (a 'wait' first waits for one)", kExitUsage);
+        break;
+      }
       cursor_ = std::clamp(static_cast<int>(r.value), 0, last);
       playing_ = false;
       follow_ = cursor_ == last && finished;
+      redraw_ = true;
+      break;
+    default:
+      break;
+  }
+}
+
+// How the picture is drawn: magnification, colouring, toggles, pan and zoom, views.
+void App::apply_display_request(const Request& r) {
+  switch (r.kind) {
+    case RequestKind::SetMagnification:
+      magnification_ = r.value;
       redraw_ = true;
       break;
     case RequestKind::Toggle:
@@ -208,6 +278,10 @@ void App::apply(const Request& r) {
       }
       if (r.text == "overlay") show_overlay_ = !show_overlay_;
       if (r.text == "labels") labels_ = !labels_;
+      if (r.text == "chart") {
+        chart_ = !chart_;
+        framing_key_ = {};  // the scene region changes
+      }
       if (r.text == "help") help_ = !help_;
       redraw_ = true;
       break;
@@ -215,6 +289,22 @@ void App::apply(const Request& r) {
       if (const auto color = color_from_name(r.text)) set_color(*color);
       redraw_ = true;
       break;
+    case RequestKind::ResetView:
+      zoom_ = 1.0f;
+      pan_ = {0.0f, 0.0f};
+      redraw_ = true;
+      break;
+    case RequestKind::LoadView:
+      load_view(r);
+      break;
+    default:
+      break;
+  }
+}
+
+// Outputs and the rest: screenshots, recordings, exports, views saved, reload, quit.
+void App::apply_output_request(const Request& r) {
+  switch (r.kind) {
     case RequestKind::Screenshot:
       screenshot_requested_ = true;
       pending_screenshot_ = r.text;
@@ -227,19 +317,11 @@ void App::apply(const Request& r) {
       reload();
       break;
     case RequestKind::ExportParaView:
-      export_paraview(r.text);
-      break;
-    case RequestKind::ResetView:
-      zoom_ = 1.0f;
-      pan_ = {0.0f, 0.0f};
-      redraw_ = true;
+      export_paraview(r);
       break;
     case RequestKind::SaveView:
       after_picture_.push_back(r);
       redraw_ = true;
-      break;
-    case RequestKind::LoadView:
-      load_view(r.text);
       break;
     case RequestKind::ScreenshotWindow:
       window_shot_requested_ = true;
@@ -251,6 +333,8 @@ void App::apply(const Request& r) {
       break;
     case RequestKind::Quit:
       quit_ = true;
+      break;
+    default:
       break;
   }
 }

@@ -8,7 +8,9 @@
 
 #include <imgui.h>
 
+#include "app/exit_codes.hpp"
 #include "app/gui/app.hpp"
+#include "app/interrupt.hpp"
 #include "app/output_file.hpp"
 #include "render/scene_framing.hpp"
 
@@ -30,6 +32,8 @@ SavedView App::current_view() const {
         (static_cast<double>(middle.y) - placed_.pixel_center.y) / placed_.pixels_per_unit;
   }
   saved.zoom = zoom_;
+  // The window's text is at least this big: `fetic render --view` draws it the same.
+  saved.text_size = view(view_width_, view_height_).min_text_size;
   // 0: automatic, chosen again from the scales (as the window does, with its caption note).
   saved.magnification = magnification_;
   const render::View v = view(view_width_, view_height_);
@@ -61,9 +65,13 @@ void App::view_buttons() {
 }
 
 void App::save_view(const std::string& path) {
-  const std::string file = path.empty() ? next_view_name() : in_screenshot_dir(path);
+  // Numbered: fetic_view_0000.json first; the number is used up only by a saved view.
+  const auto [file, number] = path.empty() ? numbered_name("fetic_view_%04d.json", views_saved_)
+                                           : std::make_pair(in_screenshot_dir(path), -1);
+  if (!output_folder_ready(file)) return;
   try {
     write_view_file(file, current_view());
+    if (number >= 0) views_saved_ = number + 1;
     view_path_ = file;
     log_.write({{"event", "view saved"}, {"path", file}});
     say("view saved as " + file);
@@ -73,15 +81,15 @@ void App::save_view(const std::string& path) {
   }
 }
 
-void App::load_view(const std::string& path) {
+void App::load_view(const Request& request) {
+  const std::string& path = request.text;
   try {
     use_view(read_view_file(path));
     view_path_ = path;
     log_.write({{"event", "view loaded"}, {"path", path}});
     say("view " + path);
   } catch (const ViewFileError& error) {
-    say(error.what(), true);
-    log_.write({{"event", "error"}, {"message", error.what()}});
+    fail(request, error.what(), interrupted() ? kExitInterrupted : kExitUsage);
   }
 }
 
@@ -113,15 +121,6 @@ void App::place_pending_center() {
   v.center_y = pending_center_.y();
   const render::Point center = render::placed(framing_, v).pixel_center;
   pan_ = {center.x - base_center_.x, center.y - base_center_.y};
-}
-
-std::string App::next_view_name() {
-  for (;;) {
-    char name[64];
-    std::snprintf(name, sizeof name, "fetic_view_%04d.json", ++views_saved_);
-    const std::string path = (std::filesystem::path(args_.screenshot_dir) / name).string();
-    if (!std::filesystem::exists(path)) return path;
-  }
 }
 
 std::string App::in_screenshot_dir(const std::string& path) const {

@@ -4,6 +4,7 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <tuple>
 #include <utility>
 
 #define GL_GLEXT_PROTOTYPES
@@ -18,12 +19,16 @@ void App::capture_window(int width, int height) {
   if (!window_shot_requested_) return;
   window_shot_requested_ = false;
   std::string path = pending_window_shot_;
+  int number = -1;
   if (path.empty()) {
-    char name[64];
-    std::snprintf(name, sizeof name, "fetic_window_%04d.png", window_shots_++);
-    path = (std::filesystem::path(args_.screenshot_dir) / name).string();
+    std::tie(path, number) = numbered_name("fetic_window_%04d.png", window_shots_);
+    window_shots_ = number + 1;
   } else if (std::filesystem::path(path).is_relative()) {
     path = (std::filesystem::path(args_.screenshot_dir) / path).string();
+  }
+  if (!output_folder_ready(path)) {
+    if (number >= 0) give_back(window_shots_, number);
+    return;
   }
   render::Image image;
   image.width = width;
@@ -40,11 +45,12 @@ void App::capture_window(int width, int height) {
                      image.rgba.begin() + static_cast<std::ptrdiff_t>(bottom * row));
   if (!screenshot_pool_) screenshot_pool_ = std::make_unique<render::PngEncoderPool>(1, 4);
   say("window screenshot " + path);
-  screenshot_pool_->submit(std::move(image), [this, path](render::PngBytes png) {
+  screenshot_pool_->submit(std::move(image), [this, path, number](render::PngBytes png) {
     try {
       write_png_atomically(path, png);
       log_.write({{"event", "screenshot"}, {"path", path}, {"window", true}});
     } catch (const std::exception& error) {
+      if (number >= 0) give_back(window_shots_, number);
       log_.output_lost(error.what());
     }
   });

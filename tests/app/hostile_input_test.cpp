@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "tests/support/process.hpp"
+#include "tests/support/scene_toml.hpp"
 
 using namespace fetic::test;
 namespace fs = std::filesystem;
@@ -108,28 +109,13 @@ TEST_CASE("solve --reference on an unbounded scene: status 4 and the result file
   TempDir dir;
   const std::string scene = dir / "unbounded.toml";
   {
-    std::ofstream(scene) << R"(model = "bar"
-[defaults]
-E = 2.1e11
-area = 1e-4
-elements = 2
-[[strut]]
-name = "L"
-from = [0.0, 0.0]
-to = [1.0, 0.0]
-fixed = ["from"]
-[[strut]]
-name = "R"
-from = [1.001, 0.0]
-to = [2.0, 0.0]
-[[load]]
-strut = "R"
-at = "to"
-force = [1000.0, 0.0]
-[[contact]]
-a = "L.to"
-b = "R.from"
-)";
+    std::ofstream(scene) << fetic::testing::SceneToml("bar", "[defaults]",
+                                                      "E = 2.1e11, area = 1e-4, elements = 2")
+                                .strut("L", {0.0, 0.0}, {1.0, 0.0}, "fixed = ['from']")
+                                .strut("R", {1.001, 0.0}, {2.0, 0.0})
+                                .load("R", "to", {1000.0, 0.0})
+                                .contact("L.to", "R.from")
+                                .str();
   }
   const std::string json = dir / "r.json";
   const Result r = run_fetic({"solve", scene, "--reference", "--json", json});

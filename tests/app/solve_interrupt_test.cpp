@@ -23,29 +23,10 @@
 
 #include <nlohmann/json.hpp>
 
+#include "tests/support/child_process.hpp"
+
 namespace fs = std::filesystem;
 using namespace std::chrono_literals;
-
-namespace {
-
-std::string read_text(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), {}};
-}
-
-std::optional<int> wait_bounded(pid_t child, std::chrono::seconds limit) {
-  const auto deadline = std::chrono::steady_clock::now() + limit;
-  int status = 0;
-  while (std::chrono::steady_clock::now() < deadline) {
-    if (::waitpid(child, &status, WNOHANG) == child) return status;
-    std::this_thread::sleep_for(10ms);
-  }
-  ::kill(child, SIGKILL);
-  ::waitpid(child, &status, 0);
-  return std::nullopt;
-}
-
-}  // namespace
 
 TEST_CASE("an interrupted solve writes the current iterate, marked interrupted") {
   for (const int signal : {SIGINT, SIGTERM}) {
@@ -64,27 +45,18 @@ TEST_CASE("an interrupted solve writes the current iterate, marked interrupted")
                             "to = [1.0, 0.0]\nE = 1.0e9\narea = 1.0e-4\nelements = 3000\n"
                             "fixed = [\"from\"]\n[[load]]\nstrut = \"long\"\nat = \"to\"\n"
                             "force = [1000.0, 0.0]\n";
-    const pid_t child = ::fork();
-    if (child == 0) {
-      std::FILE* file = std::fopen(log.c_str(), "w");
-      if (file) {
-        ::dup2(::fileno(file), 1);
-        ::dup2(::fileno(file), 2);
-      }
-      ::execl(FETIC_EXECUTABLE, "fetic", "solve", scene.c_str(), "--method", "sd", "--tol", "1e-14",
-              "--max-iterations", "1000000000", "--progress", "--json", json.c_str(), "--csv",
-              csv.c_str(), "--vtu", vtu.c_str(), static_cast<char*>(nullptr));
-      ::_exit(127);
-    }
+    const pid_t child = fetic::test::start_fetic(
+        {"solve", scene, "--method", "sd", "--tol", "1e-14", "--max-iterations", "1000000000",
+         "--progress", "--json", json.string(), "--csv", csv.string(), "--vtu", vtu.string()},
+        log);
     // Wait until the progress line reports iterations, then stop it.
-    const auto deadline = std::chrono::steady_clock::now() + 60s;
-    while (read_text(log).find("iteration") == std::string::npos &&
-           std::chrono::steady_clock::now() < deadline)
-      std::this_thread::sleep_for(20ms);
+    fetic::test::wait_for(
+        child, [&] { return fetic::test::read_bytes(log).find("iteration") != std::string::npos; },
+        60s, 20ms);
     std::this_thread::sleep_for(300ms);
     ::kill(child, signal);
-    const auto status = wait_bounded(child, 60s);
-    const std::string output = read_text(log);
+    const auto status = fetic::test::wait_bounded(child, 60s);
+    const std::string output = fetic::test::read_bytes(log);
     INFO(output);
     REQUIRE(status);
     REQUIRE(WIFEXITED(*status));
@@ -117,7 +89,7 @@ TEST_CASE("an interrupted solve writes the current iterate, marked interrupted")
       ++lines;
     CHECK(lines == iterations + 2);  // header, iterations 0..n
     CHECK(fs::exists(vtu / "struts_0000.vtu"));
-    CHECK_THAT(read_text(vtu / "struts.pvd"), Catch::Contains("struts_0000.vtu"));
+    CHECK_THAT(fetic::test::read_bytes(vtu / "struts.pvd"), Catch::Contains("struts_0000.vtu"));
     for (const auto& entry : fs::recursive_directory_iterator(dir))
       CHECK(entry.path().string().find(".tmp") == std::string::npos);
     fs::remove_all(dir);
@@ -125,25 +97,6 @@ TEST_CASE("an interrupted solve writes the current iterate, marked interrupted")
 }
 
 namespace {
-
-// Runs `fetic ARGS...` with stdout and stderr into `log`; returns the child's pid.
-pid_t start_fetic(const std::vector<std::string>& args, const fs::path& log) {
-  const pid_t child = ::fork();
-  if (child == 0) {
-    std::FILE* file = std::fopen(log.c_str(), "w");
-    if (file) {
-      ::dup2(::fileno(file), 1);
-      ::dup2(::fileno(file), 2);
-    }
-    std::vector<char*> argv{const_cast<char*>("fetic")};
-    for (const std::string& arg : args)
-      argv.push_back(const_cast<char*>(arg.c_str()));
-    argv.push_back(nullptr);
-    ::execv(FETIC_EXECUTABLE, argv.data());
-    ::_exit(127);
-  }
-  return child;
-}
 
 // Waits until `pid` runs fetic and catches SIGINT (its handler installed: /proc/PID/status,
 // SigCgt), so that the signal tests fetic's handling rather than the default action at
@@ -187,15 +140,15 @@ TEST_CASE("interrupted at any moment of a sweep, even the set-up: 130 and only t
     fs::remove_all(json);
     fs::remove_all(csv);
     fs::remove_all(vtu);
-    const pid_t child =
-        start_fetic({"solve", scene, "--method", "mprgp", "--load-steps", "0.5:1.5:40", "--json",
-                     json.string(), "--csv-steps", csv.string(), "--vtu", vtu.string()},
-                    log);
+    const pid_t child = fetic::test::start_fetic(
+        {"solve", scene, "--method", "mprgp", "--load-steps", "0.5:1.5:40", "--json", json.string(),
+         "--csv-steps", csv.string(), "--vtu", vtu.string()},
+        log);
     REQUIRE(wait_for_handler(child));
     std::this_thread::sleep_for(std::chrono::milliseconds(delay_ms));
     ::kill(child, SIGINT);
-    const auto status = wait_bounded(child, 60s);
-    const std::string output = read_text(log);
+    const auto status = fetic::test::wait_bounded(child, 60s);
+    const std::string output = fetic::test::read_bytes(log);
     INFO(output);
     REQUIRE(status);
     REQUIRE(WIFEXITED(*status));
@@ -209,12 +162,12 @@ TEST_CASE("interrupted at any moment of a sweep, even the set-up: 130 and only t
     }
     REQUIRE_THAT(output, Catch::Contains("marked interrupted, is in"));
     REQUIRE(fs::exists(json));
-    const auto result = nlohmann::json::parse(read_text(json));
+    const auto result = nlohmann::json::parse(fetic::test::read_bytes(json));
     CHECK(result["interrupted"] == true);
     CHECK(result["converged"] == false);
     CHECK(result["steps"].back()["interrupted"] == true);
     // The load-step table's last row says so too.
-    const std::string table = read_text(csv);
+    const std::string table = fetic::test::read_bytes(csv);
     CHECK_THAT(table, Catch::Contains(",interrupted,"));
     CHECK(fs::exists(vtu / "struts.pvd"));
     for (const auto& entry : fs::recursive_directory_iterator(dir))

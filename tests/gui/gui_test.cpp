@@ -10,6 +10,7 @@
 
 #include <signal.h>
 #include <spawn.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -549,7 +550,8 @@ TEST_CASE("a screenshot or recording that cannot be written is an error event an
     if (is(e, "error")) errors.push_back(e["message"].get<std::string>());
   REQUIRE(errors.size() == 2);
   std::sort(errors.begin(), errors.end());  // the screenshot is written off the UI thread
-  CHECK(errors[0].find((file / "shot.png").string() + ": a part of the path is a file") !=
+  // The screenshot's folder cannot be made where a file is (issue 26, item 3).
+  CHECK(errors[0].find((file / "shot.png").string() + ": cannot create the folder") !=
         std::string::npos);
   CHECK(errors[1].find("cannot create the recording directory") != std::string::npos);
   CHECK(read_text(file) == "not a directory\n");
@@ -629,7 +631,7 @@ TEST_CASE("a view saved in the window is drawn again by fetic render --view", "[
   CHECK(saved["show"]["overlay"] == false);
   CHECK(saved["show"]["gaps"] == false);
   CHECK(saved["show"]["forces"] == true);
-  CHECK(saved["magnification"].get<double>() == 0.0);  // automatic, from the scales
+  CHECK(saved["magnification"] == "auto");  // automatic, from the scales
   CHECK(saved["scales"]["stress"].get<double>() > 0.0);
 
   const auto [render_status, output] =
@@ -763,4 +765,149 @@ TEST_CASE("the ParaView export writes the shown iterate as the next frame of a s
   REQUIRE(at != std::string::npos);
   CHECK(frame.find("\n2\n", at) < frame.find("</DataArray>", at));
   CHECK(fs::exists(dir / "vtu" / "contacts_0001.vtu"));
+}
+
+// Issue 27, item 3: "scrub K" then "wait" used to wait for ever (status 4 after 120 s).
+// Item 4: an export that cannot write, or an action before the first solve, ends the run
+// with an error event and a non-zero status instead of being dropped.
+TEST_CASE("a script's action does what it says or ends the run with an error", "[script]") {
+  REQUIRE(have_display());
+  const fs::path dir = fresh_directory("fetic_gui_failing_actions");
+  const auto run = [&](const std::string& name, const std::string& text,
+                       std::vector<std::string> extra = {}) {
+    const fs::path state = dir / (name + ".jsonl");
+    std::ofstream(dir / (name + ".txt")) << text;
+    std::vector<std::string> arguments{scene("two_bars.toml"), "--state-file", state.string(),
+                                       "--script", (dir / (name + ".txt")).string()};
+    arguments.insert(arguments.end(), extra.begin(), extra.end());
+    App app(arguments);
+    const auto status = app.wait(60.0);
+    std::vector<json> errors;
+    for (const json& e : events(state))
+      if (is(e, "error")) errors.push_back(e);
+    return std::make_pair(status, errors);
+  };
+  {
+    const auto [status, errors] = run("scrub", "wait\nscrub 1\nwait\nscrub 1000000\nwait\nquit\n");
+    REQUIRE(status);
+    CHECK(*status == 0);
+    CHECK(errors.empty());
+  }
+  {
+    const auto [status, errors] = run("early", "export-vtu\nwait\nquit\n");
+    REQUIRE(status);
+    CHECK(*status == 1);
+    REQUIRE(errors.size() == 1);
+    CHECK(errors[0]["script_line"] == 1);
+    CHECK_THAT(errors[0]["message"].get<std::string>(), Catch::Contains("nothing to export yet"));
+  }
+  {
+    std::ofstream(dir / "not_a_folder") << "x";
+    const auto [status, errors] = run("unwritable", "wait\nexport-vtu\nquit\n",
+                                      {"--vtu-dir", (dir / "not_a_folder" / "vtu").string()});
+    REQUIRE(status);
+    CHECK(*status == 5);
+    REQUIRE(errors.size() == 1);
+  }
+  {
+    const auto [status, errors] = run("beyond", "wait\nload 3\nwait\nquit\n", {"--max-load", "2"});
+    REQUIRE(status);
+    CHECK(*status == 1);
+    REQUIRE(errors.size() == 1);
+    CHECK_THAT(errors[0]["message"].get<std::string>(),
+               Catch::Contains("load 3 is beyond the slider's maximum 2"));
+  }
+}
+
+// Issue 27, items 1 and 10, through the command lines that read view files and scripts.
+TEST_CASE("view files and script values are refused before the window opens", "[no-display]") {
+  const fs::path dir = fresh_directory("fetic_gui_bad_inputs");
+  const std::string fetic = FETIC_EXECUTABLE;
+  std::ofstream(dir / "huge.json") << R"({"zoom": 1e400})";
+  for (const std::string& command : {"render " + scene("two_bars.toml") + " --final --out " +
+                                         (dir / "out").string() + " --view ",
+                                     "gui " + scene("two_bars.toml") + " --view "}) {
+    const auto [status, output] = shell(fetic + " " + command + (dir / "huge.json").string());
+    INFO(output);
+    CHECK(status == 1);
+    CHECK_THAT(output, Catch::Contains("'zoom' is 1e400, beyond the range of a number") &&
+                           Catch::Contains("from 0.01 to 1000"));
+    const auto [folder_status, folder_output] = shell(fetic + " " + command + dir.string());
+    CHECK(folder_status == 1);
+    CHECK_THAT(folder_output, Catch::Contains("is a folder, not a view file"));
+  }
+  // Script loads are held to the scene's range, like --load.
+  for (const char* load : {"1e300", "1e-320"}) {
+    std::ofstream(dir / "load.txt") << "wait\nload " << load << "\n";
+    const auto [status, output] =
+        shell("env -u DISPLAY -u WAYLAND_DISPLAY " + fetic + " gui " + scene("two_bars.toml") +
+              " --script " + (dir / "load.txt").string());
+    INFO(output);
+    CHECK(status == 1);
+    CHECK_THAT(output, Catch::Contains("load.txt:2: "));
+  }
+  // SIGTERM while waiting for a writer on a view FIFO: status 130, like a scene FIFO.
+  const fs::path fifo = dir / "view.fifo";
+  REQUIRE(::mkfifo(fifo.c_str(), 0600) == 0);
+  App app({scene("two_bars.toml"), "--view", fifo.string()});
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  REQUIRE(app.running());
+  app.signal(SIGTERM);
+  const auto status = app.wait(10.0);
+  REQUIRE(status);
+  CHECK(*status == 130);
+}
+
+// Issue 26, item 3: --screenshot-dir is created when first needed, and a numbered name is
+// used up only by an output that was written.
+TEST_CASE("numbered outputs create their folder and are numbered from 0 by success", "[script]") {
+  REQUIRE(have_display());
+  const fs::path dir = fresh_directory("fetic_gui_numbered");
+  const fs::path state = dir / "state.jsonl";
+  const fs::path shots = dir / "blocked" / "shots";
+  std::ofstream(dir / "blocked") << "a file where the folder should be";
+  std::ofstream(dir / "script.txt") << "wait\nsave-view\nscreenshot\n12 save-view\nscreenshot\n"
+                                       "screenshot-window\nwait\nquit\n";
+  App app({scene("two_bars.toml"), "--state-file", state.string(), "--script",
+           (dir / "script.txt").string(), "--screenshot-dir", shots.string()});
+  // The first two fail (the folder cannot be made); then the way is cleared.
+  const auto two_errors = [&](const json&) {
+    std::size_t errors = 0;
+    for (const json& e : events(state))
+      errors += is(e, "error") ? 1 : 0;
+    return errors >= 2;
+  };
+  REQUIRE(wait_for(state, two_errors, 60.0));
+  fs::remove(dir / "blocked");
+  const auto status = app.wait(60.0);
+  INFO("reported state:\n" << read_text(state));
+  REQUIRE(status);
+  CHECK(*status == 5);  // two outputs were lost
+  CHECK(fs::exists(shots / "fetic_view_0000.json"));
+  CHECK(fs::exists(shots / "fetic_screenshot_0000.png"));
+  CHECK(fs::exists(shots / "fetic_window_0000.png"));
+  CHECK_FALSE(fs::exists(shots / "fetic_view_0001.json"));
+}
+
+// Issue 26, item 2: without --size the window fills the monitor's work area (the whole
+// 1600x1000 screen of the test's X server, which has no panels); --ui-scale widens the
+// panel and the picture's smallest text (0.68 of its base size) is at least 11 px times it.
+TEST_CASE("the window opens at the work area and scales its text", "[script]") {
+  REQUIRE(have_display());
+  const fs::path dir = fresh_directory("fetic_gui_size");
+  for (const double scale : {1.0, 1.5}) {
+    const fs::path state = dir / ("state_" + std::to_string(scale) + ".jsonl");
+    std::ofstream(dir / "script.txt") << "wait\nquit\n";
+    App app({scene("two_bars.toml"), "--state-file", state.string(), "--script",
+             (dir / "script.txt").string(), "--ui-scale", std::to_string(scale)});
+    const auto ready = wait_for(state, [](const json& e) { return is(e, "ready"); });
+    REQUIRE(ready);
+    CHECK((*ready)["window"] == json::array({1600, 1000}));
+    CHECK((*ready)["view"][0].get<int>() == static_cast<int>(330 * scale));
+    CHECK((*ready)["ui_scale"].get<double>() == Approx(scale));
+    CHECK(0.68 * (*ready)["text_size"].get<double>() >= 11.0 * scale);
+    const auto status = app.wait(60.0);
+    REQUIRE(status);
+    CHECK(*status == 0);
+  }
 }

@@ -8,6 +8,7 @@
 using fetic::app::gui::parse_script;
 using fetic::app::gui::RequestKind;
 using fetic::app::gui::ScriptError;
+using namespace std::string_literals;
 
 TEST_CASE("script lines become timed requests", "[script]") {
   std::vector<ScriptError> errors;
@@ -71,7 +72,7 @@ TEST_CASE("method and preconditioner names are checked, live stepping and cancel
   CHECK(errors[0].message == "unknown method 'fetic' (feti-c, mprgp, active-set, feti, cg or sd)");
   CHECK(errors[1].line == 3);
   CHECK(errors[1].message == "unknown preconditioner 'diriclet' (dirichlet, lumped or none)");
-  CHECK(errors[2].message == "'live' needs on or off");
+  CHECK(errors[2].message == "'live' needs on or off, not 'maybe'");
   CHECK(errors[3].message == "'cancel' takes no argument");
   REQUIRE(actions.size() == 5);
   CHECK(actions[0].request.kind == RequestKind::SetMethod);
@@ -98,10 +99,40 @@ TEST_CASE("compare takes a method or none", "[script]") {
       parse_script("compare mprgp\ncompare none\ncompare fetic\ncompare\n", errors);
   REQUIRE(errors.size() == 2);
   CHECK(errors[0].line == 3);
-  CHECK(errors[0].message == "'compare' needs a method or 'none', got 'fetic'");
+  CHECK(
+      errors[0].message ==
+      "'compare' needs a method (feti-c, mprgp, active-set, feti, cg or sd) or none, not 'fetic'");
   CHECK(errors[1].line == 4);
   REQUIRE(actions.size() == 2);
   CHECK(actions[0].request.kind == RequestKind::SetCompare);
   CHECK(actions[0].request.text == "mprgp");
   CHECK(actions[1].request.text == "none");
+}
+
+// Issue 27, items 9 and 10: values are checked like the command line's, and quoted safely.
+TEST_CASE("script values: beyond the range, control characters and a byte order mark", "[script]") {
+  std::vector<ScriptError> errors;
+  const auto actions = parse_script(
+      "\xEF\xBB\xBFwait\nload 1e400\nmagnification 1e300\nscrub 1e10\nload 1e300\n"
+      "jump\x01\nload 0x\x00\n"s,
+      errors);
+  REQUIRE(actions.size() == 2);  // the BOM is not part of the first action's name
+  CHECK(actions[0].wait);
+  CHECK(actions[0].line == 1);
+  CHECK(actions[1].request.kind == RequestKind::SetLoad);  // 1e300: the scene decides (cmd_gui)
+  CHECK(actions[1].request.value == 1e300);
+  CHECK(actions[1].request.script_line == 5);
+  REQUIRE(errors.size() == 5);
+  CHECK(errors[0].message == "'load' needs a number from 0 to 1e+300, not '1e400'");
+  CHECK(errors[1].message ==
+        "'magnification' needs auto or a number from 1e-12 to 1e+15, not "
+        "'1e300'");
+  CHECK(errors[2].message == "'scrub' needs a number from 0 to 1e+09, not '1e10'");
+  CHECK(errors[3].message == "unknown action 'jump\\x01'");
+  CHECK(errors[4].message == "'load' needs a number from 0 to 1e+300, not '0x\\x00'");
+  // A long word is quoted shortened.
+  errors.clear();
+  parse_script("load " + std::string(100000, '7') + "x\n", errors);
+  REQUIRE(errors.size() == 1);
+  CHECK(errors[0].message.size() < 200);
 }

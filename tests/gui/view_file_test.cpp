@@ -9,6 +9,7 @@
 #include <fstream>
 
 #include "app/gui/script.hpp"
+#include "app/json_input.hpp"
 #include "app/view_file.hpp"
 
 namespace {
@@ -136,9 +137,11 @@ TEST_CASE("a bad view file is refused naming the entry") {
   CHECK_THAT(error_of("{\"zoom\": 2,\n \"size\": [1, }"),
              Catch::Contains(":2: not a JSON view file"));
   CHECK_THAT(error_of("[1, 2]"), Catch::Contains("a view file is a JSON object"));
-  CHECK_THAT(error_of(R"({"zoom": -1})"), Catch::Contains("'zoom' must be a positive number"));
-  CHECK_THAT(error_of(R"({"zoom": "big"})"), Catch::Contains("'zoom' must be a number"));
-  CHECK_THAT(error_of(R"({"size": [10, 800]})"), Catch::Contains("'size' must be [width, height]"));
+  CHECK_THAT(error_of(R"({"zoom": -1})"),
+             Catch::Contains("'zoom' must be from 0.01 to 1000, not -1"));
+  CHECK_THAT(error_of(R"({"zoom": "big"})"), Catch::Contains("'zoom' must be from 0.01"));
+  CHECK_THAT(error_of(R"({"size": [10, 800]})"),
+             Catch::Contains("'size[0]' must be a whole number of pixels from 16 to 8192, not 10"));
   CHECK_THAT(error_of(R"({"color": "blue"})"), Catch::Contains("'color' must be"));
   CHECK_THAT(error_of(R"({"color": "blue"})"), Catch::Contains(R"("moment")"));
   CHECK_THAT(error_of(R"({"center": [1]})"), Catch::Contains("'center' must be [x, y]"));
@@ -148,7 +151,64 @@ TEST_CASE("a bad view file is refused naming the entry") {
   CHECK_THAT(error_of(R"({"show": {"forces": 1}})"),
              Catch::Contains("'forces' must be true or false"));
   CHECK_THROWS_WITH(fetic::app::read_view_file("/nonexistent/view.json"),
-                    Catch::Contains("/nonexistent/view.json: cannot read the view file"));
+                    Catch::Contains("/nonexistent/view.json: cannot open the view file"));
+}
+
+// Issue 27, items 1 and 10: what used to abort (SIGABRT) or pass unchecked.
+TEST_CASE("numbers beyond the double range are refused naming the entry and its range") {
+  CHECK_THAT(error_of(R"({"zoom": 1e400})"),
+             Catch::Contains(":1: 'zoom' is 1e400, beyond the range of a number") &&
+                 Catch::Contains("it must be from 0.01 to 1000"));
+  CHECK_THAT(error_of("{\n\"magnification\": -1e999}"),
+             Catch::Contains(":2: 'magnification' is -1e999") &&
+                 Catch::Contains("\"auto\" or a number from 1e-12 to 1e15"));
+  CHECK_THAT(error_of(R"({"center": [1e999, 0]})"),
+             Catch::Contains("'center[0]' is 1e999") && Catch::Contains("from -1e15 to 1e15"));
+  CHECK_THAT(error_of(R"({"center": [0, 1e999]})"), Catch::Contains("'center[1]' is 1e999"));
+  CHECK_THAT(error_of(R"({"scales": {"lateral": [1, 2, 1e400]}})"),
+             Catch::Contains("'scales.lateral[2]' is 1e400"));
+  // 100,000 digits: quoted shortened, the message stays one readable line.
+  const std::string digits(100000, '9');
+  const std::string long_number = error_of("{\"zoom\": " + digits + "}");
+  CHECK_THAT(long_number, Catch::Contains("'zoom' is 999") && Catch::Contains("(100000 bytes)"));
+  CHECK(long_number.size() < 300);
+  // In range for a double but not for the entry.
+  CHECK_THAT(error_of(R"({"size": [16384, 16384]})"),
+             Catch::Contains("'size[0]' must be a whole number of pixels from 16 to 8192"));
+  CHECK_THAT(error_of(R"({"size": [800.5, 600]})"), Catch::Contains("'size[0]' must be"));
+  CHECK_THAT(error_of(R"({"scales": {"iterations": 1e300}})"),
+             Catch::Contains("'scales.iterations' must be a whole number from 0 to 1e9"));
+  CHECK_THAT(error_of(R"({"fetic_view": "1"})"),
+             Catch::Contains("'fetic_view' must be 1 (the format's version), not \"1\""));
+  CHECK_THAT(error_of(R"({"fetic_view": 2})"), Catch::Contains("'fetic_view' must be 1"));
+  CHECK_THAT(error_of(std::string(20, '[') + std::string(20, ']')),
+             Catch::Contains("nests deeper than 16 levels"));
+}
+
+TEST_CASE("a view file is read like every input: folders and devices refused, a size limit") {
+  const auto folder =
+      std::filesystem::temp_directory_path() / ("fetic_view_folder_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(folder);
+  CHECK_THROWS_WITH(fetic::app::read_view_file(folder.string()),
+                    Catch::EndsWith(": is a folder, not a view file"));
+  CHECK_THROWS_WITH(fetic::app::read_view_file("/dev/zero"),
+                    Catch::EndsWith("/dev/zero: is a device, not a view file"));
+  std::filesystem::remove(folder);
+  // Over the limit: refused before it is read.
+  const std::string big = file_with(std::string(fetic::app::kMaxInputFileBytes + 1, ' '));
+  CHECK_THROWS_WITH(fetic::app::read_view_file(big),
+                    Catch::Contains("the limit for a view file is 8.0 MiB"));
+}
+
+TEST_CASE("a saved view says \"auto\" for an automatic magnification and reads it back") {
+  fetic::app::SavedView view;
+  view.magnification = 0.0;
+  const std::string text = fetic::app::view_json(view);
+  CHECK_THAT(text, Catch::Contains(R"("magnification": "auto")"));
+  CHECK(fetic::app::read_view_file(file_with(text)).magnification == 0.0);
+  CHECK(fetic::app::read_view_file(file_with(R"({"magnification": 0.0})")).magnification == 0.0);
+  CHECK(fetic::app::read_view_file(file_with(R"({"magnification": 150})")).magnification == 150);
+  CHECK_THAT(error_of(R"({"magnification": "big"})"), Catch::Contains("'magnification' must be"));
 }
 
 TEST_CASE("scripts load and save views and locate items") {
@@ -166,8 +226,15 @@ TEST_CASE("scripts load and save views and locate items") {
   CHECK(actions[3].request.kind == fetic::app::gui::RequestKind::Locate);
   CHECK(actions[4].request.text == "node:0:44");
   CHECK(actions[5].request.kind == fetic::app::gui::RequestKind::ScreenshotWindow);
-  fetic::app::gui::parse_script("view\nlocate pair\nlocate node:1\nlocate pair:1:2\n", errors);
-  REQUIRE(errors.size() == 4);
+  fetic::app::gui::parse_script(
+      "view\nlocate pair\nlocate node:1\nlocate pair:1:2\nlocate pair:abc\nlocate pair:-1\n"
+      "locate node:1:2x\nlocate pair:99999999999999999999999999999\n",
+      errors);
+  REQUIRE(errors.size() == 8);
   CHECK(errors[0].message == "'view' needs a view file");
-  CHECK(errors[1].message == "'locate' needs pair:K or node:STRUT:N");
+  CHECK(errors[1].message == "'locate' needs pair:K or node:STRUT:N, not 'pair'");
+  CHECK(errors[4].message == "'locate' needs pair:K or node:STRUT:N, not 'pair:abc'");
+  CHECK(errors[5].line == 6);
+  CHECK(errors[6].line == 7);
+  CHECK(errors[7].line == 8);
 }

@@ -303,3 +303,34 @@ TEST_CASE("the moment legend: kN m for a frame in m and N, bars drawn grey with 
     all += text.text + "|";
   CHECK_THAT(all, Catch::Contains("no bending moment"));
 }
+
+// Issue 23, item 4: a legend says what its scale is - the largest of the state shown, or
+// a fixed scale named as such with the state's own largest beside it.
+TEST_CASE("legends name their scale: the state's largest, or a fixed one and now") {
+  const auto solved = solve("thesis.toml", solver::MethodKind::FetiC);
+  View view;  // 1280x720
+  view.color_by = ColorBy::Stress;
+  SceneFraming framing = frame_scene(solved->model, view, solved->extent, scene_region(view));
+  const auto texts = [&](const View& v, const SceneFraming& f) {
+    std::string all;
+    const DrawList list = draw_scene(solved->model, solved->final, v, f);
+    for (const TextItem& text : list.texts())
+      all += text.text + "|";
+    return all;
+  };
+  // One frame's own scales: "largest".
+  double largest_force = 0.0;
+  for (const double f : solved->final.force)
+    largest_force = std::max(largest_force, std::abs(f));
+  framing.force_scale = largest_force;
+  const std::string own = texts(view, framing);
+  CHECK_THAT(own, Catch::Contains("contact force (largest ") && Catch::Contains("(largest shown)"));
+  CHECK_THAT(own, !Catch::Contains("now"));
+  // A scale fixed beyond the state (twice its force): named, with the state's largest.
+  framing.force_scale = 2.0 * largest_force;
+  view.scale_basis = "over loads 0-2";
+  const std::string fixed = texts(view, framing);
+  CHECK_THAT(fixed, Catch::Contains("contact force (scale ") &&
+                        Catch::Contains(": largest over loads 0-2; now "));
+  CHECK_THAT(fixed, Catch::Contains("axial stress (largest over loads 0-2; now "));
+}

@@ -14,58 +14,27 @@
 #include "scenes/scene_error.hpp"
 #include "scenes/scene_geometry.hpp"
 #include "scenes/write_scene.hpp"
+#include "tests/support/scene_toml.hpp"
 
 using namespace fetic::scenes;
 
 namespace {
 
-const char* kFrame = R"(model = "frame"
-[defaults]
-E = 2.0e11
-area = 1.0e-3
-inertia = 1.0e-6
-[[strut]]
-name = "beam"
-from = [0.0, 0.0]
-to = [2.0, 0.0]
-elements = 4
-pinned = ["from"]
-fixed = ["to"]
-[[strut]]
-name = "legL"
-from = [1.0, 2.0]
-to = [1.5, 0.5]
-elements = 3
-fixed = ["from"]
-[[strut]]
-name = "legR"
-from = [2.0, 2.0]
-to = [1.5, 0.5]
-elements = 3
-pinned = ["from"]
-[[joint]]
-ends = ["legL.to", "legR.to"]
-[[load]]
-strut = "legL"
-at = 2
-force = [1.0, -2.0]
-moment = 3.5
-[[load]]
-strut = "beam"
-at = "3"
-moment = -1.0
-[[load]]
-strut = "legR"
-at = "to"
-force = [0.0, -5.0]
-[[contact]]
-a = "beam@3"
-b = "legL.to"
-[[contact]]
-a = "beam.to"
-b = "legR@1"
-normal = [0.70710678, 0.70710678]
-)";
+using fetic::testing::SceneToml;
+
+const std::string kFrameDefaults = "E = 2.0e11, area = 1.0e-3, inertia = 1.0e-6";
+
+const std::string kFrame =
+    SceneToml("frame", "[defaults]", kFrameDefaults)
+        .strut("beam", {0.0, 0.0}, {2.0, 0.0}, "elements = 4, pinned = ['from'], fixed = ['to']")
+        .strut("legL", {1.0, 2.0}, {1.5, 0.5}, "elements = 3, fixed = ['from']")
+        .strut("legR", {2.0, 2.0}, {1.5, 0.5}, "elements = 3, pinned = ['from']")
+        .joint("legL.to", "legR.to")
+        .table("[[load]]", "strut = 'legL', at = 2, force = [1.0, -2.0], moment = 3.5")
+        .table("[[load]]", "strut = 'beam', at = '3', moment = -1.0")
+        .load("legR", "to", {0.0, -5.0})
+        .contact("beam@3", "legL.to")
+        .contact("beam.to", "legR@1", "normal = [0.70710678, 0.70710678]");
 
 }  // namespace
 
@@ -117,51 +86,17 @@ TEST_CASE("frame: supports, joints, node loads with moments and contacts at any 
 }
 
 TEST_CASE("frame: free motions are the rigid motions supports and joints allow") {
-  const char* text = R"(model = "frame"
-[defaults]
-E = 2.0e11
-area = 1.0e-3
-inertia = 1.0e-6
-elements = 2
-[[strut]]
-name = "float"
-from = [0.0, 1.0]
-to = [2.0, 1.0]
-[[strut]]
-name = "lever"
-from = [0.0, 0.0]
-to = [2.0, 0.0]
-pinned = ["from"]
-[[strut]]
-name = "clamped"
-from = [0.0, -1.0]
-to = [2.0, -1.0]
-fixed = ["from"]
-[[strut]]
-name = "arm"
-from = [2.0, -1.0]
-to = [2.0, -2.0]
-[[joint]]
-ends = ["clamped.to", "arm.from"]
-kind = "pinned"
-[[contact]]
-a = "lever.to"
-b = "float.to"
-[[contact]]
-a = "lever@1"
-b = "float.from"
-[[contact]]
-a = "clamped@1"
-b = "float.from"
-normal = [0.6, 0.8]
-[[contact]]
-a = "clamped@2"
-b = "float@1"
-[[contact]]
-a = "clamped@1"
-b = "arm.to"
-normal = [1.0, 0.0]
-)";
+  const std::string text = SceneToml("frame", "[defaults]", kFrameDefaults + ", elements = 2")
+                               .strut("float", {0.0, 1.0}, {2.0, 1.0})
+                               .strut("lever", {0.0, 0.0}, {2.0, 0.0}, "pinned = ['from']")
+                               .strut("clamped", {0.0, -1.0}, {2.0, -1.0}, "fixed = ['from']")
+                               .strut("arm", {2.0, -1.0}, {2.0, -2.0})
+                               .joint("clamped.to", "arm.from", "kind = 'pinned'")
+                               .contact("lever.to", "float.to")
+                               .contact("lever@1", "float.from")
+                               .contact("clamped@1", "float.from", "normal = [0.6, 0.8]")
+                               .contact("clamped@2", "float@1")
+                               .contact("clamped@1", "arm.to", "normal = [1.0, 0.0]");
   const Scene scene = parse_scene(text, "motions.toml");
   const FrameKinematics k = frame_kinematics(scene);
   // Groups: float, lever, clamped+arm. Motions: 3 (float) + 1 (lever about its pin) +
@@ -280,35 +215,13 @@ TEST_CASE("frame: the free motions of a 200-strut rope (sparse QR) keep its join
 TEST_CASE("frame: a linkage's mechanism names a motion every strut of it makes") {
   // Two posts on pins and a beam pinned to their tops: the posts turn about their feet,
   // the beam slides along itself.
-  const std::string text = R"(model = "frame"
-[defaults]
-E = 2.0e11
-area = 1.0e-3
-inertia = 1.0e-6
-[[strut]]
-name = "left"
-from = [0.0, 0.0]
-to = [0.0, 2.0]
-elements = 2
-pinned = ["from"]
-[[strut]]
-name = "right"
-from = [3.0, 0.0]
-to = [3.0, 2.0]
-elements = 2
-pinned = ["from"]
-[[strut]]
-name = "top"
-from = [0.0, 2.0]
-to = [3.0, 2.0]
-elements = 3
-[[joint]]
-ends = ["left.to", "top.from"]
-kind = "pinned"
-[[joint]]
-ends = ["top.to", "right.to"]
-kind = "pinned"
-)";
+  const std::string text =
+      SceneToml("frame", "[defaults]", kFrameDefaults)
+          .strut("left", {0.0, 0.0}, {0.0, 2.0}, "elements = 2, pinned = ['from']")
+          .strut("right", {3.0, 0.0}, {3.0, 2.0}, "elements = 2, pinned = ['from']")
+          .strut("top", {0.0, 2.0}, {3.0, 2.0}, "elements = 3")
+          .joint("left.to", "top.from", "kind = 'pinned'")
+          .joint("top.to", "right.to", "kind = 'pinned'");
   try {
     parse_scene(text, "linkage.toml");
     FAIL("a linkage is a mechanism");

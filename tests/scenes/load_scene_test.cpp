@@ -7,8 +7,10 @@
 
 #include "scenes/load_scene.hpp"
 #include "scenes/scene_geometry.hpp"
+#include "tests/support/scene_toml.hpp"
 
 using namespace fetic::scenes;
+using fetic::testing::SceneToml;
 
 TEST_CASE("defaults apply where a strut omits a key, and a strut's own value wins") {
   const char* text = R"(
@@ -49,31 +51,13 @@ subdomains = 1
 }
 
 TEST_CASE("loads and contacts may come before the struts they name") {
-  const char* text = R"(
-model = "bar"
-[[load]]
-strut = "B"
-per_length = [-3.0, 0.0]
-[[contact]]
-a = "A.to"
-b = "B.from"
-[[strut]]
-name = "A"
-from = [0.0, 0.0]
-to = [1.0, 0.0]
-E = 1e9
-area = 1e-4
-elements = 1
-fixed = ["from"]
-[[strut]]
-name = "B"
-from = [1.0, 0.0]
-to = [2.0, 0.0]
-E = 1e9
-area = 1e-4
-elements = 1
-fixed = ["to"]
-)";
+  const std::string text =
+      SceneToml("bar")
+          .per_length("B", {-3.0, 0.0})
+          .contact("A.to", "B.from")
+          .strut("A", {0.0, 0.0}, {1.0, 0.0},
+                 "E = 1e9, area = 1e-4, elements = 1, fixed = ['from']")
+          .strut("B", {1.0, 0.0}, {2.0, 0.0}, "E = 1e9, area = 1e-4, elements = 1, fixed = ['to']");
   const Scene scene = parse_scene(text, "order.toml");
   REQUIRE(scene.loads.size() == 1);
   CHECK(scene.loads[0].strut == 1);
@@ -86,26 +70,10 @@ fixed = ["to"]
 
 TEST_CASE("contact normal and gap follow a's axis for any direction and orientation") {
   // A runs from (1,1) toward (0,0); B lies beyond A.from, reversed.
-  const char* text = R"(
-model = "bar"
-[defaults]
-E = 1e9
-area = 1e-4
-elements = 2
-[[strut]]
-name = "A"
-from = [0.0, 0.0]
-to = [1.0, 1.0]
-fixed = ["to"]
-[[strut]]
-name = "B"
-from = [-2.0, -2.0]
-to = [-0.5, -0.5]
-fixed = ["from"]
-[[contact]]
-a = "A.from"
-b = "B.to"
-)";
+  const std::string text = SceneToml("bar", "[defaults]", "E = 1e9, area = 1e-4, elements = 2")
+                               .strut("A", {0.0, 0.0}, {1.0, 1.0}, "fixed = ['to']")
+                               .strut("B", {-2.0, -2.0}, {-0.5, -0.5}, "fixed = ['from']")
+                               .contact("A.from", "B.to");
   const Scene scene = parse_scene(text, "diag.toml");
   const ContactGeometry g = contact_geometry(scene, scene.contacts[0]);
   CHECK(g.normal[0] == Approx(-std::sqrt(0.5)));
@@ -125,25 +93,10 @@ TEST_CASE("every bundled scene loads") {
 }
 
 TEST_CASE("a gap at the resolution of the coordinates is kept and reported as a warning") {
-  const char* text = R"(model = "bar"
-[defaults]
-E = 1e9
-area = 1e-4
-elements = 1
-[[strut]]
-name = "A"
-from = [0.0, 0.0]
-to = [1.0, 0.0]
-fixed = ["from"]
-[[strut]]
-name = "B"
-from = [1.000000000000001, 0.0]
-to = [2.0, 0.0]
-fixed = ["to"]
-[[contact]]
-a = "A.to"
-b = "B.from"
-)";
+  const std::string text = SceneToml("bar", "[defaults]", "E = 1e9, area = 1e-4, elements = 1")
+                               .strut("A", {0.0, 0.0}, {1.0, 0.0}, "fixed = ['from']")
+                               .strut("B", {1.000000000000001, 0.0}, {2.0, 0.0}, "fixed = ['to']")
+                               .contact("A.to", "B.from");
   const Scene scene = parse_scene(text, "tiny.toml");
   REQUIRE(scene.warnings.size() == 1);
   CHECK(scene.warnings[0].line == 16);  // the [[contact]] table
@@ -152,19 +105,10 @@ b = "B.from"
 }
 
 TEST_CASE("plane elements of extreme aspect ratio are reported as a warning") {
-  const char* text = R"(model = "plane"
-[[strut]]
-name = "thin"
-from = [0.0, 0.0]
-to = [1.0, 0.0]
-E = 2.1e11
-nu = 0.3
-height = 1e-6
-thickness = 0.01
-elements = 10
-elements_across = 1
-fixed = ["from"]
-)";
+  const std::string text = SceneToml("plane").strut(
+      "thin", {0.0, 0.0}, {1.0, 0.0},
+      "E = 2.1e11, nu = 0.3, height = 1e-6, thickness = 0.01, elements = 10, "
+      "elements_across = 1, fixed = ['from']");
   const Scene scene = parse_scene(text, "thin.toml");
   REQUIRE(scene.warnings.size() == 1);
   CHECK(scene.warnings[0].line == 2);
@@ -172,22 +116,12 @@ fixed = ["from"]
 }
 
 TEST_CASE("a scene may declare its units, SI when it does not") {
-  const char* base = R"(
-model = "bar"
-[[strut]]
-name = "A"
-from = [0, 0]
-to = [500, 0]
-E = 210000
-area = 100
-elements = 2
-fixed = ["from"]
-)";
+  const std::string base = SceneToml("bar").strut(
+      "A", {0.0, 0.0}, {500.0, 0.0}, "E = 210000, area = 100, elements = 2, fixed = ['from']");
   const Scene si = parse_scene(base, "si.toml");
   CHECK(si.units.length == "m");
   CHECK(si.units.force == "N");
-  const Scene mm =
-      parse_scene(std::string(base) + "[units]\nlength = \"mm\"\nforce = \"kN\"\n", "mm.toml");
+  const Scene mm = parse_scene(base + "[units]\nlength = \"mm\"\nforce = \"kN\"\n", "mm.toml");
   CHECK(mm.units.length == "mm");
   CHECK(mm.units.force == "kN");
   // Only what is given changes.
@@ -205,28 +139,28 @@ TEST_CASE("units: derived names and the prefix a legend uses") {
   CHECK(stress_unit({"in", "lbf"}) == "psi");
   CHECK(stress_unit({"in", "kip"}) == "ksi");
   CHECK(force_per_length_unit({"mm", "N"}) == "N/mm");
-  // 420 N/mm² is 420 MPa; 420e6 N/m² too; 0.42 kN/mm² is 420 MPa as well.
-  DisplayUnit unit = display_unit(Quantity::Stress, {"mm", "N"}, 420.0);
-  CHECK(unit.name == "MPa");
-  CHECK(420.0 / unit.divisor == Approx(420.0));
-  unit = display_unit(Quantity::Stress, {"m", "N"}, 420e6);
-  CHECK(unit.name == "MPa");
-  CHECK(420e6 / unit.divisor == Approx(420.0));
-  unit = display_unit(Quantity::Stress, {"mm", "kN"}, 0.42);
-  CHECK(unit.name == "MPa");
-  CHECK(0.42 / unit.divisor == Approx(420.0));
-  unit = display_unit(Quantity::Force, {"mm", "N"}, 84000.0);
-  CHECK(unit.name == "kN");
-  CHECK(84000.0 / unit.divisor == Approx(84.0));
-  // Moments: the scene's length, the force prefixed: 3.2e6 N mm reads 3.2 MN mm.
-  unit = display_unit(Quantity::Moment, {"mm", "N"}, 3.2e6);
-  CHECK(unit.name == "MN mm");
-  CHECK(3.2e6 / unit.divisor == Approx(3.2));
-  unit = display_unit(Quantity::Moment, {"mm", "N"}, 420.0);
-  CHECK(unit.name == "N mm");
-  unit = display_unit(Quantity::Moment, {"m", "N"}, 6800.0);
-  CHECK(unit.name == "kN m");
-  CHECK(6800.0 / unit.divisor == Approx(6.8));
+  // The unit a legend shows for its largest value, and that value in it. 420 N/mm² is
+  // 420 MPa; 420e6 N/m² too; 0.42 kN/mm² is 420 MPa as well. Moments: the scene's length,
+  // the force prefixed: 3.2e6 N mm reads 3.2 MN mm.
+  struct Shown {
+    Quantity quantity;
+    Units units;
+    double largest;
+    std::string name;
+    double number;
+  };
+  for (const Shown& c : {Shown{Quantity::Stress, {"mm", "N"}, 420.0, "MPa", 420.0},
+                         Shown{Quantity::Stress, {"m", "N"}, 420e6, "MPa", 420.0},
+                         Shown{Quantity::Stress, {"mm", "kN"}, 0.42, "MPa", 420.0},
+                         Shown{Quantity::Force, {"mm", "N"}, 84000.0, "kN", 84.0},
+                         Shown{Quantity::Moment, {"mm", "N"}, 3.2e6, "MN mm", 3.2},
+                         Shown{Quantity::Moment, {"mm", "N"}, 420.0, "N mm", 420.0},
+                         Shown{Quantity::Moment, {"m", "N"}, 6800.0, "kN m", 6.8}}) {
+    INFO(c.largest << " " << c.units.force << ", " << c.units.length);
+    const DisplayUnit unit = display_unit(c.quantity, c.units, c.largest);
+    CHECK(unit.name == c.name);
+    CHECK(c.largest / unit.divisor == Approx(c.number));
+  }
   CHECK(display_unit(Quantity::Moment, {"in", "kip"}, 30.0).name == "kip in");
   // Lengths stay in the scene's unit; imperial quantities are not converted.
   CHECK(display_unit(Quantity::Length, {"mm", "N"}, 0.001).name == "mm");

@@ -6,22 +6,17 @@
 #include <string>
 
 #include "scenes/load_scene.hpp"
+#include "tests/support/scene_toml.hpp"
 
 using namespace fetic::scenes;
+using fetic::testing::SceneToml;
 
 namespace {
 
-const std::string kBar = R"(model = "bar"
-[defaults]
-E = 2.1e11
-area = 1e-4
-elements = 4
-[[strut]]
-name = "L"
-from = [0.0, 0.0]
-to = [1.0, 0.0]
-fixed = ["from"]
-)";
+SceneToml bar() {
+  return SceneToml("bar", "[defaults]", "E = 2.1e11, area = 1e-4, elements = 4")
+      .strut("L", {0.0, 0.0}, {1.0, 0.0}, "fixed = ['from']");
+}
 
 std::string all_warnings(const Scene& scene) {
   std::string text;
@@ -33,18 +28,11 @@ std::string all_warnings(const Scene& scene) {
 }  // namespace
 
 TEST_CASE("a sideways force on a bar strut is accepted with a warning naming what is dropped") {
-  const Scene scene = parse_scene(kBar + R"([[load]]
-strut = "L"
-at = "to"
-force = [300.0, 400.0]
-[[load]]
-strut = "L"
-per_length = [0.0, -50.0]
-[[load]]
-strut = "L"
-at = "to"
-force = [1000.0, 0.0]
-)",
+  const Scene scene = parse_scene(bar()
+                                      .load("L", "to", {300.0, 400.0})
+                                      .per_length("L", {0.0, -50.0})
+                                      .load("L", "to", {1000.0, 0.0})
+                                      .str(),
                                   "sideways.toml");
   const std::string text = all_warnings(scene);
   INFO(text);
@@ -58,48 +46,21 @@ force = [1000.0, 0.0]
 }
 
 TEST_CASE("a sideways force on a tilted bar counts along its own axis") {
-  const Scene scene = parse_scene(R"(model = "bar"
-[[strut]]
-name = "D"
-from = [0.0, 0.0]
-to = [3.0, 4.0]
-E = 2.1e11
-area = 1e-4
-elements = 4
-fixed = ["from"]
-[[load]]
-strut = "D"
-at = "to"
-force = [30.0, 40.0]
-)",
-                                  "tilted.toml");
+  const std::string text = SceneToml("bar")
+                               .strut("D", {0.0, 0.0}, {3.0, 4.0},
+                                      "E = 2.1e11, area = 1e-4, elements = 4, fixed = ['from']")
+                               .load("D", "to", {30.0, 40.0});
+  const Scene scene = parse_scene(text, "tilted.toml");
   CHECK(scene.warnings.empty());  // along the axis (0.6, 0.8): nothing dropped
 }
 
 TEST_CASE("plane contact faces of different heights are paired with a warning") {
-  const std::string text = R"(model = "plane"
-[defaults]
-E = 2.1e11
-elements = 4
-thickness = 0.01
-nu = 0.3
-elements_across = 2
-[[strut]]
-name = "P"
-from = [0.0, 0.0]
-to = [1.0, 0.0]
-height = 0.1
-fixed = ["from"]
-[[strut]]
-name = "Q"
-from = [1.001, 0.0]
-to = [2.0, 0.0]
-height = 0.3
-fixed = ["to"]
-[[contact]]
-a = "P.to"
-b = "Q.from"
-)";
+  const std::string text =
+      SceneToml("plane", "[defaults]",
+                "E = 2.1e11, elements = 4, thickness = 0.01, nu = 0.3, elements_across = 2")
+          .strut("P", {0.0, 0.0}, {1.0, 0.0}, "height = 0.1, fixed = ['from']")
+          .strut("Q", {1.001, 0.0}, {2.0, 0.0}, "height = 0.3, fixed = ['to']")
+          .contact("P.to", "Q.from");
   const Scene scene = parse_scene(text, "heights.toml");
   REQUIRE(scene.warnings.size() == 1);
   CHECK(scene.warnings[0].line == 20);

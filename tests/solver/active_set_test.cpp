@@ -56,31 +56,13 @@ TEST_CASE("a floating strut held only by contacts is solved by the active-set me
 }
 
 TEST_CASE("a floating strut pushed away from every contact is reported as unbounded") {
-  const std::string text = R"(
-model = "bar"
-[[strut]]
-name = "base"
-from = [0.0, 0.0]
-to = [1.0, 0.0]
-fixed = ["from"]
-E = 2e11
-area = 1e-4
-elements = 2
-[[strut]]
-name = "runaway"
-from = [1.001, 0.0]
-to = [2.0, 0.0]
-E = 2e11
-area = 1e-4
-elements = 2
-[[load]]
-strut = "runaway"
-at = "to"
-force = [500.0, 0.0]
-[[contact]]
-a = "base.to"
-b = "runaway.from"
-)";
+  const std::string text =
+      testing::SceneToml("bar")
+          .strut("base", {0.0, 0.0}, {1.0, 0.0},
+                 "fixed = ['from'], E = 2e11, area = 1e-4, elements = 2")
+          .strut("runaway", {1.001, 0.0}, {2.0, 0.0}, "E = 2e11, area = 1e-4, elements = 2")
+          .load("runaway", "to", {500.0, 0.0})
+          .contact("base.to", "runaway.from");
   const auto solved = testing::solve_text(text, MethodKind::ActiveSet);
   CHECK(solved->state.status == solver::Status::Failed);
   CHECK_THAT(solved->state.message, Catch::Contains("unbounded") && Catch::Contains("'runaway'"));
@@ -94,24 +76,12 @@ TEST_CASE("active set: a warm start after a small load change needs fewer iterat
   const auto scene = testing::bundled_scene("thesis.toml");
   const auto model = solver::build_model(scene);
   solver::ActiveSet method(model, {});
-  method.start(1.0);
-  solver::run_to_end(method);
-  REQUIRE(method.status() == solver::Status::Converged);
-  const solver::Snapshot previous = method.snapshot();
-  const int cold_iterations = previous.iteration;
-
-  method.start(1.05, &previous);
-  solver::run_to_end(method);
-  REQUIRE(method.status() == solver::Status::Converged);
-  const int warm_iterations = method.iteration();
-  const auto warm_state = method.snapshot();
-
-  method.start(1.05);
-  solver::run_to_end(method);
-  const auto cold_state = method.snapshot();
-  CHECK(warm_iterations < method.iteration());
-  CHECK(warm_iterations < cold_iterations);
-  CHECK((warm_state.primal - cold_state.primal).norm() <= 1e-10 * cold_state.primal.norm());
+  const testing::WarmAndCold states = testing::warm_and_cold(method, 1.0, 1.05);
+  REQUIRE(states.first.status == solver::Status::Converged);
+  REQUIRE(states.warm.status == solver::Status::Converged);
+  CHECK(states.warm.iteration < states.cold.iteration);
+  CHECK(states.warm.iteration < states.first.iteration);
+  CHECK((states.warm.primal - states.cold.primal).norm() <= 1e-10 * states.cold.primal.norm());
 }
 
 namespace {

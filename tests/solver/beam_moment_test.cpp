@@ -41,11 +41,9 @@ TEST_CASE("frame moments: a cantilever with a tip force P has M = -P (L - x)") {
   for (const double angle : {0.0, 0.7, 2.9}) {
     const double c = std::cos(angle), s = std::sin(angle);
     // The force against e2 (the axis turned +90 degrees): the strut hogs, M <= 0.
-    const std::string text =
-        "model = \"frame\"\n[[strut]]\nname = \"C\"\nfrom = [0.0, 0.0]\nto = " +
-        testing::toml_point(L * c, L * s) + "\nE = 2.1e11\narea = 2.0e-3\ninertia = 3.0e-6\n" +
-        "elements = 8\nsubdomains = 3\nfixed = [\"from\"]\n[[load]]\nstrut = \"C\"\n" +
-        "at = \"to\"\nforce = " + testing::toml_point(P * s, -P * c) + "\n";
+    const std::string text = testing::SceneToml("frame")
+                                 .strut("C", {0.0, 0.0}, {L * c, L * s}, testing::kCantileverKeys)
+                                 .load("C", "to", {P * s, -P * c});
     const auto expected = [&](double x) { return -P * (L - x); };
     for (MethodKind kind : {MethodKind::ActiveSet, MethodKind::FetiC}) {
       INFO("angle " << angle << ", method " << solver::to_string(kind));

@@ -3,8 +3,6 @@
 
 #include <catch2/catch.hpp>
 
-#include <cstdio>
-
 #include "tests/support/solve_helpers.hpp"
 
 using namespace fetic;
@@ -15,43 +13,16 @@ namespace {
 std::string two_bars(double L1, double EA1, double L2, double EA2, double gap, double P,
                      int elements, int subdomains, double angle) {
   const double dx = std::cos(angle), dy = std::sin(angle);
-  auto pt = [&](double s) {
-    char b[96];
-    std::snprintf(b, sizeof b, "[%.17g, %.17g]", s * dx, s * dy);
-    return std::string(b);
-  };
-  char text[2048];
-  std::snprintf(text, sizeof text, R"(
-model = "bar"
-[[strut]]
-name = "A"
-from = %s
-to = %s
-E = %.17g
-area = 1.0
-elements = %d
-subdomains = %d
-fixed = ["from"]
-[[strut]]
-name = "B"
-from = %s
-to = %s
-E = %.17g
-area = 1.0
-elements = %d
-subdomains = %d
-fixed = ["to"]
-[[load]]
-strut = "B"
-at = "from"
-force = [%.17g, %.17g]
-[[contact]]
-a = "A.to"
-b = "B.from"
-)",
-                pt(0).c_str(), pt(L1).c_str(), EA1, elements, subdomains, pt(L1 + gap).c_str(),
-                pt(L1 + gap + L2).c_str(), EA2, elements, subdomains, -P * dx, -P * dy);
-  return text;
+  auto at = [&](double s) { return testing::TomlPoint{s * dx, s * dy}; };
+  const std::string mesh = "area = 1.0, elements = " + std::to_string(elements) +
+                           ", subdomains = " + std::to_string(subdomains);
+  return testing::SceneToml("bar")
+      .strut("A", at(0), at(L1),
+             "E = " + testing::toml_number(EA1) + ", " + mesh + ", fixed = ['from']")
+      .strut("B", at(L1 + gap), at(L1 + gap + L2),
+             "E = " + testing::toml_number(EA2) + ", " + mesh + ", fixed = ['to']")
+      .load("B", "from", {-P * dx, -P * dy})
+      .contact("A.to", "B.from");
 }
 
 }  // namespace
@@ -87,20 +58,10 @@ TEST_CASE("two opposing bars: contact force max(0, (P L2/EA2 - g) / (L1/EA1 + L2
 TEST_CASE("bar under a distributed load: nodal displacements are exact") {
   // Clamped at x = 0, free at x = L, load q per length: u(x) = q/(EA) (L x - x^2 / 2).
   const double L = 2.0, EA = 5.0e6, q = 300.0;
-  const std::string text = R"(
-model = "bar"
-[[strut]]
-name = "B"
-from = [0.0, 0.0]
-to = [2.0, 0.0]
-E = 5.0e6
-area = 1.0
-elements = 7
-fixed = ["from"]
-[[load]]
-strut = "B"
-per_length = [300.0, 0.0]
-)";
+  const std::string text = testing::SceneToml("bar")
+                               .strut("B", {0.0, 0.0}, {2.0, 0.0},
+                                      "E = 5.0e6, area = 1.0, elements = 7, fixed = ['from']")
+                               .per_length("B", {300.0, 0.0});
   for (MethodKind kind : {MethodKind::ActiveSet, MethodKind::ConjugateGradient}) {
     const auto solved = testing::solve_text(text, kind);
     REQUIRE(solved->state.status == solver::Status::Converged);

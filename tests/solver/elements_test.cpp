@@ -8,8 +8,10 @@
 #include "solver/model.hpp"
 #include "solver/rigid_modes.hpp"
 #include "solver/stiffness.hpp"
+#include "tests/support/scene_toml.hpp"
 
 using namespace fetic::solver;
+using fetic::testing::SceneToml;
 
 namespace {
 
@@ -73,21 +75,10 @@ TEST_CASE("bilinear quadrilateral: three rigid-body modes span its kernel, rotat
 }
 
 TEST_CASE("assembled plane strut: rigid_body_modes lie in the kernel of every subdomain box") {
-  const std::string text = R"(
-model = "plane"
-[[strut]]
-name = "P"
-from = [0.2, 0.1]
-to = [1.4, 0.9]
-E = 7e10
-elements = 6
-subdomains = 2
-height = 0.1
-thickness = 0.02
-nu = 0.33
-elements_across = 3
-fixed = ["from"]
-)";
+  const std::string text = SceneToml("plane").strut(
+      "P", {0.2, 0.1}, {1.4, 0.9},
+      "E = 7e10, elements = 6, subdomains = 2, height = 0.1, thickness = 0.02, nu = 0.33, "
+      "elements_across = 3, fixed = ['from']");
   const auto scene = fetic::scenes::parse_scene(text, "plane.toml");
   const StrutMesh mesh = build_strut_mesh(scene, 0);
   for (NodeBox box : {whole_strut(mesh), NodeBox{0, 3, 0, 3}, NodeBox{3, 6, 1, 2}}) {
@@ -99,24 +90,11 @@ fixed = ["from"]
 }
 
 TEST_CASE("bar loads: end forces and distributed loads give consistent nodal forces") {
-  const std::string text = R"(
-model = "bar"
-[[strut]]
-name = "B"
-from = [0.0, 0.0]
-to = [0.0, 2.0]
-E = 1e9
-area = 1e-4
-elements = 4
-fixed = ["from"]
-[[load]]
-strut = "B"
-at = "to"
-force = [5.0, 30.0]
-[[load]]
-strut = "B"
-per_length = [100.0, -8.0]
-)";
+  const std::string text = SceneToml("bar")
+                               .strut("B", {0.0, 0.0}, {0.0, 2.0},
+                                      "E = 1e9, area = 1e-4, elements = 4, fixed = ['from']")
+                               .load("B", "to", {5.0, 30.0})
+                               .per_length("B", {100.0, -8.0});
   const auto scene = fetic::scenes::parse_scene(text, "bar.toml");
   const Model model = build_model(scene);
   const Eigen::VectorXd& f = model.loads[0];
@@ -130,27 +108,12 @@ per_length = [100.0, -8.0]
 }
 
 TEST_CASE("plane loads: end traction and body force follow the contract's shares") {
-  const std::string text = R"(
-model = "plane"
-[[strut]]
-name = "P"
-from = [0.0, 0.0]
-to = [3.0, 0.0]
-E = 1e9
-elements = 3
-height = 0.4
-thickness = 0.1
-nu = 0.3
-elements_across = 2
-fixed = ["from"]
-[[load]]
-strut = "P"
-at = "to"
-force = [12.0, -4.0]
-[[load]]
-strut = "P"
-per_length = [0.0, -6.0]
-)";
+  const std::string text = SceneToml("plane")
+                               .strut("P", {0.0, 0.0}, {3.0, 0.0},
+                                      "E = 1e9, elements = 3, height = 0.4, thickness = 0.1, "
+                                      "nu = 0.3, elements_across = 2, fixed = ['from']")
+                               .load("P", "to", {12.0, -4.0})
+                               .per_length("P", {0.0, -6.0});
   const auto scene = fetic::scenes::parse_scene(text, "plane.toml");
   const Model model = build_model(scene);
   const StrutMesh& mesh = model.struts[0];

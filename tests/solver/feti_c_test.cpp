@@ -97,22 +97,17 @@ TEST_CASE("FETI-C on the thesis scene: the reference to 1e-6 within 10 iteration
 }
 
 TEST_CASE("FETI-C: a floating tip pushed away from every contact is reported as unbounded") {
-  const std::string chain = testing::kFloatingChain;
   // The middle strut is pushed onto the base, the tip is pulled away from the middle.
-  const auto escaping = testing::solve_text(
-      chain + "[[load]]\nstrut = \"tip\"\nat = \"to\"\nforce = [500.0, 0.0]\n", MethodKind::FetiC);
+  const auto escaping = testing::solve_text(testing::floating_chain(500.0), MethodKind::FetiC);
   CHECK(escaping->state.status == solver::Status::Failed);
   CHECK_THAT(escaping->state.message, Catch::Contains("unbounded") && Catch::Contains("'tip'") &&
                                           !Catch::Contains("'middle'"));
   // Reversed, the two together are pushed away (net 300 N outward).
-  const auto both =
-      testing::solve_text(chain + "[[load]]\nstrut = \"tip\"\nat = \"to\"\nforce = [500.0, 0.0]\n",
-                          MethodKind::FetiC, -1.0);
+  const auto both = testing::solve_text(testing::floating_chain(500.0), MethodKind::FetiC, -1.0);
   CHECK(both->state.status == solver::Status::Failed);
   CHECK_THAT(both->state.message, Catch::Contains("'middle', 'tip'"));
   // Pushed back, the tip rests on the middle strut, which rests on the base.
-  const auto held = testing::solve_text(
-      chain + "[[load]]\nstrut = \"tip\"\nat = \"to\"\nforce = [-500.0, 0.0]\n", MethodKind::FetiC);
+  const auto held = testing::solve_text(testing::floating_chain(-500.0), MethodKind::FetiC);
   INFO(held->state.message);
   REQUIRE(held->state.status == solver::Status::Converged);
   CHECK(held->state.force[0] == Approx(1300.0));
@@ -122,24 +117,7 @@ TEST_CASE("FETI-C: a floating tip pushed away from every contact is reported as 
 TEST_CASE("FETI-C: a warm start after a 5% load change needs fewer iterations than a cold one") {
   const auto model = solver::build_model(testing::bundled_scene("thesis.toml"));
   solver::FetiC method(model, {});
-  method.start(1.0);
-  solver::run_to_end(method);
-  REQUIRE(method.status() == solver::Status::Converged);
-  const solver::Snapshot previous = method.snapshot();
-
-  method.start(1.05, &previous);
-  solver::run_to_end(method);
-  REQUIRE(method.status() == solver::Status::Converged);
-  const int warm = method.iteration();
-  const auto warm_u = solver::strut_displacements(model, method.snapshot());
-
-  method.start(1.05);
-  solver::run_to_end(method);
-  REQUIRE(method.status() == solver::Status::Converged);
-  const int cold = method.iteration();
-  const auto cold_u = solver::strut_displacements(model, method.snapshot());
-  CHECK(warm < cold);
-  CHECK(solver::relative_error(warm_u, cold_u) <= 1e-8);
+  testing::check_warm_start(method, model);
 }
 
 TEST_CASE("FETI-C: the displacements are torn across subdomains until lambda converges") {

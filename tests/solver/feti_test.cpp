@@ -6,8 +6,6 @@
 #include <array>
 #include <random>
 
-#include "solver/cholmod_factor.hpp"
-#include "solver/primal_problem.hpp"
 #include "tests/support/random_scenes.hpp"
 #include "tests/support/solve_helpers.hpp"
 
@@ -17,15 +15,18 @@ using fetic::solver::Preconditioner;
 
 namespace {
 
-std::vector<std::vector<solver::Vec2>> direct(const solver::Model& model) {
-  solver::PrimalProblem problem(model);
-  solver::CholmodFactor factor;
-  REQUIRE(factor.factorize(problem.stiffness()) == solver::CholmodFactor::Result::Ok);
-  Eigen::VectorXd f = problem.load(), u(problem.size());
-  factor.solve(f.data(), u.data());
-  solver::Snapshot s;
-  s.pieces = problem.pieces(u);
-  return solver::strut_displacements(model, s);
+solver::SolveOptions feti1_options(Preconditioner preconditioner, bool scaling) {
+  solver::SolveOptions options;
+  options.preconditioner = preconditioner;
+  options.scaling = scaling;
+  options.tolerance = 1e-12;
+  return options;
+}
+
+void check_feti1_against_direct(const testing::Solved& solved) {
+  REQUIRE(solved.state.status == solver::Status::Converged);
+  const auto u = solver::strut_displacements(solved.model, solved.state);
+  CHECK(solver::relative_error(u, testing::direct_displacements(solved.model)) <= 1e-9);
 }
 
 }  // namespace
@@ -35,14 +36,8 @@ TEST_CASE("FETI-1 agrees with a direct solve on the contact-free scene, every pr
   for (Preconditioner p :
        {Preconditioner::None, Preconditioner::Lumped, Preconditioner::Dirichlet}) {
     for (bool scaling : {false, true}) {
-      solver::SolveOptions options;
-      options.preconditioner = p;
-      options.scaling = scaling;
-      options.tolerance = 1e-12;
-      const auto solved = testing::solve(scene, MethodKind::Feti, 1.0, options);
-      REQUIRE(solved->state.status == solver::Status::Converged);
-      const auto u = solver::strut_displacements(solved->model, solved->state);
-      CHECK(solver::relative_error(u, direct(solved->model)) <= 1e-9);
+      check_feti1_against_direct(
+          *testing::solve(scene, MethodKind::Feti, 1.0, feti1_options(p, scaling)));
     }
   }
 }
@@ -52,14 +47,10 @@ TEST_CASE("FETI-1 agrees with a direct solve on 40 random contact-free scenes") 
   for (int trial = 0; trial < 40; ++trial) {
     const std::string text = testing::random_contact_free_scene(rng);
     INFO(text);
-    solver::SolveOptions options;
-    options.preconditioner = std::array{Preconditioner::Dirichlet, Preconditioner::Lumped,
+    const Preconditioner p = std::array{Preconditioner::Dirichlet, Preconditioner::Lumped,
                                         Preconditioner::None}[trial % 3];
-    options.tolerance = 1e-12;
-    const auto solved = testing::solve_text(text, MethodKind::Feti, 1.0, options);
-    REQUIRE(solved->state.status == solver::Status::Converged);
-    const auto u = solver::strut_displacements(solved->model, solved->state);
-    CHECK(solver::relative_error(u, direct(solved->model)) <= 1e-9);
+    check_feti1_against_direct(
+        *testing::solve_text(text, MethodKind::Feti, 1.0, feti1_options(p, true)));
   }
 }
 

@@ -35,11 +35,9 @@ TEST_CASE("frame: a cantilever's tip deflects P L^3 / (3 E I) and turns P L^2 / 
     const double c = std::cos(angle), s = std::sin(angle);
     // The load across the axis (+90 degrees): the tip moves that way and turns
     // counter-clockwise.
-    const std::string text =
-        "model = \"frame\"\n[[strut]]\nname = \"C\"\nfrom = [0.0, 0.0]\nto = " +
-        testing::toml_point(L * c, L * s) + "\nE = 2.1e11\narea = 2.0e-3\ninertia = 3.0e-6\n" +
-        "elements = 8\nsubdomains = 3\nfixed = [\"from\"]\n[[load]]\nstrut = \"C\"\n" +
-        "at = \"to\"\nforce = " + testing::toml_point(-P * s, P * c) + "\n";
+    const std::string text = testing::SceneToml("frame")
+                                 .strut("C", {0.0, 0.0}, {L * c, L * s}, testing::kCantileverKeys)
+                                 .load("C", "to", {-P * s, P * c});
     for (MethodKind kind : {MethodKind::ActiveSet, MethodKind::ConjugateGradient, MethodKind::Feti,
                             MethodKind::FetiC}) {
       INFO("angle " << angle << ", method " << solver::to_string(kind));

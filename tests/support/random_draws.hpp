@@ -1,9 +1,9 @@
 #pragma once
 // The random draws and number formatting the random scene generators share: numbers are
-// written with 17 significant digits (and always as TOML floats), so that a scene read
-// back is the scene drawn.
+// written as the shortest text that reads back the same double (and always as TOML
+// floats), so that a scene read back is the scene drawn.
 
-#include <cstdio>
+#include <charconv>
 #include <random>
 #include <string>
 
@@ -21,10 +21,10 @@ inline bool chance(std::mt19937& rng, double p) {
   return uniform(rng, 0.0, 1.0) < p;
 }
 
+// The shortest text that reads back as the same double ("1.001", not "1.0009999999999999").
 inline std::string toml_number(double value) {
   char buffer[40];
-  std::snprintf(buffer, sizeof buffer, "%.17g", value);
-  std::string text = buffer;
+  std::string text(buffer, std::to_chars(buffer, buffer + sizeof buffer, value).ptr);
   if (text.find_first_of(".eEn") == std::string::npos) text += ".0";
   return text;
 }

@@ -293,21 +293,11 @@ void floating_beam(std::mt19937& rng, FrameWriter& w) {
 }  // namespace
 
 std::string random_frame_scene(std::mt19937& rng, FrameKind kind) {
+  // In the order of FrameKind.
+  static constexpr void (*kWriters[])(std::mt19937&, FrameWriter&) = {
+      post_on_beam, apex_on_stop, portal_on_stop, floating_beam};
   FrameWriter w(rng);
-  switch (kind) {
-    case FrameKind::PostOnBeam:
-      post_on_beam(rng, w);
-      break;
-    case FrameKind::ApexOnStop:
-      apex_on_stop(rng, w);
-      break;
-    case FrameKind::PortalOnStop:
-      portal_on_stop(rng, w);
-      break;
-    case FrameKind::FloatingBeam:
-      floating_beam(rng, w);
-      break;
-  }
+  kWriters[static_cast<int>(kind)](rng, w);
   return w.text();
 }
 

@@ -1,15 +1,9 @@
 #include "tests/support/reference_qp.hpp"
 
-#include <CGAL/Gmpzf.h>
-#include <CGAL/QP_functions.h>
-#include <CGAL/QP_models.h>
-
 #include <cmath>
 #include <map>
-#include <numeric>
-#include <stdexcept>
 
-#include "scenes/union_find.hpp"
+#include "tests/support/reference_qp_parts.hpp"
 
 namespace fetic::testing {
 namespace {
@@ -56,7 +50,6 @@ ReferenceSolution solve_reference_qp(const scenes::Scene& scene, double load_fac
 
   // Groups of struts connected by contacts are independent problems.
   scenes::UnionFind sets(strut_count);
-  const auto root = [&](int i) { return sets.root(i); };
   for (const scenes::Contact& c : scene.contacts)
     sets.join(c.a.strut, c.b.strut);
 
@@ -65,16 +58,13 @@ ReferenceSolution solve_reference_qp(const scenes::Scene& scene, double load_fac
   solution.displacement.resize(strut_count);
   solution.force.assign(scene.contacts.size(), 0.0);
 
-  for (int group = 0; group < strut_count; ++group) {
-    if (root(group) != group) continue;
-    std::vector<int> members;
+  for (const std::vector<int>& members : groups_of(sets, strut_count)) {
+    const int group = sets.root(members[0]);
     int dofs = 0;
-    for (int s = 0; s < strut_count; ++s)
-      if (root(s) == group) {
-        members.push_back(s);
-        bars[s].first_dof = dofs;
-        dofs += bars[s].nodes;
-      }
+    for (int s : members) {
+      bars[s].first_dof = dofs;
+      dofs += bars[s].nodes;
+    }
     CGAL::Quadratic_program<double> qp(CGAL::SMALLER, false, 0, false, 0);
     std::map<std::pair<int, int>, double> D;  // lower triangle of K
     std::vector<double> f(dofs, 0.0);
@@ -117,7 +107,7 @@ ReferenceSolution solve_reference_qp(const scenes::Scene& scene, double load_fac
     std::vector<int> rows;  // contact index of each constraint
     for (size_t c = 0; c < scene.contacts.size(); ++c) {
       const scenes::Contact& contact = scene.contacts[c];
-      if (root(contact.a.strut) != group) continue;
+      if (sets.root(contact.a.strut) != group) continue;
       const BarStrut& a = bars[contact.a.strut];
       const BarStrut& b = bars[contact.b.strut];
       const bool a_to = contact.a.end == scenes::StrutEnd::To;
@@ -138,29 +128,20 @@ ReferenceSolution solve_reference_qp(const scenes::Scene& scene, double load_fac
       rows.push_back(static_cast<int>(c));
     }
 
-    CGAL::Quadratic_program_options options;
-    options.set_pricing_strategy(CGAL::QP_DANTZIG);  // partial pricing trips a CGAL assertion
-    const auto result = CGAL::solve_quadratic_program(qp, CGAL::Gmpzf(), options);
-    if (!result.is_optimal()) {
+    const ExactSolution exact = solve_exact(qp, dofs, static_cast<int>(rows.size()));
+    if (!exact.optimal) {
       solution.optimal = false;
       continue;
     }
-    std::vector<double> u;
-    for (auto it = result.variable_values_begin(); it != result.variable_values_end(); ++it)
-      u.push_back(CGAL::to_double(*it));
-    u.resize(dofs, 0.0);
     for (int s : members) {
       const BarStrut& b = bars[s];
       for (int i = 0; i < b.nodes; ++i) {
-        const double value = u[b.first_dof + i];
+        const double value = exact.x(b.first_dof + i);
         solution.displacement[s].push_back({value * b.axis[0], value * b.axis[1]});
       }
     }
-    int row = 0;
-    for (auto it = result.optimality_certificate_begin();
-         it != result.optimality_certificate_end() && row < static_cast<int>(rows.size());
-         ++it, ++row)
-      solution.force[rows[row]] = CGAL::to_double(*it);
+    for (size_t row = 0; row < rows.size(); ++row)
+      solution.force[rows[row]] = exact.multipliers[row];
   }
   return solution;
 }

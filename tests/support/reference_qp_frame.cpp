@@ -15,18 +15,13 @@
 // * w condensed onto the DOFs the contacts touch (dense Cholesky of the rest), and the
 //   QP in (y, w_c) solved exactly by CGAL.
 
-#include <CGAL/Gmpzf.h>
-#include <CGAL/QP_functions.h>
-#include <CGAL/QP_models.h>
-
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
 #include <map>
-#include <numeric>
 
-#include "scenes/union_find.hpp"
 #include "tests/support/reference_qp.hpp"
+#include "tests/support/reference_qp_parts.hpp"
 
 namespace fetic::testing {
 namespace {
@@ -147,11 +142,8 @@ ReferenceSolution solve_frame_reference_qp(const scenes::Scene& scene, double lo
   solution.rotation.resize(strut_count);
   solution.force.assign(scene.contacts.size(), 0.0);
 
-  for (int group = 0; group < strut_count; ++group) {
-    if (group_of.root(group) != group) continue;
-    std::vector<int> members;
-    for (int s = 0; s < strut_count; ++s)
-      if (group_of.root(s) == group) members.push_back(s);
+  for (const std::vector<int>& members : groups_of(group_of, strut_count)) {
+    const int group = group_of.root(members[0]);
     // Unknowns: one per free merged DOF of the group.
     std::map<int, int> unknown_of_root;
     for (int s : members)
@@ -215,12 +207,7 @@ ReferenceSolution solve_frame_reference_qp(const scenes::Scene& scene, double lo
     K = 0.5 * (K + K.transpose()).eval();
 
     // Contact rows over the unknowns.
-    struct RowData {
-      int contact;
-      std::vector<std::pair<int, double>> entries;
-      double gap;
-    };
-    std::vector<RowData> rows;
+    std::vector<ContactRow> rows;
     for (size_t c = 0; c < scene.contacts.size(); ++c) {
       const scenes::Contact& contact = scene.contacts[c];
       if (group_of.root(contact.a.strut) != group) continue;
@@ -234,7 +221,7 @@ ReferenceSolution solve_frame_reference_qp(const scenes::Scene& scene, double lo
       double gap = normal.dot(xb - xa);
       const double scale = std::max(beams[contact.a.strut].length, beams[contact.b.strut].length);
       if (std::abs(gap) < 1e-9 * scale) gap = 0.0;
-      RowData row{static_cast<int>(c), {}, gap};
+      ContactRow row{static_cast<int>(c), {}, gap};
       for (int k = 0; k < 2; ++k) {
         const int ua = unknown(dof(contact.a.strut, na, k));
         const int ub = unknown(dof(contact.b.strut, nb, k));
@@ -267,7 +254,7 @@ ReferenceSolution solve_frame_reference_qp(const scenes::Scene& scene, double lo
     // w: unknowns outside the pinned ones; those the contacts touch are kept, the rest
     // condensed out.
     std::vector<char> touched(n, 0);
-    for (const RowData& row : rows)
+    for (const ContactRow& row : rows)
       for (const auto& [u, value] : row.entries)
         touched[u] = 1;
     std::vector<int> kept, interior, kept_pos(n, -1);
@@ -280,25 +267,9 @@ ReferenceSolution solve_frame_reference_qp(const scenes::Scene& scene, double lo
         interior.push_back(i);
       }
     }
-    auto sub = [&](const std::vector<int>& r, const std::vector<int>& c) {
-      Eigen::MatrixXd M(r.size(), c.size());
-      for (size_t x = 0; x < r.size(); ++x)
-        for (size_t y = 0; y < c.size(); ++y)
-          M(x, y) = K(r[x], c[y]);
-      return M;
-    };
-    auto part = [&](const Eigen::VectorXd& v, const std::vector<int>& r) {
-      Eigen::VectorXd p(r.size());
-      for (size_t x = 0; x < r.size(); ++x)
-        p(x) = v(r[x]);
-      return p;
-    };
-    const Eigen::LLT<Eigen::MatrixXd> Kii(sub(interior, interior));
-    const Eigen::MatrixXd Kic = sub(interior, kept);
-    Eigen::MatrixXd S = sub(kept, kept) - Kic.transpose() * Kii.solve(Kic);
-    S = 0.5 * (S + S.transpose()).eval();
-    const Eigen::VectorXd fi = part(f, interior);
-    const Eigen::VectorXd g = part(f, kept) - Kic.transpose() * Kii.solve(fi);
+    const Condensation condensed(K, f, kept, interior);
+    const Eigen::MatrixXd& S = condensed.S();
+    const Eigen::VectorXd& g = condensed.g();
     const Eigen::VectorXd Zf = Z.transpose() * f;
 
     // Variables: y (kernel amplitudes) first, then w_c. Objective 1/2 w_c'S w_c - g'w_c
@@ -325,25 +296,17 @@ ReferenceSolution solve_frame_reference_qp(const scenes::Scene& scene, double lo
     }
     Eigen::VectorXd variables = Eigen::VectorXd::Zero(ny + nc);
     if (ny + nc > 0) {
-      CGAL::Quadratic_program_options options;
-      options.set_pricing_strategy(CGAL::QP_DANTZIG);
-      const auto result = CGAL::solve_quadratic_program(qp, CGAL::Gmpzf(), options);
-      if (!result.is_optimal()) {
+      const ExactSolution exact = solve_exact(qp, ny + nc, static_cast<int>(rows.size()));
+      if (!exact.optimal) {
         solution.optimal = false;
         continue;
       }
-      int x = 0;
-      for (auto it = result.variable_values_begin();
-           it != result.variable_values_end() && x < ny + nc; ++it, ++x)
-        variables(x) = CGAL::to_double(*it);
-      int r = 0;
-      for (auto it = result.optimality_certificate_begin();
-           it != result.optimality_certificate_end() && r < static_cast<int>(rows.size());
-           ++it, ++r)
-        solution.force[rows[r].contact] = CGAL::to_double(*it);
+      variables = exact.x;
+      for (size_t r = 0; r < rows.size(); ++r)
+        solution.force[rows[r].index] = exact.multipliers[r];
     }
     const Eigen::VectorXd wc = variables.tail(nc);
-    const Eigen::VectorXd wi = Kii.solve(fi - Kic * wc);
+    const Eigen::VectorXd wi = condensed.interior(wc);
     Eigen::VectorXd u = Z * variables.head(ny);
     for (int x = 0; x < nc; ++x)
       u(kept[x]) += wc(x);

@@ -3,19 +3,12 @@
 // isoparametric 2x2 routine), condensed onto the DOFs of the contact faces (dense
 // Cholesky of the interior), and the condensed QP solved exactly by CGAL.
 
-#include <CGAL/Gmpzf.h>
-#include <CGAL/QP_functions.h>
-#include <CGAL/QP_models.h>
-
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
-#include <map>
-#include <numeric>
-#include <stdexcept>
 
-#include "scenes/union_find.hpp"
 #include "tests/support/reference_qp.hpp"
+#include "tests/support/reference_qp_parts.hpp"
 
 namespace fetic::testing {
 namespace {
@@ -80,7 +73,6 @@ ReferenceSolution solve_plane_reference_qp(const scenes::Scene& scene, double lo
     struts.push_back(describe(s));
 
   scenes::UnionFind sets(strut_count);
-  const auto root = [&](int i) { return sets.root(i); };
   for (const scenes::Contact& c : scene.contacts)
     sets.join(c.a.strut, c.b.strut);
 
@@ -96,16 +88,13 @@ ReferenceSolution solve_plane_reference_qp(const scenes::Scene& scene, double lo
   }
   solution.force.assign(pair_count, 0.0);
 
-  for (int group = 0; group < strut_count; ++group) {
-    if (root(group) != group) continue;
-    std::vector<int> members;
+  for (const std::vector<int>& members : groups_of(sets, strut_count)) {
+    const int group = sets.root(members[0]);
     int dofs = 0;
-    for (int s = 0; s < strut_count; ++s)
-      if (root(s) == group) {
-        members.push_back(s);
-        struts[s].first_dof = dofs;
-        dofs += 2 * struts[s].nodes();
-      }
+    for (int s : members) {
+      struts[s].first_dof = dofs;
+      dofs += 2 * struts[s].nodes();
+    }
     Eigen::MatrixXd K = Eigen::MatrixXd::Zero(dofs, dofs);
     Eigen::VectorXd f = Eigen::VectorXd::Zero(dofs);
     std::vector<char> clamped(dofs, 0);
@@ -157,16 +146,11 @@ ReferenceSolution solve_plane_reference_qp(const scenes::Scene& scene, double lo
     f *= load_factor;
 
     // Contact rows over the group's DOFs.
-    struct RowData {
-      int pair;
-      std::vector<std::pair<int, double>> entries;
-      double gap;
-    };
-    std::vector<RowData> rows;
+    std::vector<ContactRow> rows;
     std::vector<char> on_contact(dofs, 0);
     for (size_t c = 0; c < scene.contacts.size(); ++c) {
       const scenes::Contact& contact = scene.contacts[c];
-      if (root(contact.a.strut) != group) continue;
+      if (sets.root(contact.a.strut) != group) continue;
       const PlaneStrut& A = struts[contact.a.strut];
       const PlaneStrut& B = struts[contact.b.strut];
       const bool a_to = contact.a.end == scenes::StrutEnd::To;
@@ -188,7 +172,7 @@ ReferenceSolution solve_plane_reference_qp(const scenes::Scene& scene, double lo
       double gap = (end_b - end_a).dot(n);
       if (gap < 0.0 && gap > -1e-9 * std::max(A.length, B.length)) gap = 0.0;
       for (size_t q = 0; q < fa.size(); ++q) {
-        RowData row{first_pair[c] + static_cast<int>(q), {}, gap};
+        ContactRow row{first_pair[c] + static_cast<int>(q), {}, gap};
         const int da = A.first_dof + 2 * fa[q].second, db = B.first_dof + 2 * fb[q].second;
         for (int comp = 0; comp < 2; ++comp) {
           if (!clamped[da + comp]) row.entries.emplace_back(da + comp, n(comp));
@@ -210,57 +194,32 @@ ReferenceSolution solve_plane_reference_qp(const scenes::Scene& scene, double lo
         i_dofs.push_back(dof);
       }
     }
-    auto sub = [&](const std::vector<int>& r, const std::vector<int>& c) {
-      Eigen::MatrixXd M(r.size(), c.size());
-      for (size_t x = 0; x < r.size(); ++x)
-        for (size_t y = 0; y < c.size(); ++y)
-          M(x, y) = K(r[x], c[y]);
-      return M;
-    };
-    auto part = [&](const std::vector<int>& r) {
-      Eigen::VectorXd v(r.size());
-      for (size_t x = 0; x < r.size(); ++x)
-        v(x) = f(r[x]);
-      return v;
-    };
-    const Eigen::LLT<Eigen::MatrixXd> Kii(sub(i_dofs, i_dofs));
-    const Eigen::MatrixXd Kic = sub(i_dofs, c_dofs);
-    Eigen::MatrixXd S = sub(c_dofs, c_dofs) - Kic.transpose() * Kii.solve(Kic);
-    S = 0.5 * (S + S.transpose()).eval();
-    const Eigen::VectorXd fi = part(i_dofs);
-    const Eigen::VectorXd g = part(c_dofs) - Kic.transpose() * Kii.solve(fi);
-
+    const Condensation condensed(K, f, c_dofs, i_dofs);
+    const Eigen::MatrixXd& S = condensed.S();
     CGAL::Quadratic_program<double> qp(CGAL::SMALLER, false, 0, false, 0);
     for (int x = 0; x < S.rows(); ++x)
       for (int y = 0; y <= x; ++y)
         qp.set_d(x, y, S(x, y));
-    for (int x = 0; x < g.size(); ++x)
-      qp.set_c(x, -g(x));
+    for (int x = 0; x < condensed.g().size(); ++x)
+      qp.set_c(x, -condensed.g()(x));
     for (size_t r = 0; r < rows.size(); ++r) {
       for (const auto& [dof, value] : rows[r].entries)
         qp.set_a(c_pos[dof], static_cast<int>(r), value);
       qp.set_b(static_cast<int>(r), rows[r].gap);
     }
-    CGAL::Quadratic_program_options options;
-    options.set_pricing_strategy(CGAL::QP_DANTZIG);
     Eigen::VectorXd uc = Eigen::VectorXd::Zero(c_dofs.size());
     if (!c_dofs.empty()) {
-      const auto result = CGAL::solve_quadratic_program(qp, CGAL::Gmpzf(), options);
-      if (!result.is_optimal()) {
+      const int kept = static_cast<int>(c_dofs.size());
+      const ExactSolution exact = solve_exact(qp, kept, static_cast<int>(rows.size()));
+      if (!exact.optimal) {
         solution.optimal = false;
         continue;
       }
-      int x = 0;
-      for (auto it = result.variable_values_begin();
-           it != result.variable_values_end() && x < uc.size(); ++it, ++x)
-        uc(x) = CGAL::to_double(*it);
-      int r = 0;
-      for (auto it = result.optimality_certificate_begin();
-           it != result.optimality_certificate_end() && r < static_cast<int>(rows.size());
-           ++it, ++r)
-        solution.force[rows[r].pair] = CGAL::to_double(*it);
+      uc = exact.x;
+      for (size_t r = 0; r < rows.size(); ++r)
+        solution.force[rows[r].index] = exact.multipliers[r];
     }
-    const Eigen::VectorXd ui = Kii.solve(fi - Kic * uc);
+    const Eigen::VectorXd ui = condensed.interior(uc);
     Eigen::VectorXd u = Eigen::VectorXd::Zero(dofs);
     for (size_t x = 0; x < c_dofs.size(); ++x)
       u(c_dofs[x]) = uc(x);

@@ -2,17 +2,23 @@
 // Small helpers shared by the solver tests: load a scene from text, run a method to the
 // end, compare displacements and forces with a reference.
 
+#include <catch2/catch.hpp>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "scenes/load_scene.hpp"
+#include "solver/cholmod_factor.hpp"
 #include "solver/method.hpp"
 #include "solver/model.hpp"
+#include "solver/primal_problem.hpp"
 #include "tests/support/reference_qp.hpp"
+#include "tests/support/scene_toml.hpp"
 
 namespace fetic::testing {
 
@@ -41,6 +47,38 @@ inline std::unique_ptr<Solved> solve_text(const std::string& text, solver::Metho
 
 inline scenes::Scene bundled_scene(const std::string& name) {
   return scenes::load_scene_file(std::string(FETIC_BUNDLED_SCENES_DIR) + "/" + name);
+}
+
+// One method solving at `load`, then at `next` warm-started from that solution, then at
+// `next` cold: the three final states.
+struct WarmAndCold {
+  solver::Snapshot first, warm, cold;
+};
+
+inline WarmAndCold warm_and_cold(solver::Method& method, double load, double next) {
+  WarmAndCold states;
+  method.start(load);
+  solver::run_to_end(method);
+  states.first = method.snapshot();
+  method.start(next, &states.first);
+  solver::run_to_end(method);
+  states.warm = method.snapshot();
+  method.start(next);
+  solver::run_to_end(method);
+  states.cold = method.snapshot();
+  return states;
+}
+
+// A warm start after a 5% load change (1 to 1.05) needs fewer iterations than a cold one
+// and ends at the same displacements (to 1e-8).
+inline void check_warm_start(solver::Method& method, const solver::Model& model) {
+  const WarmAndCold states = warm_and_cold(method, 1.0, 1.05);
+  REQUIRE(states.first.status == solver::Status::Converged);
+  REQUIRE(states.warm.status == solver::Status::Converged);
+  REQUIRE(states.cold.status == solver::Status::Converged);
+  CHECK(states.warm.iteration < states.cold.iteration);
+  CHECK(solver::relative_error(solver::strut_displacements(model, states.warm),
+                               solver::strut_displacements(model, states.cold)) <= 1e-8);
 }
 
 // ||u - u_ref|| / ||u_ref|| over every node of every strut.
@@ -75,39 +113,44 @@ inline double load_scale(const solver::Model& model) {
   return std::max(total, 1e-300);
 }
 
+// The frame cantilever of the closed-form tests: 8 elements, 3 subdomains, clamped at its
+// 'from' end.
+inline constexpr const char* kCantileverKeys =
+    "E = 2.1e11, area = 2.0e-3, inertia = 3.0e-6, elements = 8, subdomains = 3, "
+    "fixed = ['from']";
+
+// The displacements and contact forces of `solved` agree with the reference to 1e-8
+// (forces relative to the larger of their size and 1e-12 of the loads).
+inline void check_against_reference(const Solved& solved, const ReferenceSolution& reference) {
+  CHECK(displacement_error(solved, reference) <= 1e-8);
+  CHECK(force_error(solved, reference, 1e-12 * load_scale(solved.model)) <= 1e-8);
+}
+
 // A bar chain: a clamped base, a floating middle strut pushed onto it (its left end 1 mm
-// away), and a floating tip touching the middle one. Tests append the tip's load: pulled
-// away the scene is unbounded, pushed back it rests on the chain.
-inline constexpr const char* kFloatingChain = R"(
-model = "bar"
-[defaults]
-E = 2e11
-area = 1e-4
-elements = 3
-subdomains = 2
-[[strut]]
-name = "base"
-from = [0.0, 0.0]
-to = [1.0, 0.0]
-fixed = ["from"]
-[[strut]]
-name = "middle"
-from = [1.001, 0.0]
-to = [2.0, 0.0]
-[[strut]]
-name = "tip"
-from = [2.0, 0.0]
-to = [3.0, 0.0]
-[[contact]]
-a = "base.to"
-b = "middle.from"
-[[contact]]
-a = "middle.to"
-b = "tip.from"
-[[load]]
-strut = "middle"
-at = "from"
-force = [-800.0, 0.0]
-)";
+// away), and a floating tip touching the middle one, pulled by `tip_force` along x: away
+// (> 0) the scene is unbounded, pushed back (< 0) it rests on the chain.
+inline std::string floating_chain(double tip_force) {
+  return SceneToml("bar", "[defaults]", "E = 2e11, area = 1e-4, elements = 3, subdomains = 2")
+      .strut("base", {0.0, 0.0}, {1.0, 0.0}, "fixed = ['from']")
+      .strut("middle", {1.001, 0.0}, {2.0, 0.0})
+      .strut("tip", {2.0, 0.0}, {3.0, 0.0})
+      .contact("base.to", "middle.from")
+      .contact("middle.to", "tip.from")
+      .load("middle", "from", {-800.0, 0.0})
+      .load("tip", "to", {tip_force, 0.0});
+}
+
+// The displacements of a direct solve (no contacts): CHOLMOD on the assembled stiffness.
+inline std::vector<std::vector<solver::Vec2>> direct_displacements(const solver::Model& model) {
+  solver::PrimalProblem problem(model);
+  solver::CholmodFactor factor;
+  if (factor.factorize(problem.stiffness()) != solver::CholmodFactor::Result::Ok)
+    throw std::runtime_error("the stiffness is singular");
+  Eigen::VectorXd f = problem.load(), u(problem.size());
+  factor.solve(f.data(), u.data());
+  solver::Snapshot direct;
+  direct.pieces = problem.pieces(u);
+  return solver::strut_displacements(model, direct);
+}
 
 }  // namespace fetic::testing
