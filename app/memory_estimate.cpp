@@ -17,13 +17,13 @@ namespace {
 // Measured on generated scenes (fetic generate; peak resident memory of `fetic solve`,
 // /usr/bin/time -f %M; docs/RELIABILITY.md): bytes per item, least squares.
 constexpr double kBase = 10e6;  // the program itself
-// FETI and FETI-C: one factor per subdomain for K+ and the Dirichlet preconditioner (its
-// interior ordered first, so the boundary block is dense: fill + boundary DOFs^2 / 2
-// entries), B's rows, the coarse problem, dual vectors. The factor's cost per entry was
-// refitted when the second (interior) factor and the stored K_j went (docs/BENCHMARKS.md,
-// "Bytes per unknown"): 8.7 bytes per estimated entry on 20x24-element subdomains.
+// FETI and FETI-C: per subdomain a factor of K_j and one of its interior K_ii (the
+// Dirichlet preconditioner's), each freely ordered and kept as its nonzeros only
+// (solver/compact_factor.hpp), B's rows, the coarse problem, dual vectors. The factor's
+// cost per estimated entry was refitted for them (docs/BENCHMARKS.md, "Lean factors"):
+// 5.2 bytes on 20x24-element subdomains (the fill estimate is about twice the true fill).
 constexpr double kFetiPerUnknown = 380, kFetiPerStrut = 4500, kFetiPerSubdomain = 5000,
-                 kFetiPerFactorEntry = 8.7, kFetiPerInterfaceRow = 2500;
+                 kFetiPerFactorEntry = 5.2, kFetiPerInterfaceRow = 2500;
 // Active set: K factorized per strut, the contact rows solved against it (dense, per
 // strut), the working-set system (dense, up to every pair: twice, for the LU).
 constexpr double kActivePerUnknown = 320, kActivePerStrut = 3300, kActivePerFactorEntry = 5,
@@ -82,12 +82,13 @@ Counts count(const scenes::Scene& scene) {
     c.subdomains += sx * sy;
     const double box_along = std::ceil(s.elements / sx) + 1.0;
     const double box_across = across > 1 ? std::ceil(s.elements_across / sy) + 1.0 : 1.0;
-    // Boundary DOFs of an inner subdomain (every side an interface), ordered last.
-    const double boundary = per_node * (across > 1 ? 2.0 * (box_along + box_across) : 2.0);
+    // K_j's factor and its interior's (the box less its outer ring of nodes).
+    const double inner_along = std::max(1.0, box_along - 2.0);
+    const double inner_across = across > 1 ? std::max(1.0, box_across - 2.0) : 1.0;
     c.subdomain_fill +=
         sx * sy *
         (box_along * box_across * per_node * fill_per_dof(box_along, box_across, per_node) +
-         0.5 * boundary * boundary);
+         inner_along * inner_across * per_node * fill_per_dof(inner_along, inner_across, per_node));
     c.strut_fill += dofs * fill_per_dof(along, across, per_node);
     c.interface_rows += ((sx - 1) * across + (sy - 1) * along) * per_node +
                         ((s.fixed_from ? 1 : 0) + (s.fixed_to ? 1 : 0)) * across * per_node;

@@ -126,7 +126,8 @@ BytesTables local_bytes(const std::vector<scenes::GenerateOptions>& scenes,
   t.triad = triad_bandwidth(solver::thread_budget());
   for (std::size_t s = 0; s < scenes.size(); ++s)
     for (const bool shared : {false, true}) {
-      const std::string name = names[s] + (shared ? ", one factor" : ", two factors");
+      const std::string name =
+          names[s] + (shared ? ", K_ii factor beside K_j's" : ", K_ii factor in the preconditioner");
       add_scene(scenes[s], name, shared, t);
       std::cerr << "  done: " << name << "\n";
     }

@@ -58,49 +58,11 @@ cholmod_sparse view_of(const SparseMatrix& A) {
 
 }  // namespace
 
-CholmodFactor::Result CholmodFactor::factorize(const SparseMatrix& A,
-                                               const std::vector<char>& leading) {
-  if (!A.isCompressed()) throw std::logic_error("CholmodFactor: matrix must be compressed");
-  cholmod_free_factor(&impl_->factor, &impl_->common);
-  size_ = static_cast<int>(A.rows());
-  failed_column_ = -1;
-  leading_ = 0;
-  if (size_ == 0) return Result::Ok;
-  cholmod_sparse view = view_of(A);
-  cholmod_common& c = impl_->common;
-  std::vector<int> member(size_), permutation(size_);
-  int count = 0;
-  for (int i = 0; i < size_; ++i) {
-    member[i] = leading[i] ? 0 : 1;
-    count += leading[i] ? 1 : 0;
-  }
-  if (!cholmod_camd(&view, nullptr, 0, member.data(), permutation.data(), &c)) {
-    if (c.status == CHOLMOD_OUT_OF_MEMORY) throw std::bad_alloc();
-    return Result::Failed;
-  }
-  // Exactly this ordering, not postordered (a postorder may interleave the two sets).
-  const int methods = c.nmethods, ordering = c.method[0].ordering, postorder = c.postorder;
-  c.nmethods = 1;
-  c.method[0].ordering = CHOLMOD_GIVEN;
-  c.postorder = 0;
-  impl_->factor = cholmod_analyze_p(&view, permutation.data(), nullptr, 0, &c);
-  c.nmethods = methods;
-  c.method[0].ordering = ordering;
-  c.postorder = postorder;
-  if (!impl_->factor && c.status == CHOLMOD_OUT_OF_MEMORY) throw std::bad_alloc();
-  if (!impl_->factor) return Result::Failed;
-  const int* perm = static_cast<const int*>(impl_->factor->Perm);
-  bool first = true;
-  for (int k = 0; k < count && first; ++k)
-    first = leading[perm[k]] != 0;
-  leading_ = first ? count : 0;
-  return numeric(A);
-}
-
 CholmodFactor::Result CholmodFactor::factorize(const SparseMatrix& A) {
   if (!A.isCompressed()) throw std::logic_error("CholmodFactor: matrix must be compressed");
+  if (!impl_) impl_ = std::make_unique<Impl>();
   cholmod_free_factor(&impl_->factor, &impl_->common);
-  leading_ = 0;
+  compact_.reset();
   size_ = static_cast<int>(A.rows());
   failed_column_ = -1;
   if (size_ == 0) return Result::Ok;
@@ -115,6 +77,7 @@ CholmodFactor::Result CholmodFactor::factorize(const SparseMatrix& A) {
 }
 
 CholmodFactor::Result CholmodFactor::refactorize(const SparseMatrix& A) {
+  if (compact_) throw std::logic_error("CholmodFactor: refactorize after compact()");
   if (!impl_->factor || static_cast<int>(A.rows()) != size_) return factorize(A);
   if (!A.isCompressed()) throw std::logic_error("CholmodFactor: matrix must be compressed");
   failed_column_ = -1;
@@ -138,9 +101,9 @@ CholmodFactor::Result CholmodFactor::numeric(const SparseMatrix& A) {
 }
 
 CholmodFactor::Result CholmodFactor::update(const SparseMatrix& C, bool add) {
+  if (compact_) throw std::logic_error("CholmodFactor: update after compact()");
   if (!impl_->factor || static_cast<int>(C.rows()) != size_) return Result::Failed;
   if (C.cols() == 0) return Result::Ok;
-  leading_ = 0;  // the update changes the block too
   if (!C.isCompressed()) throw std::logic_error("CholmodFactor: matrix must be compressed");
   failed_column_ = -1;
   cholmod_common& c = impl_->common;
@@ -166,11 +129,13 @@ CholmodFactor::Result CholmodFactor::update(const SparseMatrix& C, bool add) {
 }
 
 double CholmodFactor::rcond() const {
+  if (compact_) return compact_->rcond();
   if (!impl_->factor || size_ == 0) return 1.0;
   return cholmod_rcond(impl_->factor, &impl_->common);
 }
 
 std::size_t CholmodFactor::factor_nonzeros() const {
+  if (compact_) return compact_->nonzeros();
   if (!impl_->factor) return 0;
   const cholmod_factor* L = impl_->factor;
   if (L->is_super) return L->xsize;
@@ -178,50 +143,19 @@ std::size_t CholmodFactor::factor_nonzeros() const {
 }
 
 std::size_t CholmodFactor::peak_memory() const {
-  return impl_->common.memory_usage;
-}
-
-void CholmodFactor::solve_system(int system, const double* b) const {
-  cholmod_dense rhs{};
-  rhs.nrow = static_cast<size_t>(size_);
-  rhs.ncol = 1;
-  rhs.nzmax = rhs.nrow;
-  rhs.d = rhs.nrow;
-  rhs.x = const_cast<double*>(b);
-  rhs.xtype = CHOLMOD_REAL;
-  rhs.dtype = CHOLMOD_DOUBLE;
-  if (!cholmod_solve2(system, impl_->factor, &rhs, nullptr, &impl_->x, nullptr, &impl_->y,
-                      &impl_->e, &impl_->common)) {
-    if (impl_->common.status == CHOLMOD_OUT_OF_MEMORY) throw std::bad_alloc();
-    throw std::runtime_error("CHOLMOD solve failed");
-  }
-}
-
-void CholmodFactor::solve_leading(const double* b, double* x) const {
-  if (leading_ == 0) throw std::logic_error("CholmodFactor: no leading block");
-  // P A P' = L D L' (D = I for LL'); with b' = P b zero past the block, L D y = b' then
-  // L' z = [y_l; 0] gives z = [A_ll^-1 b_l; 0] in the factor's order.
-  thread_local std::vector<double> work;
-  work.assign(size_, 0.0);
-  const int* perm = static_cast<const int*>(impl_->factor->Perm);
-  for (int k = 0; k < leading_; ++k)
-    work[k] = b[perm[k]];
-  solve_system(CHOLMOD_LD, work.data());
-  const double* y = static_cast<const double*>(impl_->x->x);
-  std::copy(y, y + leading_, work.begin());
-  std::fill(work.begin() + leading_, work.end(), 0.0);
-  solve_system(CHOLMOD_Lt, work.data());
-  const double* z = static_cast<const double*>(impl_->x->x);
-  for (int k = 0; k < size_; ++k)
-    x[perm[k]] = k < leading_ ? z[k] : 0.0;
+  return compact_ ? compact_peak_ : impl_->common.memory_usage;
 }
 
 std::size_t CholmodFactor::memory_in_use() const {
-  return impl_->common.memory_inuse;
+  return compact_ ? compact_->bytes() : impl_->common.memory_inuse;
 }
 
 void CholmodFactor::solve(const double* b, double* x, int columns) const {
   if (size_ == 0) return;
+  if (compact_) {
+    compact_->solve(b, x, columns);
+    return;
+  }
   cholmod_dense rhs{};
   rhs.nrow = static_cast<size_t>(size_);
   rhs.ncol = static_cast<size_t>(columns);
@@ -236,6 +170,71 @@ void CholmodFactor::solve(const double* b, double* x, int columns) const {
     throw std::runtime_error("CHOLMOD solve failed");
   }
   std::memcpy(x, impl_->x->x, sizeof(double) * rhs.nzmax);
+}
+
+namespace {
+
+// Column j of a supernodal LL' factor into `out`: its nonzeros below the diagonal, in
+// increasing row order (the padding of relaxed supernodes, exact zeros, is left out).
+void add_supernodal_column(const cholmod_factor* L, int s, int j, CompactFactor& out) {
+  const int* super = static_cast<const int*>(L->super);
+  const int* pi = static_cast<const int*>(L->pi);
+  const int* px = static_cast<const int*>(L->px);
+  const int* ls = static_cast<const int*>(L->s);
+  const double* lx = static_cast<const double*>(L->x);
+  const int rows = pi[s + 1] - pi[s];
+  const int jj = j - super[s];
+  const double* column = lx + px[s] + static_cast<std::size_t>(jj) * rows;
+  out.start_column(column[jj]);
+  int previous = j;
+  for (int r = jj + 1; r < rows; ++r) {
+    const int row = ls[pi[s] + r];
+    if (row <= previous) throw std::logic_error("CholmodFactor: unsorted supernode rows");
+    previous = row;
+    if (column[r] != 0.0) out.add(row, column[r]);
+  }
+}
+
+}  // namespace
+
+bool CholmodFactor::compact() {
+  if (compact_) return true;
+  if (!impl_) return false;
+  cholmod_factor* L = impl_->factor;
+  if (!L || size_ == 0 || size_ > CompactFactor::kMaxSize) return false;
+  cholmod_common& c = impl_->common;
+  if (!L->is_super &&
+      !cholmod_change_factor(CHOLMOD_REAL, 1, 0, 1, 1, L, &c)) {  // simplicial LL', packed
+    if (c.status == CHOLMOD_OUT_OF_MEMORY) throw std::bad_alloc();
+    return false;
+  }
+  const std::size_t hint = L->is_super ? L->xsize : L->nzmax;
+  auto out = std::make_unique<CompactFactor>(size_, static_cast<const int*>(L->Perm), hint);
+  if (L->is_super) {
+    const int* super = static_cast<const int*>(L->super);
+    for (int s = 0; s < static_cast<int>(L->nsuper); ++s)
+      for (int j = super[s]; j < super[s + 1]; ++j)
+        add_supernodal_column(L, s, j, *out);
+  } else {
+    const int* p = static_cast<const int*>(L->p);
+    const int* i = static_cast<const int*>(L->i);
+    const int* nz = static_cast<const int*>(L->nz);
+    const double* x = static_cast<const double*>(L->x);
+    for (int j = 0; j < size_; ++j) {
+      out->start_column(x[p[j]]);  // the diagonal comes first
+      int previous = j;
+      for (int k = p[j] + 1; k < p[j] + nz[j]; ++k) {
+        if (i[k] <= previous) throw std::logic_error("CholmodFactor: unsorted column rows");
+        previous = i[k];
+        if (x[k] != 0.0) out->add(i[k], x[k]);
+      }
+    }
+  }
+  out->finish();
+  compact_peak_ = c.memory_usage;
+  compact_ = std::move(out);
+  impl_.reset();  // CHOLMOD's factor, workspaces and common: none is needed any more
+  return true;
 }
 
 }  // namespace fetic::solver

@@ -7,6 +7,7 @@
 #include <memory>
 #include <vector>
 
+#include "solver/compact_factor.hpp"
 #include "solver/stiffness.hpp"
 
 namespace fetic::solver {
@@ -25,16 +26,6 @@ class CholmodFactor {
   // Factorizes the symmetric matrix A (only its lower triangle is read). Throws
   // std::bad_alloc when CHOLMOD runs out of memory (OutOfMemory is never returned).
   Result factorize(const SparseMatrix& A);
-  // The same with the rows where leading[i] != 0 ordered before all others (CHOLMOD's
-  // constrained minimum degree, CAMD): the factor's leading block is then the factor of
-  // A restricted to those rows, which solve_leading() uses - one factor serves both A
-  // and that block. Without a leading block (none asked, or the ordering did not keep
-  // it first) has_leading() is false.
-  Result factorize(const SparseMatrix& A, const std::vector<char>& leading);
-  bool has_leading() const { return leading_ > 0; }
-  // x = A_ll^-1 b on the leading rows l: b is read and x written over all rows (size()),
-  // x zero off l; b's entries off l are ignored. Not reentrant, like solve().
-  void solve_leading(const double* b, double* x) const;
   // The same for a matrix with the nonzero pattern of the last factorize(): the fill-
   // reducing ordering and symbolic analysis are kept, only the numbers are factorized
   // again (a working-set change in FETI-C changes values of G G', not its pattern).
@@ -44,6 +35,12 @@ class CholmodFactor {
   // becomes a simplicial LDL', whose pattern the update may not leave (C C' within the
   // analysed pattern). NotPositiveDefinite when a removal leaves A singular.
   Result update(const SparseMatrix& C, bool add);
+  // Replaces CHOLMOD's factor by a lean copy for solving only (CompactFactor: its
+  // nonzeros alone, 10 bytes each, and faster solves for small factors). Afterwards only
+  // solve() and the queries work; refactorize() and update() throw.
+  // Returns false (and keeps CHOLMOD's factor) when the order is too large for it.
+  bool compact();
+  bool compacted() const { return compact_ != nullptr; }
   // Column where factorization broke down (valid after NotPositiveDefinite).
   int failed_column() const { return failed_column_; }
   // CHOLMOD's cheap estimate min(diag L) / max(diag L), squared for an LL' factor.
@@ -62,10 +59,10 @@ class CholmodFactor {
  private:
   struct Impl;
   Result numeric(const SparseMatrix& A);
-  void solve_system(int system, const double* b) const;  // into impl_->x
   std::unique_ptr<Impl> impl_;
+  std::unique_ptr<CompactFactor> compact_;
+  std::size_t compact_peak_ = 0;  // CHOLMOD's peak before compact() released it
   int size_ = 0;
-  int leading_ = 0;  // rows of the leading block (0: none)
   int failed_column_ = -1;
 };
 

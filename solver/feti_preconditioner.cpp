@@ -143,7 +143,9 @@ bool FetiPreconditioner::set_up_local(const SubdomainOperator& op, Local& local,
     return true;
   }
   const SparseMatrix K_ii = extract(op.K, i_position, ni, i_position, ni);
-  return local.K_ii.factorize(K_ii) == CholmodFactor::Result::Ok;
+  if (local.K_ii.factorize(K_ii) != CholmodFactor::Result::Ok) return false;
+  local.K_ii.compact();  // only solved with from here on
+  return true;
 }
 
 FetiPreconditioner::FetiPreconditioner(const FetiSystem& system, Preconditioner kind, bool scaled)
@@ -258,15 +260,18 @@ void FetiPreconditioner::apply(const Eigen::VectorXd& w, const std::vector<char>
     x.setZero();
     for (const Incidence& in : local.incidence)
       if (!mask || (*mask)[in.row]) x(in.dof) += in.value * w(in.row);
-    y = local.K_bb * x;
+    y.noalias() = local.K_bb * x;
     if (local.interior || local.K_ii.size() > 0) {
-      Eigen::VectorXd interior_rhs = local.K_ib * x;
-      Eigen::VectorXd interior(interior_rhs.size());
+      // Per thread, not per application: no allocation in the iterations.
+      thread_local Eigen::VectorXd interior_rhs, interior;
+      interior_rhs.resize(local.K_ib.rows());
+      interior.resize(local.K_ib.rows());
+      interior_rhs.noalias() = local.K_ib * x;
       if (local.interior)
         local.interior->interior_solve(interior_rhs.data(), interior.data());
       else
         local.K_ii.solve(interior_rhs.data(), interior.data());
-      y -= local.K_ib.transpose() * interior;
+      y.noalias() -= local.K_ib.transpose() * interior;
     }
   }
   z.resize(rows);

@@ -45,7 +45,7 @@ class FetiPreconditioner {
                                        // value already scaled
     SparseMatrix K_bb, K_ib;
     CholmodFactor K_ii;  // own factor only when K_j's factor cannot solve with K_ii
-    const GeneralizedInverse* interior = nullptr;  // K_j's factor, whose leading block is K_ii's
+    const GeneralizedInverse* interior = nullptr;  // K_j's K^+, which also holds K_ii's factor
     int offset = 0;                                // into the workspaces
   };
   // One term of a row's sum: y_(index) * value; `new_subdomain` starts the next partial.

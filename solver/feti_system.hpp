@@ -64,8 +64,8 @@ class FetiSystem {
  public:
   // Builds and factorizes this process' subdomains; throws SolverError naming the strut
   // when a subdomain (of any process) is singular beyond its rigid-body modes.
-  // `interior_first`: factorize each K_j so that its leading block is the factor of the
-  // interior K_ii that the Dirichlet preconditioner needs (GeneralizedInverse).
+  // `interior_first`: factorize each K_j's interior block K_ii too, for the Dirichlet
+  // preconditioner (GeneralizedInverse), and keep only K_j's boundary columns after.
   // corner_clusters: 0 FETI-1 (every box a subdomain); otherwise FETI-DP, the boxes joined
   // by their corners (corners.hpp): -1 into clusters as large as the corners make them,
   // N > 0 into clusters of about N boxes.

@@ -17,17 +17,14 @@ class GeneralizedInverse {
  public:
   // `kernel` spans ker K (zero columns for a regular K).
   CholmodFactor::Result factorize(const SparseMatrix& K, const Eigen::MatrixXd& kernel);
-  // The same, and prepares interior_solve() for the DOFs not in `boundary` (sorted): the
-  // fixed DOFs are chosen among the boundary's and the interior is ordered first in the
-  // factor, whose leading block is then the factor of K_ii (the Dirichlet
-  // preconditioner's) - one factor instead of two. has_interior_solve() is false when the
-  // boundary does not pin the kernel well or the ordering did not keep the interior
-  // first; K^+ is then as factorize(K, kernel) makes it.
+  // The same, and a second factor, of the interior block K_ii over the DOFs not in
+  // `boundary` (sorted), for interior_solve() (the Dirichlet preconditioner's). Each
+  // factor has its own fill-reducing ordering. has_interior_solve() is false when there
+  // is no interior or K_ii is singular.
   CholmodFactor::Result factorize(const SparseMatrix& K, const Eigen::MatrixXd& kernel,
                                   const std::vector<int>& boundary);
-  bool has_interior_solve() const { return !interior_.empty() && factor_.has_leading(); }
+  bool has_interior_solve() const { return interior_factor_.size() > 0; }
   // y = K_ii^-1 x over the interior DOFs (those not in the boundary, in increasing order).
-  // Not reentrant.
   void interior_solve(const double* x, double* y) const;
 
   int size() const { return size_; }
@@ -36,12 +33,12 @@ class GeneralizedInverse {
   int failed_dof() const;
   double rcond() const { return factor_.rcond(); }
   std::size_t factor_nonzeros() const { return factor_.factor_nonzeros(); }
-  std::size_t peak_memory() const { return factor_.peak_memory(); }
-  // Bytes held now: the factor with CHOLMOD's solve workspaces, and this class' own.
+  std::size_t interior_nonzeros() const { return interior_factor_.factor_nonzeros(); }
+  std::size_t peak_memory() const { return factor_.peak_memory() + interior_factor_.peak_memory(); }
+  // Bytes held now by K's factor and by K_ii's.
   std::size_t factor_memory() const { return factor_.memory_in_use(); }
-  std::size_t index_memory() const {
-    return (fixed_.capacity() + kept_.capacity() + interior_.capacity()) * sizeof(int);
-  }
+  std::size_t interior_memory() const { return interior_factor_.memory_in_use(); }
+  std::size_t index_memory() const { return (fixed_.capacity() + kept_.capacity()) * sizeof(int); }
 
   // y = K^+ x for `columns` column-major right-hand sides. Not reentrant.
   void apply(const double* x, double* y, int columns = 1) const;
@@ -50,17 +47,15 @@ class GeneralizedInverse {
  private:
   int size_ = 0;
   std::vector<int> fixed_;
-  std::vector<int> kept_;      // factorized DOFs, in order
-  std::vector<int> interior_;  // per interior DOF its row in the factorized matrix
-  CholmodFactor::Result factorize_kept(const SparseMatrix& K, const std::vector<char>* leading);
+  std::vector<int> kept_;  // factorized DOFs, in order
+  CholmodFactor::Result factorize_kept(const SparseMatrix& K);
+  CholmodFactor::Result compacted(CholmodFactor::Result result);
   CholmodFactor factor_;
+  CholmodFactor interior_factor_;  // K_ii's (empty unless asked for)
 };
 
 // DOFs (rows of `kernel`) whose rows form the best-conditioned square block of the
 // kernel, chosen by QR with column pivoting of kernel'.
 std::vector<int> choose_fixing_dofs(const Eigen::MatrixXd& kernel);
-// min / max singular value of the fixed rows of the kernel (columns normalized): how well
-// those DOFs pin it (1 for orthogonal rows, 0 when they leave a mode free).
-double pinning_quality(const Eigen::MatrixXd& kernel, const std::vector<int>& fixed);
 
 }  // namespace fetic::solver

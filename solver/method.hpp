@@ -45,8 +45,9 @@ struct SolveOptions {
   // The dual methods' subdomains (FetiSystem): 0 FETI-1's boxes; -1 FETI-DP's clusters of
   // boxes joined by their corners; N > 0 hybrid clusters of about N boxes (corners.hpp).
   int corner_clusters = 0;
-  // Dirichlet: solve with K_ii through K_j's factor (its leading block) instead of a
-  // second factor per subdomain; off only to measure the difference (fetic-bench-scale).
+  // Dirichlet: factorize K_ii beside K_j (GeneralizedInverse), so that K_j can be cut
+  // to its boundary columns at once; off: the preconditioner factorizes K_ii from the
+  // whole K_j, kept until then (only to measure the difference: fetic-bench-scale).
   bool shared_interior_factor = true;
 };
 
@@ -138,6 +139,9 @@ class Method {
   // Applications of F since the method was made (-1: the method does not apply F).
   virtual long long f_applications() const { return -1; }
   void fail(std::string why);
+  // A snapshot with what every method's shares: the method, iteration, status, message,
+  // load factor and the last residual; the method adds its state.
+  Snapshot snapshot_header() const;
 
   const Model& model_;
   SolveOptions options_;

@@ -390,13 +390,7 @@ Eigen::VectorXd Mprgp::solution_amplitudes() const {
 }
 
 Snapshot Mprgp::snapshot() const {
-  Snapshot s;
-  s.method = kind();
-  s.iteration = iteration_;
-  s.status = status();
-  s.message = message();
-  s.load_factor = load_factor_;
-  s.residual = history().empty() ? 0.0 : history().back().residual;
+  Snapshot s = snapshot_header();
   const Decomposition& d = system_.decomposition();
   const int pairs = static_cast<int>(model_.pairs.size());
   s.force.assign(pairs, 0.0);
