@@ -58,6 +58,7 @@ struct RenderArgs {
   // Given on the command line: these win over the view's entries.
   bool size_given = false, magnification_given = false, color_given = false;
   bool labels = false;
+  bool corners = false;
   bool chart = false, no_chart = false;  // neither: the chart at 200 pairs and more
   std::string vtu;                       // also write each frame's state as ParaView files here
   std::string vtu_format = "zlib";
@@ -234,6 +235,7 @@ void RenderRun::lay_out_view() {
   if (args_.color_given) view_.color_by = color_by(args_.color);
   if (args_.no_overlay) view_.show_overlay = false;
   if (args_.labels) view_.show_labels = true;
+  if (args_.corners) view_.show_corners = true;
   view_.show_chart = render::chart_shown(model_, args_.chart ? 1 : args_.no_chart ? 0 : -1);
   apply_scales(saved_.scales, extent_);
   // A view the window saved names what its scales are the largest over, as it said.
@@ -457,6 +459,9 @@ void register_render(CLI::App& app, int& exit_code) {
   command->add_flag("--no-chart", args->no_chart, "No per-contact chart")->excludes(chart);
   command->add_flag("--labels", args->labels,
                     "Strut names beside the struts (where there is room)");
+  command->add_flag("--corners", args->corners,
+                    "Mark FETI-DP's primal corners (amber discs) at the nodes solver/corners.hpp "
+                    "chooses for the scene's subdomains");
   command->add_option("--max-frames", args->max_frames, "Refuse runs with more frames")
       ->check(integer_in(1, 1'000'000))
       ->capture_default_str();

@@ -8,6 +8,7 @@
 #include <numeric>
 
 #include "render/colormap.hpp"
+#include "render/corner_marks.hpp"
 #include "render/frame_sequence.hpp"
 #include "render/text_format.hpp"
 #include "scenes/units.hpp"
@@ -890,6 +891,7 @@ DrawList draw_glyphs(const solver::Model& model, const solver::Snapshot& snapsho
   if (view.show_labels)
     draw_labels(list, model, framing, nodes, tally,
                 drawn_boxes(list, loads_from, model.struts.size()));
+  if (view.show_corners) draw_corner_marks(list, model, snapshot, framing);
 
   // What the frame shows: the caption above; below, two rows of glyph legend, then the
   // stress or moment colours (left) and the length scale (right).

@@ -33,6 +33,7 @@ struct View {
   bool show_forces = true;    // contact force glyphs scaled by lambda
   bool show_overlay = true;   // title, method, iteration, residual, plots
   bool show_labels = false;   // strut names beside the struts (where there is room)
+  bool show_corners = false;  // FETI-DP's primal corners (render/corner_marks.hpp)
   bool show_legend = true;    // what the glyphs mean
   bool show_scale = true;     // a length scale bar
   bool show_chart = false;    // the per-contact chart beside the picture (contact_chart.hpp)
