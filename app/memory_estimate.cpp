@@ -36,6 +36,9 @@ constexpr double kGradientPerUnknown = 600, kGradientPerStrut = 3300;
 // The result file is written streamed (app/json_stream.hpp): the final state's numbers
 // and one strut's JSON at a time.
 constexpr double kResultFilePerNode = 100;
+// ParaView files (app/vtu_export.hpp): made a strut at a time, but one array's compressed
+// blocks are held until the array ends (the largest: 3 doubles a node).
+constexpr double kParaViewPerNode = 24;
 // A snapshot: the displacement pieces and the dual or primal iterate.
 constexpr double kIteratePerUnknown = 24, kIteratePerRow = 16;
 // toml++'s tree and the text, per byte of the file.
@@ -182,6 +185,7 @@ MemoryEstimate estimate_memory(const scenes::Scene& scene, const MemoryUse& use)
     }
   }
   if (use.result_file) estimate.bytes += kResultFilePerNode * c.nodes;
+  if (use.paraview) estimate.bytes += kParaViewPerNode * c.nodes;
   estimate.bytes +=
       use.kept_iterates * (kIteratePerUnknown * c.unknowns + kIteratePerRow * c.interface_rows);
   return estimate;
