@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "app/interrupt.hpp"
+#include "scenes/message_text.hpp"
 #include "scenes/scene_error.hpp"
 #include "scenes/scene_text.hpp"
 
@@ -135,30 +136,7 @@ json parse_json_input(const std::string& text, const std::string& path, const st
 }
 
 std::string quoted_value(std::string_view value, std::size_t limit) {
-  static const char digits[] = "0123456789abcdef";
-  std::string out;
-  std::size_t shown = 0;
-  for (std::size_t i = 0; i < value.size(); ++i) {
-    if (shown >= limit) {
-      out += "... (" + std::to_string(value.size()) + " bytes)";
-      break;
-    }
-    const auto byte = static_cast<unsigned char>(value[i]);
-    if (value.substr(i, 3) == "\xEF\xBB\xBF") {  // a byte order mark, invisible otherwise
-      out += "\\uFEFF";
-      i += 2;
-    } else if (byte == '\n') {
-      out += "\\n";
-    } else if (byte < 0x20 || byte == 0x7f) {
-      out += "\\x";
-      out += digits[byte >> 4];
-      out += digits[byte & 15];
-    } else {
-      out += value[i];
-    }
-    ++shown;
-  }
-  return out;
+  return scenes::shortened(value, limit);
 }
 
 }  // namespace fetic::app

@@ -117,21 +117,12 @@ PlotArea value_plot(DrawList& list, const Rect& frame, float t, const std::strin
   return area;
 }
 
-}  // namespace
-
-DrawList draw_overlay(const OverlayInfo& info, const solver::Model& model,
-                      const solver::Snapshot& snapshot,
-                      const std::vector<solver::HistoryEntry>& history, const RunExtent& extent,
-                      const View& view, const StepSeries* steps, std::vector<PlotArea>* areas) {
-  std::vector<PlotArea> ignored;
-  std::vector<PlotArea>& plots = areas ? *areas : ignored;
-  DrawList list;
-  const Rect panel = overlay_panel(view);
+// The title and the rows of the panel (method, load factor, iteration, ...); returns the
+// height where the plots below them start.
+float draw_overlay_rows(DrawList& list, const OverlayInfo& info, const solver::Model& model,
+                        const solver::Snapshot& snapshot, const View& view, const Rect& panel) {
   const float t = text_size(view);
   const float pad = 0.6f * t;
-  list.rect(panel, palette::panel);
-  list.rect_outline(panel, 1.0f, palette::grid);
-
   float y = panel.y0 + pad;
   const float x0 = panel.x0 + pad, x1 = panel.x1 - pad;
   const float title_size = std::round(1.1f * t);
@@ -175,54 +166,56 @@ DrawList draw_overlay(const OverlayInfo& info, const solver::Model& model,
       : view.color_by == ColorBy::Strut  ? "struts"
                                          : "subdomains",
       palette::ink);
-  y += 0.4f * t;
+  return y + 0.4f * t;
+}
 
-  const bool with_contacts = !model.pairs.empty();
-  const float left = x0 - 0.2f * t, bottom = panel.y1 - pad;
-  if (steps && !steps->all.empty()) {
-    // Against the load factor: iterations per step, the active set, the total contact
-    // force - one point per step, fixed to the whole run so that frames line up.
-    std::vector<double> loads, iterations, active, force;
-    for (const StepSummary& step : steps->shown) {
-      loads.push_back(step.load_factor);
-      iterations.push_back(step.iterations);
-      active.push_back(step.active_set);
-      force.push_back(step.total_force);
-    }
-    double first = steps->all.front().load_factor, last = first;
-    int most_iterations = 1, most_active = 1;
-    double most_force = 0.0;
-    for (const StepSummary& step : steps->all) {
-      first = std::min(first, step.load_factor);
-      last = std::max(last, step.load_factor);
-      most_iterations = std::max(most_iterations, step.iterations);
-      most_active = std::max(most_active, step.active_set);
-      most_force = std::max(most_force, step.total_force);
-    }
-    if (!(last > first)) last = first + 1.0;
-    const Axis x_axis{"load factor", first, last, false, false};
-    const int count = with_contacts ? 3 : 1;
-    const float height = (bottom - y) / static_cast<float>(count);
-    plots.push_back(value_plot(list, {left, y, x1, y + height}, t, "iterations per step", x_axis,
-                               loads, iterations, most_iterations, series_color(0), false, true));
-    if (with_contacts) {
-      plots.push_back(value_plot(list, {left, y + height, x1, y + 2 * height}, t,
-                                 "active set (contact pairs)", x_axis, loads, active, most_active,
-                                 palette::contact, false, true));
-      const scenes::DisplayUnit unit =
-          scenes::display_unit(scenes::Quantity::Force, model.units, most_force);
-      std::vector<double> shown_force;
-      for (double f : force)
-        shown_force.push_back(f / unit.divisor);
-      plots.push_back(value_plot(
-          list, {left, y + 2 * height, x1, bottom}, t, "total contact force [" + unit.name + "]",
-          x_axis, loads, shown_force, most_force / unit.divisor, palette::force, false, false));
-    }
-    return list;
+// Against the load factor: iterations per step, the active set, the total contact force -
+// one point per step, fixed to the whole run so that frames line up.
+void draw_step_plots(DrawList& list, const Rect& region, float t, const solver::Model& model,
+                     const StepSeries& steps, std::vector<PlotArea>& plots) {
+  std::vector<double> loads, iterations, active, force;
+  for (const StepSummary& step : steps.shown) {
+    loads.push_back(step.load_factor);
+    iterations.push_back(step.iterations);
+    active.push_back(step.active_set);
+    force.push_back(step.total_force);
   }
+  double first = steps.all.front().load_factor, last = first;
+  int most_iterations = 1, most_active = 1;
+  double most_force = 0.0;
+  for (const StepSummary& step : steps.all) {
+    first = std::min(first, step.load_factor);
+    last = std::max(last, step.load_factor);
+    most_iterations = std::max(most_iterations, step.iterations);
+    most_active = std::max(most_active, step.active_set);
+    most_force = std::max(most_force, step.total_force);
+  }
+  if (!(last > first)) last = first + 1.0;
+  const Axis x_axis{"load factor", first, last, false, false};
+  const bool with_contacts = !model.pairs.empty();
+  const float left = region.x0, right = region.x1, y = region.y0, bottom = region.y1;
+  const float height = (bottom - y) / (with_contacts ? 3.0f : 1.0f);
+  plots.push_back(value_plot(list, {left, y, right, y + height}, t, "iterations per step", x_axis,
+                             loads, iterations, most_iterations, series_color(0), false, true));
+  if (!with_contacts) return;
+  plots.push_back(value_plot(list, {left, y + height, right, y + 2 * height}, t,
+                             "active set (contact pairs)", x_axis, loads, active, most_active,
+                             palette::contact, false, true));
+  const scenes::DisplayUnit unit =
+      scenes::display_unit(scenes::Quantity::Force, model.units, most_force);
+  std::vector<double> shown_force;
+  for (double f : force)
+    shown_force.push_back(f / unit.divisor);
+  plots.push_back(value_plot(list, {left, y + 2 * height, right, bottom}, t,
+                             "total contact force [" + unit.name + "]", x_axis, loads, shown_force,
+                             most_force / unit.divisor, palette::force, false, false));
+}
 
-  // Against the iterations of this solve, fixed to the whole run so that frames line up
-  // (and widened where this solve goes beyond it).
+// Against the iterations of this solve, fixed to the whole run so that frames line up (and
+// widened where this solve goes beyond it).
+void draw_iteration_plots(DrawList& list, const Rect& region, float t, bool with_contacts,
+                          const std::vector<solver::HistoryEntry>& history, const RunExtent& extent,
+                          std::vector<PlotArea>& plots) {
   std::vector<double> iterations, residuals, active;
   for (const solver::HistoryEntry& entry : history) {
     iterations.push_back(entry.iteration);
@@ -232,13 +225,36 @@ DrawList draw_overlay(const OverlayInfo& info, const solver::Model& model,
   const double last_iteration = std::max({1.0, static_cast<double>(extent.largest_iteration),
                                           iterations.empty() ? 0.0 : iterations.back()});
   const Axis x_axis{"iteration", 0.0, last_iteration, false, true};
+  const float left = region.x0, right = region.x1, y = region.y0, bottom = region.y1;
   const float height = with_contacts ? 0.5f * (bottom - y) : bottom - y;
   plots.push_back(
-      residual_plot(list, {left, y, x1, y + height}, t, x_axis, iterations, residuals, extent));
+      residual_plot(list, {left, y, right, y + height}, t, x_axis, iterations, residuals, extent));
   if (with_contacts)
-    plots.push_back(value_plot(list, {left, y + height, x1, bottom}, t,
+    plots.push_back(value_plot(list, {left, y + height, right, bottom}, t,
                                "active set (contact pairs)", x_axis, iterations, active,
                                extent.largest_active_set, palette::contact, true, true));
+}
+
+}  // namespace
+
+DrawList draw_overlay(const OverlayInfo& info, const solver::Model& model,
+                      const solver::Snapshot& snapshot,
+                      const std::vector<solver::HistoryEntry>& history, const RunExtent& extent,
+                      const View& view, const StepSeries* steps, std::vector<PlotArea>* areas) {
+  std::vector<PlotArea> ignored;
+  std::vector<PlotArea>& plots = areas ? *areas : ignored;
+  DrawList list;
+  const Rect panel = overlay_panel(view);
+  const float t = text_size(view);
+  const float pad = 0.6f * t;
+  list.rect(panel, palette::panel);
+  list.rect_outline(panel, 1.0f, palette::grid);
+  const float y = draw_overlay_rows(list, info, model, snapshot, view, panel);
+  const Rect plot_region{panel.x0 + pad - 0.2f * t, y, panel.x1 - pad, panel.y1 - pad};
+  if (steps && !steps->all.empty())
+    draw_step_plots(list, plot_region, t, model, *steps, plots);
+  else
+    draw_iteration_plots(list, plot_region, t, !model.pairs.empty(), history, extent, plots);
   return list;
 }
 

@@ -647,15 +647,17 @@ std::string quantity(double value, scenes::Quantity kind, const scenes::Units& u
   return format("%.3g", value / unit.divisor) + " " + unit.name;
 }
 
-// The glyphs present, each with a small sample, in rows that wrap within `band` (its top
-// is the middle of the first row); set smaller when they would need more rows than it has.
-void draw_glyph_legend(DrawList& list, const SceneFraming& framing, const GlyphTally& tally,
-                       const scenes::Units& units, const View& view, Rect band) {
+using LegendSample = std::function<void(Point, float)>;  // at the middle left, text size t
+using LegendItem = std::pair<std::string, LegendSample>;
+
+// The glyphs present in the picture, each with the function that draws its sample.
+std::vector<LegendItem> glyph_items(DrawList& list, const SceneFraming& framing,
+                                    const GlyphTally& tally, const scenes::Units& units,
+                                    const View& view) {
   const float lw = framing.line_width;
-  using Sample = std::function<void(Point, float)>;  // at the middle left, for text size t
-  std::vector<std::pair<std::string, Sample>> items;
+  std::vector<LegendItem> items;
   if (tally.walls)
-    items.emplace_back("clamped end", [&](Point p, float t) {
+    items.emplace_back("clamped end", [&list, lw](Point p, float t) {
       const float sample = 1.6f * t;
       const Point top = p + Point{0.5f * sample, -0.45f * t},
                   bottom = p + Point{0.5f * sample, 0.45f * t};
@@ -664,7 +666,7 @@ void draw_glyph_legend(DrawList& list, const SceneFraming& framing, const GlyphT
         list.line(top + Point{0, s}, top + Point{0.3f * t, s - 0.3f * t}, 1.2f * lw, palette::wall);
     });
   if (tally.pins)
-    items.emplace_back("pinned support", [&](Point p, float t) {
+    items.emplace_back("pinned support", [&list, lw](Point p, float t) {
       const Point tip = p + Point{0.8f * t, -0.45f * t};
       const Point left = p + Point{0.35f * t, 0.35f * t}, right = p + Point{1.25f * t, 0.35f * t};
       list.polyline({tip, left, right}, 1.6f * lw, palette::wall, true);
@@ -672,17 +674,17 @@ void draw_glyph_legend(DrawList& list, const SceneFraming& framing, const GlyphT
                 palette::wall);
     });
   if (tally.rigid_joints)
-    items.emplace_back("rigid joint", [&](Point p, float t) {
+    items.emplace_back("rigid joint", [&list, lw](Point p, float t) {
       list.rect({p.x + 0.5f * t, p.y - 0.3f * t, p.x + 1.1f * t, p.y + 0.3f * t}, palette::wall);
     });
   if (tally.pinned_joints)
-    items.emplace_back("pinned joint", [&](Point p, float t) {
+    items.emplace_back("pinned joint", [&list, lw](Point p, float t) {
       list.ring(p + Point{0.8f * t, 0}, 0.3f * t, std::max(1.5f * lw, t / 12.0f), palette::wall);
     });
   if (tally.loads)
     items.emplace_back(
         "load (longest " + quantity(tally.largest_load, scenes::Quantity::Force, units) + ")",
-        [&](Point p, float t) {
+        [&list, lw](Point p, float t) {
           list.arrow(p, p + Point{1.6f * t, 0}, std::max(1.4f * lw, t / 9.0f), 0.6f * t,
                      palette::load);
         });
@@ -690,7 +692,7 @@ void draw_glyph_legend(DrawList& list, const SceneFraming& framing, const GlyphT
     items.emplace_back(
         "distributed load (" +
             quantity(tally.largest_distributed, scenes::Quantity::ForcePerLength, units) + ")",
-        [&](Point p, float t) {
+        [&list, lw](Point p, float t) {
           const float sample = 1.6f * t;
           list.line(p + Point{0, -0.45f * t}, p + Point{sample, -0.45f * t}, 1.2f * lw,
                     palette::load);
@@ -699,11 +701,11 @@ void draw_glyph_legend(DrawList& list, const SceneFraming& framing, const GlyphT
                        1.2f * lw, 0.4f * t, palette::load);
         });
   if (tally.rings)
-    items.emplace_back("active contact", [&](Point p, float t) {
+    items.emplace_back("active contact", [&list, lw](Point p, float t) {
       list.ring(p + Point{0.8f * t, 0}, 0.4f * t, std::max(1.5f * lw, t / 10.0f), palette::contact);
     });
   if (tally.faces)
-    items.emplace_back("active contact (width: force)", [&](Point p, float t) {
+    items.emplace_back("active contact (width: force)", [&list, lw](Point p, float t) {
       list.line(p + Point{0.8f * t, -0.5f * t}, p + Point{0.8f * t, 0.5f * t}, 3.0f * lw,
                 palette::contact);
     });
@@ -712,13 +714,18 @@ void draw_glyph_legend(DrawList& list, const SceneFraming& framing, const GlyphT
                            scale_note(framing.force_scale, tally.largest_force_now,
                                       view.scale_basis, scenes::Quantity::Force, units) +
                            ")",
-                       [&](Point p, float t) {
+                       [&list, lw](Point p, float t) {
                          list.disc(p + Point{0.8f * t, 0}, 0.35f * t, palette::force);
                        });
   if (tally.gaps)
-    items.emplace_back("open gap", [&](Point p, float t) {
+    items.emplace_back("open gap", [&list, lw](Point p, float t) {
       list.dashed_line(p, p + Point{1.6f * t, 0}, 1.2f * lw, 3.0f * lw, 2.5f * lw, palette::gap);
     });
+  return items;
+}
+
+// What was too dense to draw ("3 loads, 12 contact marks"); "" when nothing was left out.
+std::string left_out_note(const GlyphTally& tally, const View& view) {
   std::string left_out;
   if (tally.loads_left_out > 0) left_out += std::to_string(tally.loads_left_out) + " loads";
   if (tally.contacts_left_out > 0)
@@ -726,10 +733,13 @@ void draw_glyph_legend(DrawList& list, const SceneFraming& framing, const GlyphT
         (left_out.empty() ? "" : ", ") + std::to_string(tally.contacts_left_out) + " contact marks";
   if (view.show_labels && tally.labels_left_out > 0)
     left_out += (left_out.empty() ? "" : ", ") + std::to_string(tally.labels_left_out) + " labels";
-  if (!left_out.empty())
-    items.emplace_back("too dense to draw at this size: " + left_out, Sample());
-  if (items.empty()) return;
+  return left_out;
+}
 
+// The legend's items in rows within `band`, at the largest text size (down to 60%, not below
+// the smallest legible one) that needs no more rows than the band holds.
+void lay_out_legend(DrawList& list, const SceneFraming& framing,
+                    const std::vector<LegendItem>& items, Rect band) {
   // Rows the band holds at full size; the largest size (down to 60%) that needs no more.
   const float full = framing.text_size;
   const int rows = std::max(1, 1 + static_cast<int>((band.y1 - band.y0) / (1.3f * full)));
@@ -771,6 +781,17 @@ void draw_glyph_legend(DrawList& list, const SceneFraming& framing, const GlyphT
               HAlign::Left, VAlign::Middle);
     x += width;
   }
+}
+
+// The glyphs present, each with a small sample, in rows that wrap within `band` (its top
+// is the middle of the first row); set smaller when they would need more rows than it has.
+void draw_glyph_legend(DrawList& list, const SceneFraming& framing, const GlyphTally& tally,
+                       const scenes::Units& units, const View& view, Rect band) {
+  std::vector<LegendItem> items = glyph_items(list, framing, tally, units, view);
+  if (const std::string left_out = left_out_note(tally, view); !left_out.empty())
+    items.emplace_back("too dense to draw at this size: " + left_out, LegendSample());
+  if (items.empty()) return;
+  lay_out_legend(list, framing, items, band);
 }
 
 void draw_caption(DrawList& list, const solver::Snapshot& snapshot, const SceneFraming& framing,

@@ -18,20 +18,22 @@ namespace fetic::scenes {
 // At most this many characters of a value are shown before "...".
 inline constexpr size_t kShownValueLength = 80;
 
-// The value escaped and cut: "aaaa... (10485760 bytes)".
-inline std::string shortened(std::string_view text) {
-  if (text.size() <= kShownValueLength) {
+// The value escaped and cut: "aaaa... (10485760 bytes)"; at most `limit` characters
+// (kShownValueLength unless a message has room for more).
+inline std::string shortened(std::string_view text, size_t limit = kShownValueLength) {
+  if (text.size() <= limit) {
     std::string whole = printable(std::string(text));
-    if (whole.size() <= kShownValueLength) return whole;
+    if (whole.size() <= limit) return whole;
   }
-  // Whole characters (UTF-8), escaped, up to 60 characters shown; then how long it was.
+  // Whole characters (UTF-8), escaped, up to limit - 20 characters shown; then how long
+  // it was.
   std::string shown;
   for (size_t at = 0; at < text.size();) {
     size_t next = at + 1;
     while (next < text.size() && (static_cast<unsigned char>(text[next]) & 0xC0) == 0x80)
       ++next;
     const std::string piece = printable(std::string(text.substr(at, next - at)));
-    if (shown.size() + piece.size() > kShownValueLength - 20) break;
+    if (shown.size() + piece.size() + 20 > limit) break;
     shown += piece;
     at = next;
   }

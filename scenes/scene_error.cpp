@@ -7,9 +7,13 @@ namespace fetic::scenes {
 // by fuzz/fuzz_scene), so they are shown escaped.
 std::string printable(const std::string& message) {
   std::string text;
-  for (const char c : message) {
+  for (std::size_t i = 0; i < message.size(); ++i) {
+    const char c = message[i];
     const auto byte = static_cast<unsigned char>(c);
-    if (c == '\n') {
+    if (message.compare(i, 3, "\xEF\xBB\xBF") == 0) {  // a byte order mark, invisible
+      text += "\\uFEFF";
+      i += 2;
+    } else if (c == '\n') {
       text += "\\n";
     } else if (c == '\r') {
       text += "\\r";

@@ -49,10 +49,9 @@ void add_gluing_rows(const Copies& c, int dofs_per_node, int comp, Decomposition
   if (group.copies >= 3) d.redundant_groups.push_back(std::move(group));
 }
 
-}  // namespace
-
-Decomposition decompose(const Model& model) {
-  Decomposition d;
+// Step 1: the subdomains of every strut (its node boxes), each node's copies, and each
+// node's load on its first copy only.
+std::vector<StrutCopies> place_subdomains(const Model& model, Decomposition& d) {
   std::vector<StrutCopies> copies(model.struts.size());
   for (size_t s = 0; s < model.struts.size(); ++s) {
     const StrutMesh& mesh = model.struts[s];
@@ -87,8 +86,12 @@ Decomposition decompose(const Model& model) {
             model.loads[s](node * mesh.dofs_per_node + c);
     }
   }
+  return copies;
+}
 
-  // Gluing rows, then Dirichlet rows.
+// Step 2: gluing rows between the copies of every node that no support holds.
+void glue_strut_copies(const Model& model, const std::vector<StrutCopies>& copies,
+                       Decomposition& d) {
   for (size_t s = 0; s < model.struts.size(); ++s) {
     const StrutMesh& mesh = model.struts[s];
     std::vector<unsigned> held(mesh.node_count(), 0u);
@@ -103,9 +106,12 @@ Decomposition decompose(const Model& model) {
         if (!(held[node] >> comp & 1u)) add_gluing_rows(c, mesh.dofs_per_node, comp, d);
     }
   }
-  // Joints (frame model): the ends' copies of every shared component that no support
-  // holds, glued like the copies of one node - every pair of ends, so that a joint of
-  // k ends is a cross point of k subdomains (see decomposition.hpp).
+}
+
+// Step 3 (frame model): joints. The ends' copies of every shared component that no
+// support holds, glued like the copies of one node - every pair of ends, so that a joint
+// of k ends is a cross point of k subdomains (see decomposition.hpp).
+void glue_joints(const Model& model, const std::vector<StrutCopies>& copies, Decomposition& d) {
   for (const JointLink& joint : model.joints) {
     Copies ends;
     for (const auto& [strut, node] : joint.ends)
@@ -114,6 +120,11 @@ Decomposition decompose(const Model& model) {
     for (int comp = 0; comp < joint.shared; ++comp)
       if (!(model.held(first_strut, first_node) >> comp & 1u)) add_gluing_rows(ends, 3, comp, d);
   }
+}
+
+// Step 4: Dirichlet rows, one per held component of every copy of a held node.
+void hold_dirichlet_nodes(const Model& model, const std::vector<StrutCopies>& copies,
+                          Decomposition& d) {
   for (size_t s = 0; s < model.struts.size(); ++s) {
     const StrutMesh& mesh = model.struts[s];
     for (const HeldNode& node : model.held_nodes[s])
@@ -126,10 +137,12 @@ Decomposition decompose(const Model& model) {
           d.rows.push_back(std::move(row));
         }
   }
-  d.equality_rows = static_cast<int>(d.rows.size());
-  d.total_pieces = static_cast<int>(d.subdomains.size());
+}
 
-  // Contact rows.
+// Step 5: a row per contact pair, on the first copy of each side's node (none when both
+// sides are held).
+void add_contact_rows(const Model& model, const std::vector<StrutCopies>& copies,
+                      Decomposition& d) {
   d.pair_row.assign(model.pairs.size(), -1);
   for (size_t k = 0; k < model.pairs.size(); ++k) {
     const ContactPair& pair = model.pairs[k];
@@ -154,6 +167,19 @@ Decomposition decompose(const Model& model) {
     d.pair_row[k] = static_cast<int>(d.rows.size());
     d.rows.push_back(std::move(row));
   }
+}
+
+}  // namespace
+
+Decomposition decompose(const Model& model) {
+  Decomposition d;
+  const std::vector<StrutCopies> copies = place_subdomains(model, d);
+  glue_strut_copies(model, copies, d);
+  glue_joints(model, copies, d);
+  hold_dirichlet_nodes(model, copies, d);
+  d.equality_rows = static_cast<int>(d.rows.size());
+  d.total_pieces = static_cast<int>(d.subdomains.size());
+  add_contact_rows(model, copies, d);
   return d;
 }
 

@@ -145,13 +145,7 @@ void FetiMethod::fill_contacts(Snapshot& s) const {
 }
 
 Snapshot FetiMethod::snapshot() const {
-  Snapshot s;
-  s.method = kind();
-  s.iteration = iteration_;
-  s.status = status();
-  s.message = message();
-  s.load_factor = load_factor_;
-  s.residual = history().empty() ? 0.0 : history().back().residual;
+  Snapshot s = snapshot_header();
   if (!history().empty()) {  // started (alike on every process)
     s.pieces = system_.pieces(lambda_, rigid_amplitudes(), load_factor_);
     s.dual = lambda_;
@@ -234,6 +228,26 @@ double FetiMethod::reference_error() const {
     error = relative_error(strut_displacements(model_, whole), reference());
   system_.communicator().broadcast(error);
   return error;
+}
+
+FetiMethod::PcpgStep FetiMethod::pcpg_step(const Eigen::VectorXd& w, const std::vector<char>* face,
+                                           bool restart, double yw_previous, Eigen::VectorXd& p,
+                                           Eigen::VectorXd& q) {
+  Eigen::VectorXd y;
+  preconditioner_.apply(w, face, y);
+  system_.project_onto_range_of_B(y);
+  coarse_.project(y);
+  const double yw = space().dot(y, w);
+  const double beta = restart || !(yw_previous > 0.0) ? 0.0 : yw / yw_previous;
+  p = restart ? y : Eigen::VectorXd(y + beta * p);
+  system_.apply_F(p, q);
+  const double pq = space().dot(p, q);
+  ++iteration_;
+  if (!(pq > 0.0) || !(yw > 0.0)) {
+    fail_breakdown(yw, pq);
+    return {};
+  }
+  return {yw / pq, yw, true};
 }
 
 }  // namespace fetic::solver

@@ -85,6 +85,16 @@ class FetiMethod : public Method {
   void watch_stagnation(double residual, int window = kStagnationWindow);
   // Fails for a vanishing or negative curvature p'F p, explaining the likely cause.
   void fail_breakdown(double yw, double pq);
+  // One PCPG step's direction and length (PCPG and FETI-C): y = P M^-1 w preconditioned on
+  // the rows of `face` (all when null) and projected onto range B and ker G of the current
+  // rows; p = y + beta p (beta = 0 on a restart); q = F p; a = y'w / p'F p. Counts the
+  // iteration; on a breakdown fails the solve and returns ok = false.
+  struct PcpgStep {
+    double a = 0.0, yw = 0.0;
+    bool ok = false;
+  };
+  PcpgStep pcpg_step(const Eigen::VectorXd& w, const std::vector<char>* face, bool restart,
+                     double yw_previous, Eigen::VectorXd& p, Eigen::VectorXd& q);
   void reset_watch();
 
   static constexpr int kResidualReplacement = 25;

@@ -37,13 +37,7 @@ void GradientMethod::record_residual() {
 }
 
 Snapshot GradientMethod::snapshot() const {
-  Snapshot s;
-  s.method = kind();
-  s.iteration = iteration_;
-  s.status = status();
-  s.message = message();
-  s.load_factor = load_factor_;
-  s.residual = history().empty() ? 0.0 : history().back().residual;
+  Snapshot s = snapshot_header();
   s.pieces = problem_.pieces(x_);
   s.primal = x_;
   return s;

@@ -227,4 +227,15 @@ double relative_error(const std::vector<std::vector<Vec2>>& u,
   return size > 0.0 ? std::sqrt(difference / size) : std::sqrt(difference);
 }
 
+Snapshot Method::snapshot_header() const {
+  Snapshot s;
+  s.method = kind();
+  s.iteration = iteration_;
+  s.status = status();
+  s.message = message();
+  s.load_factor = load_factor_;
+  s.residual = history().empty() ? 0.0 : history().back().residual;
+  return s;
+}
+
 }  // namespace fetic::solver

@@ -139,6 +139,9 @@ class Method {
   // Applications of F since the method was made (-1: the method does not apply F).
   virtual long long f_applications() const { return -1; }
   void fail(std::string why);
+  // A snapshot with what every method's shares: the method, iteration, status, message,
+  // load factor and the last residual; the method adds its state.
+  Snapshot snapshot_header() const;
 
   const Model& model_;
   SolveOptions options_;

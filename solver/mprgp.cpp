@@ -13,7 +13,6 @@
 namespace fetic::solver {
 namespace {
 
-constexpr double kInfinity = std::numeric_limits<double>::infinity();
 // Iterations without a new lowest residual before the solve is declared stagnated. Longer
 // than FETI-C's window: within one SMALBE outer iteration the residual, which includes
 // the groups' imbalance, may rest while MPRGP drives the projected gradient down.
@@ -32,6 +31,8 @@ Mprgp::Mprgp(const Model& model, const SolveOptions& options, const Communicator
   face_.emplace(system_, coarse_.unheld());
   find_group_constraints();
   estimate_operator_norm();
+  inner_.set_norm(norm_A_);
+  if (!groups_.empty()) outer_.emplace(inner_, parameters_, rho_);
 }
 
 // Groups of struts the equality rows leave free: their balance z'G x = 0 involves only
@@ -87,7 +88,6 @@ void Mprgp::estimate_operator_norm() {
     rho_ = parameters_.rho_factor * norm_H_;
     norm_A_ = std::max(norm_H_, rho_);
   }
-  alpha_bar_ = parameters_.alpha_factor / norm_A_;
 }
 
 void Mprgp::apply_A(const Eigen::VectorXd& x, Eigen::VectorXd& out, Eigen::VectorXd& ftx,
@@ -100,76 +100,34 @@ void Mprgp::apply_A(const Eigen::VectorXd& x, Eigen::VectorXd& out, Eigen::Vecto
   out += rho_ * qx;
 }
 
-void Mprgp::recompute_gradient() {
-  apply_A(x_, g_, ftx_, qx_);
-  g_ += c_nu_ - b_;
-}
-
-void Mprgp::split_gradient() {
-  const int rows = space().rows();
-  free_.assign(rows, 1);
-  g_free_ = g_;
-  g_chopped_.setZero(rows);
-  g_reduced_ = g_;
-  for (int k = 0; k < rows; ++k) {
-    if (!space().is_contact(k)) continue;
-    if (x_(k) > lower_(k)) {
-      // Reduced free gradient: a step alpha_bar along it stays feasible.
-      g_reduced_(k) = std::min(g_(k), (x_(k) - lower_(k)) / alpha_bar_);
-    } else {
-      free_[k] = 0;
-      g_free_(k) = 0.0;
-      g_reduced_(k) = 0.0;
-      g_chopped_(k) = std::min(g_(k), 0.0);
-    }
-  }
-}
-
-void Mprgp::precondition_free_gradient(Eigen::VectorXd& z) {
+void Mprgp::precondition(const Eigen::VectorXd& g_free, const std::vector<char>& free,
+                         Eigen::VectorXd& z) {
   if (preconditioner_.kind() == Preconditioner::None) {
-    z = g_free_;
+    z = g_free;
     return;
   }
   // z = P_E P_F M^-1 P_F g_free on the face (see the header).
-  face_->set_face(free_);
-  Eigen::VectorXd w = g_free_;
+  face_->set_face(free);
+  Eigen::VectorXd w = g_free;
   face_->project(w);
-  preconditioner_.apply(w, &free_, z);
+  preconditioner_.apply(w, &free, z);
   system_.project_onto_range_of_B(z);
   face_->project(z);
   coarse_.project(z);
 }
 
-double Mprgp::feasible_step(const Eigen::VectorXd& p) const {
-  double step = kInfinity;
-  for (int k = 0; k < space().rows(); ++k)
-    if (space().is_contact(k) && p(k) > 0.0) step = std::min(step, (x_(k) - lower_(k)) / p(k));
-  return -space().max(-step);
-}
-
-void Mprgp::step_to_bound(double a, const Eigen::VectorXd& p) {
-  for (int k = 0; k < space().rows(); ++k) {
-    if (space().is_contact(k) && p(k) > 0.0 && x_(k) - lower_(k) <= a * p(k))
-      x_(k) = lower_(k);
-    else
-      x_(k) -= a * p(k);
-  }
-}
-
-void Mprgp::restart_direction() {
-  face_steps_ = 0;
-  split_gradient();
-  precondition_free_gradient(z_);
-  p_ = z_;
+Mprgp::Counts Mprgp::counts() const {
+  const MprgpCore::Steps& steps = inner_.steps();
+  return {steps.cg, steps.expansion, steps.proportioning, outer_ ? outer_->outer_iterations() : 0};
 }
 
 void Mprgp::begin(const Snapshot* warm) {
   d_ = system_.d(load_factor_);
   e_ = system_.e(load_factor_);
   const int rows = space().rows();
-  counts_ = {};
   reset_watch();
   face_->forget_updates();
+  if (outer_) outer_->start(norm_A_, 0.0);
 
   // lambda0: balances the loads through the equality rows, and through the contact rows
   // of the groups they leave free: w = sum_z beta_z c_z with c_y'w = z_y'e.
@@ -177,17 +135,15 @@ void Mprgp::begin(const Snapshot* warm) {
   if (!groups_.empty())
     lambda0_ += to_multipliers(groups_.times(groups_.gram_solve(groups_.direction_dots(e_))));
   system_.residual(lambda0_, load_factor_, r0_);
-  b_ = to_gradient(r0_);
-  system_.project_onto_range_of_B(b_);
-  lower_.setConstant(rows, -kInfinity);
+  Eigen::VectorXd b = to_gradient(r0_);
+  system_.project_onto_range_of_B(b);
+  Eigen::VectorXd lower = Eigen::VectorXd::Constant(rows, -std::numeric_limits<double>::infinity());
   for (int k = 0; k < rows; ++k)
-    if (space().is_contact(k)) lower_(k) = -lambda0_(k);
+    if (space().is_contact(k)) lower(k) = -lambda0_(k);
 
-  c_nu_.setZero(rows);
-  qx_.setZero(rows);
   const std::string unbounded = unbounded_struts(model_, load_factor_);
   if (!unbounded.empty()) {
-    x_ = lower_.cwiseMax(0.0);
+    inner_.place(b, lower, lower.cwiseMax(0.0));
     r_ = d_;
     set_scale();
     record(relative(space().norm(r_)), 0);
@@ -197,213 +153,77 @@ void Mprgp::begin(const Snapshot* warm) {
 
   // Start: lambda0 with negative contact multipliers clipped; warm, the previous
   // multipliers with the equality rows' part projected onto ker G_E.
-  x_.setZero(rows);
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(rows);
   if (!space().any(!(warm && warm->dual.size() == rows))) {
-    x_ = warm->dual - lambda0_;
-    coarse_.project(x_);
+    x = warm->dual - lambda0_;
+    coarse_.project(x);
   }
-  x_ = x_.cwiseMax(lower_);
-  recompute_gradient();
-  r_ = r0_ - ftx_;
+  inner_.place(b, lower, x.cwiseMax(lower));
+  inner_.start();
+  r_ = r0_ - inner_.ftx();
   set_scale();
   // eta relative to ||b|| (PERMON); b can vanish when lambda0 already minimizes on ker G.
-  eta_ = parameters_.eta_factor * std::max(space().norm(b_), scale_);
-  m_ = parameters_.m_factor * norm_A_;
-  lagrangian_previous_ = -kInfinity;
-  restart_direction();
+  if (outer_) outer_->start(norm_A_, parameters_.eta_factor * std::max(space().norm(b), scale_));
   finish_iteration();
 }
 
 void Mprgp::advance() {
   ++iteration_;
-  const double chopped = space().dot(g_chopped_, g_chopped_);
-  const double proportional = space().dot(g_reduced_, g_free_);
-  // A new face is explored before its bound rows are judged (a large gamma: releasing
-  // rows early costs expansions); once CG has run on it, a bound row whose chopped
-  // gradient rivals the free one is released at once instead of waiting for the free
-  // gradient to fall tenfold below it (docs/METHODS.md, "Parameters").
-  const double gamma =
-      face_steps_ >= parameters_.settle_steps ? parameters_.settled_gamma : parameters_.gamma;
-  if (chopped <= gamma * gamma * proportional)
-    conjugate_gradient_or_expansion();
-  else
-    proportioning();
-  if (status() == Status::Running) finish_iteration();
-}
-
-void Mprgp::conjugate_gradient_or_expansion() {
-  Eigen::VectorXd Ap, ftp, qp;
-  apply_A(p_, Ap, ftp, qp);
-  const double pAp = space().dot(p_, Ap);
-  const double gp = space().dot(g_, p_);
-  if (!(pAp > 0.0)) {
-    fail_breakdown(gp, pAp);
+  if (const auto breakdown = inner_.step()) {
+    fail_breakdown(breakdown->gd, breakdown->dAd);
     return;
   }
-  if (!(gp > 0.0)) {
-    // Rounding has spoilt the conjugacy so that p no longer descends: restart from z.
-    ++counts_.cg;
-    restart_direction();
-    return;
-  }
-  const double a_cg = gp / pAp;
-  const double a_feasible = feasible_step(p_);
-  if (a_cg <= a_feasible) {
-    ++counts_.cg;
-    ++face_steps_;
-    x_ -= a_cg * p_;
-    g_ -= a_cg * Ap;
-    ftx_ -= a_cg * ftp;
-    if (!groups_.empty()) qx_ -= a_cg * qp;
-    split_gradient();
-    precondition_free_gradient(z_);
-    const double beta = space().dot(z_, Ap) / pAp;
-    p_ = z_ - beta * p_;
-    return;
-  }
-  expand(a_cg, a_feasible, Ap);
-}
-
-// Expansion. First the whole CG step with the rows it would take below their bound put
-// on it (ESPRESO's "mixed" step): kept when L decreased, which it mostly does, and it
-// changes many rows at once. Else Dostal's: to the first bound, then a projected gradient
-// step of fixed length alpha_bar, halved for good should it not decrease L (the power
-// method's estimate of ||A|| was too low for 2 / ||A||).
-void Mprgp::expand(double a_cg, double a_feasible, const Eigen::VectorXd& Ap) {
-  ++counts_.expansion;
-  const double before = lagrangian();
-  const Eigen::VectorXd x_kept = x_, g_kept = g_;
-  x_ = (x_ - a_cg * p_).cwiseMax(lower_);
-  recompute_gradient();
-  if (lagrangian() < before) {
-    restart_direction();
-    return;
-  }
-  x_ = x_kept;
-  g_ = g_kept;
-  step_to_bound(a_feasible, p_);
-  g_ -= a_feasible * Ap;
-  split_gradient();
-  const double halfway = lagrangian();
-  const Eigen::VectorXd x_half = x_, g_half = g_;
-  for (int attempt = 0; attempt < 30; ++attempt) {
-    x_ = (x_half - alpha_bar_ * g_free_).cwiseMax(lower_);
-    recompute_gradient();
-    if (lagrangian() <= halfway) break;
-    alpha_bar_ /= 2.0;
-    g_ = g_half;
-  }
-  restart_direction();
-}
-
-void Mprgp::proportioning() {
-  ++counts_.proportioning;
-  const Eigen::VectorXd d = g_chopped_;
-  Eigen::VectorXd Ad, ftd, qd;
-  apply_A(d, Ad, ftd, qd);
-  const double dAd = space().dot(d, Ad);
-  const double gd = space().dot(g_, d);
-  if (!(dAd > 0.0)) {
-    fail_breakdown(gd, dAd);
-    return;
-  }
-  const double a = gd / dAd;
-  x_ -= a * d;  // d <= 0 on rows at their bound: they move up, off it
-  g_ -= a * Ad;
-  ftx_ -= a * ftd;
-  if (!groups_.empty()) qx_ -= a * qd;
-  restart_direction();
-}
-
-double Mprgp::lagrangian() const {
-  // With g = A x - b + C nu:  L = 1/2 x'A x - b'x + nu'C'x = 1/2 x'(g - b + C nu).
-  return 0.5 * space().dot(x_, g_ - b_ + c_nu_);
+  finish_iteration();
 }
 
 int Mprgp::free_contact_rows() const {
+  const std::vector<char>& free = inner_.free();
   int count = 0;
   for (int k = 0; k < space().rows(); ++k)
-    count += space().is_contact(k) && space().owned(k) && free_[k];
+    count += space().is_contact(k) && space().owned(k) && free[k];
   return static_cast<int>(space().sum(static_cast<long long>(count)));
 }
 
+// Converged when the projected gradient and the groups' imbalance are within the
+// tolerance; else, with groups, SMALBE's outer iteration when the inner solve is far
+// enough.
 void Mprgp::finish_iteration() {
-  double gradient = space().norm(g_free_ + g_chopped_);
-  const double imbalance = groups_.empty() ? 0.0 : space().norm(qx_);
+  double gradient = inner_.projected_gradient();
+  const double imbalance = groups_.empty() ? 0.0 : space().norm(inner_.qx());
   const double tolerance = options_.tolerance * scale_;
-  r_ = r0_ - ftx_;
+  r_ = r0_ - inner_.ftx();
   if (gradient <= tolerance && norm_H_ * imbalance <= tolerance) {
     converge();
-  } else if (!groups_.empty() &&
-             (gradient <= std::min(m_ * imbalance, eta_) || gradient <= tolerance)) {
-    // (Once the projected gradient is within the tolerance, further inner iterations
-    // cannot help; M may have fallen below what rounding allows.)
-    // SMALBE outer iteration: the groups' multiplier, and M when L grew too little.
-    const double lagrangian_now = lagrangian();
-    if (lagrangian_now < lagrangian_previous_ + 0.5 * rho_ * imbalance * imbalance)
-      m_ /= parameters_.m_divisor;
-    lagrangian_previous_ = lagrangian_now;
-    c_nu_ += rho_ * qx_;
-    g_ += rho_ * qx_;
-    ++counts_.outer;
-    restart_direction();
-    gradient = space().norm(g_free_ + g_chopped_);
-    if (gradient <= tolerance) repeat_outer_update(tolerance);
-    gradient = space().norm(g_free_ + g_chopped_);
+  } else if (outer_ && outer_->outer_step_due(gradient, imbalance, tolerance)) {
+    if (!outer_->outer_step(imbalance, tolerance))
+      fail("the groups of struts held only by contacts cannot be balanced at load factor " +
+           format_number(load_factor_) + " (no contact can take the force they need)");
+    gradient = inner_.projected_gradient();
   }
   const double residual = relative(std::max(gradient, norm_H_ * imbalance));
   if (status() == Status::Running) watch_stagnation(residual, kMprgpStagnationWindow);
   record(residual, free_contact_rows());
 }
 
-// With the projected gradient within the tolerance, the inner problem is solved as far
-// as rounding allows, and the next outer iterations would not move x: each adds
-// rho Q_C x to the gradient again, until it leaves the tolerance (a contact row at its
-// bound gets a negative gradient, or a free row a gradient to follow). Take them at
-// once, doubling their number.
-void Mprgp::repeat_outer_update(double tolerance) {
-  const Eigen::VectorXd step = rho_ * qx_;
-  double updates = 1.0;
-  for (int round = 0; round < 200; ++round) {
-    c_nu_ += updates * step;
-    g_ += updates * step;
-    counts_.outer += static_cast<int>(std::min(updates, 1e9));
-    split_gradient();
-    if (space().norm(g_free_ + g_chopped_) > tolerance) {
-      restart_direction();
-      return;
-    }
-    updates *= 2.0;
-  }
-  fail("the groups of struts held only by contacts cannot be balanced at load factor " +
-       format_number(load_factor_) + " (no contact can take the force they need)");
-}
-
 // alpha = (G_E G_E')^+ G_E (F lambda - d) - sum_z nu_z z: the rigid-body amplitudes of
 // the KKT conditions (gap = F lambda - d - G'alpha), nu_z the multiplier of group z's
-// balance (C nu = c_nu_).
+// balance (C nu, the inner problem's offset).
 Eigen::VectorXd Mprgp::solution_amplitudes() const {
   Eigen::VectorXd alpha = -coarse_.amplitudes(r_);
   if (groups_.empty()) return alpha;
-  groups_.add_directions(-groups_.gram_solve(groups_.transpose_times(c_nu_)), alpha);
+  groups_.add_directions(-groups_.gram_solve(groups_.transpose_times(inner_.offset())), alpha);
   return alpha;
 }
 
 Snapshot Mprgp::snapshot() const {
-  Snapshot s;
-  s.method = kind();
-  s.iteration = iteration_;
-  s.status = status();
-  s.message = message();
-  s.load_factor = load_factor_;
-  s.residual = history().empty() ? 0.0 : history().back().residual;
+  Snapshot s = snapshot_header();
   const Decomposition& d = system_.decomposition();
   const int pairs = static_cast<int>(model_.pairs.size());
   s.force.assign(pairs, 0.0);
   s.in_working_set.assign(pairs, 0);
   // (Alike on every process: the same set-up and iterations.)
   if (history().empty()) return s;
-  const Eigen::VectorXd lambda = lambda0_ + to_multipliers(x_);
+  const Eigen::VectorXd lambda = lambda0_ + to_multipliers(inner_.x());
   s.pieces = system_.pieces(lambda, solution_amplitudes(), load_factor_);
   s.dual = lambda;
   // Forces of the pairs whose rows this process holds (gathered_snapshot() collects the
@@ -424,7 +244,7 @@ std::vector<char> Mprgp::working_set() const {
   std::vector<int> mine;
   for (std::size_t k = 0; k < set.size(); ++k) {
     const int row = d.pair_row[k] < 0 ? -1 : space().local_row(d.pair_row[k]);
-    if (row >= 0 && space().owned(row) && x_(row) > lower_(row))
+    if (row >= 0 && space().owned(row) && inner_.x()(row) > inner_.lower()(row))
       mine.push_back(static_cast<int>(k));
   }
   for (int k : space().communicator().all_gather(mine))

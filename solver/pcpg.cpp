@@ -50,24 +50,11 @@ void Pcpg::record_residual() {
 }
 
 void Pcpg::advance() {
-  Eigen::VectorXd z;
-  preconditioner_.apply(w_, nullptr, z);
-  system_.project_onto_range_of_B(z);
-  coarse_.project(z);  // y = P z
-  const double yw = space().dot(z, w_);
-  const double beta = yw_previous_ > 0.0 ? yw / yw_previous_ : 0.0;
-  p_ = iteration_ == 0 ? z : Eigen::VectorXd(z + beta * p_);
-  system_.apply_F(p_, q_);
-  const double pq = space().dot(p_, q_);
-  ++iteration_;
-  if (!(pq > 0.0) || !(yw > 0.0)) {
-    fail_breakdown(yw, pq);
-    return;
-  }
-  const double a = yw / pq;
-  lambda_ += a * p_;
-  update_residual(a, q_);
-  yw_previous_ = yw;
+  const PcpgStep step = pcpg_step(w_, nullptr, iteration_ == 0, yw_previous_, p_, q_);
+  if (!step.ok) return;
+  lambda_ += step.a * p_;
+  update_residual(step.a, q_);
+  yw_previous_ = step.yw;
   record_residual();
 }
 

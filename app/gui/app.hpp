@@ -44,6 +44,7 @@
 #include "app/vtu_export.hpp"
 #include "render/draw_list.hpp"
 #include "render/frame_sequence.hpp"
+#include "render/overlay.hpp"
 #include "render/png_writer.hpp"
 #include "render/scene_framing.hpp"
 #include "render/scene_mesh.hpp"
@@ -80,6 +81,25 @@ class App {
   // The panel's width: kPanelWidth times the scale of text and controls (--ui-scale).
   float panel_width() const { return kPanelWidth * ui_scale_; }
 
+  // main_loop.cpp: the frame loop's steps
+  struct ScriptRun {  // the window script and the next action due
+    explicit ScriptRun(std::vector<ScriptAction> actions)
+        : script(std::move(actions)), scripted(!script.empty()) {}
+    std::vector<ScriptAction> script;
+    std::size_t next_action = 0;
+    bool scripted = false;
+  };
+  struct FrameLayout {  // this frame's framebuffer and where the picture goes in it
+    int fb_width = 0, fb_height = 0, view_x = 0;
+  };
+  void start_imgui(render::GlfwWindow& window);
+  void frame(render::GlfwWindow& window, ScriptRun& run);
+  void choose_quality();  // draft while the picture moves, full quality at rest
+  void draw_picture_when_due();
+  void present(render::GlfwWindow& window);
+  void report_ready(const render::GlfwWindow& window, int frames);
+  int finish(const render::GlfwWindow& window, int frames);
+
   // sync_point.cpp
   void push(Request request) { queue_.push_back(std::move(request)); }
   void send_to_worker();
@@ -102,6 +122,14 @@ class App {
   // picture.cpp
   render::View view(int width, int height) const;
   void draw_picture(int width, int height);
+  // draw_picture's steps: the framing (fitted once per scene, survey and size, then zoomed
+  // and panned), the struts' mesh and its values, the overlay panel.
+  render::SceneFraming frame_picture(const render::View& v, int width, int height);
+  void update_mesh(const render::View& v, const render::SceneFraming& framing, int index);
+  render::DrawList picture_overlay(const render::OverlayInfo& info,
+                                   const solver::Snapshot& snapshot,
+                                   const std::vector<solver::HistoryEntry>& history,
+                                   const render::View& v);
   render::RunExtent plot_extent();  // the survey's scales, the iteration axis widened
 
   // comparison.cpp
@@ -279,6 +307,7 @@ class App {
   int sweep_steps_ = 20;
 
   render::GlRenderer* renderer_ = nullptr;
+  FrameLayout layout_;
   float ui_scale_ = 1.0f;  // --ui-scale, else the monitor's content scale
   bool quit_ = false;
   double wait_started_ = -1.0;  // when the script's current "wait" began

@@ -75,6 +75,38 @@ void App::draw_picture(int width, int height) {
       shown_->history.begin() +
           std::min<std::ptrdiff_t>(index + 1, static_cast<std::ptrdiff_t>(shown_->history.size())));
   const render::View v = view(width, height);
+  const render::SceneFraming framing = frame_picture(v, width, height);
+  update_mesh(v, framing, index);
+  // The pick index (hover, pins, locate) is built when it is next asked for, not with
+  // every picture: for millions of nodes it costs more than the picture (panning).
+  pick_state_ = shown_;
+  pick_iterate_ = index;
+  pick_stale_ = true;
+  render::OverlayInfo info;
+  info.title = title_;
+  info.method = solver::to_string(shown_->method);
+  if (solver::is_dual(shown_->method))
+    info.method += std::string(" (") + solver::to_string(shown_->preconditioner) + ")";
+  info.status = shown_status();
+  const render::DrawList glyphs =
+      render::draw_glyphs(*shown_->model, snapshot, v, framing, {info.method, {}});
+  const render::DrawList overlay = picture_overlay(info, snapshot, history, v);
+  if (args_.bench > 0 && bench_.phase == 0)
+    bench_.lists_ms.push_back(
+        std::chrono::duration<double, std::milli>(Clock::now() - lists_start).count());
+  const render::DrawList chart =
+      v.show_chart ? render::draw_contact_chart(*shown_->model, snapshot, render::chart_region(v),
+                                                render::text_size(v))
+                   : render::DrawList{};
+  const render::Rect region = render::scene_region(v);
+  std::vector<render::Layer> layers{
+      render::Layer(mesh_.get(), &mesh_values_, render::mesh_uniforms(*mesh_, framing), region),
+      render::Layer(&glyphs, region), render::Layer(&overlay)};
+  if (!chart.empty()) layers.emplace_back(&chart);
+  renderer_->draw(width, height, layers, render::palette::background);
+}
+
+render::SceneFraming App::frame_picture(const render::View& v, int width, int height) {
   // The framing (magnification, fit, gap widening) is fixed for a scene, a survey and a
   // view size: computed again only when one of them changes, not for every picture.
   const PictureKey key{shown_->model, shown_->extent, width, height, magnification_, show_overlay_};
@@ -91,6 +123,11 @@ void App::draw_picture(int width, int height) {
       render::zoomed(framing_, zoom_, {base_center_.x + pan_.x, base_center_.y + pan_.y});
   placed_ = framing;
   shown_magnification_ = framing.magnification;
+  return framing;
+}
+
+void App::update_mesh(const render::View& v, const render::SceneFraming& framing, int index) {
+  const solver::Snapshot& snapshot = *shown_->iterates[static_cast<std::size_t>(index)];
   // The struts: a mesh on the GPU, built when the scene, its pieces or the colouring change,
   // or the zoom leaves its level of detail (a power of two; render/mesh_detail.hpp).
   const render::MeshDetail detail = render::mesh_detail(*shown_->model, framing_, framing);
@@ -111,52 +148,29 @@ void App::draw_picture(int width, int height) {
     values_iterate_ = iterate;
     values_key_ = values_key;
   }
-  // The pick index (hover, pins, locate) is built when it is next asked for, not with
-  // every picture: for millions of nodes it costs more than the picture (panning).
-  pick_state_ = shown_;
-  pick_iterate_ = index;
-  pick_stale_ = true;
-  render::OverlayInfo info;
-  info.title = title_;
-  info.method = solver::to_string(shown_->method);
-  if (solver::is_dual(shown_->method))
-    info.method += std::string(" (") + solver::to_string(shown_->preconditioner) + ")";
-  info.status = shown_status();
-  const render::DrawList glyphs =
-      render::draw_glyphs(*shown_->model, snapshot, v, framing, {info.method, {}});
-  render::DrawList overlay;
+}
+
+render::DrawList App::picture_overlay(const render::OverlayInfo& info,
+                                      const solver::Snapshot& snapshot,
+                                      const std::vector<solver::HistoryEntry>& history,
+                                      const render::View& v) {
   render::RunExtent plots = plot_extent();
   apply_scales(scales_, plots);
   drawn_extent_ = *shown_->extent;
   apply_scales(scales_, drawn_extent_);
   drawn_extent_.largest_iteration = plots.largest_iteration;
-  if (v.show_overlay) {
-    if (recording_ && recording_->sweep && !recording_->steps.empty()) {
-      // A load sweep being recorded: plots against the load factor.
-      render::StepSeries series;
-      series.all = recording_->steps;
-      series.shown = recording_->steps;
-      series.all.resize(recording_->loads.size());
-      for (std::size_t i = 0; i < recording_->loads.size(); ++i)
-        series.all[i].load_factor = recording_->loads[i];
-      overlay = render::draw_overlay(info, *shown_->model, snapshot, history, plots, v, &series);
-    } else {
-      overlay = render::draw_overlay(info, *shown_->model, snapshot, history, plots, v);
-    }
+  if (!v.show_overlay) return {};
+  if (recording_ && recording_->sweep && !recording_->steps.empty()) {
+    // A load sweep being recorded: plots against the load factor.
+    render::StepSeries series;
+    series.all = recording_->steps;
+    series.shown = recording_->steps;
+    series.all.resize(recording_->loads.size());
+    for (std::size_t i = 0; i < recording_->loads.size(); ++i)
+      series.all[i].load_factor = recording_->loads[i];
+    return render::draw_overlay(info, *shown_->model, snapshot, history, plots, v, &series);
   }
-  if (args_.bench > 0 && bench_.phase == 0)
-    bench_.lists_ms.push_back(
-        std::chrono::duration<double, std::milli>(Clock::now() - lists_start).count());
-  const render::DrawList chart =
-      v.show_chart ? render::draw_contact_chart(*shown_->model, snapshot, render::chart_region(v),
-                                                render::text_size(v))
-                   : render::DrawList{};
-  const render::Rect region = render::scene_region(v);
-  std::vector<render::Layer> layers{
-      render::Layer(mesh_.get(), &mesh_values_, render::mesh_uniforms(*mesh_, framing), region),
-      render::Layer(&glyphs, region), render::Layer(&overlay)};
-  if (!chart.empty()) layers.emplace_back(&chart);
-  renderer_->draw(width, height, layers, render::palette::background);
+  return render::draw_overlay(info, *shown_->model, snapshot, history, plots, v);
 }
 
 }  // namespace fetic::app::gui

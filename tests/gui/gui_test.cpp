@@ -530,6 +530,54 @@ TEST_CASE("a load sweep is recorded as frames, a method that cannot solve is rep
   CHECK(solved.back()["message"].get<std::string>().find("contact") != std::string::npos);
 }
 
+TEST_CASE("the window's recorded load sweep makes the iterations fetic solve --load-steps makes",
+          "[script]") {
+  // One sweep driver (solver/load_sweep.hpp) for the window and `fetic solve`: the same
+  // warm starts (secant predictions included), so the same iterations at every step. The
+  // counts come from `fetic solve`, whatever they are.
+  REQUIRE(have_display());
+  const std::string thesis = scene("thesis.toml");
+  for (const auto& [method, steps] : {std::pair<std::string, int>{"feti-c", 21}, {"mprgp", 11}}) {
+    const fs::path dir = fresh_directory("fetic_gui_sweep_" + method);
+    const auto [solve_status, solve_output] =
+        shell(std::string(FETIC_EXECUTABLE) + " solve " + thesis + " --method " + method +
+              " --load-steps 0:2:" + std::to_string(steps) + " --quiet --json " +
+              (dir / "solve.json").string());
+    INFO(method << ": " << solve_output);
+    REQUIRE(solve_status == 0);
+    const json solved_steps = json::parse(read_text(dir / "solve.json"))["steps"];
+    REQUIRE(solved_steps.size() == static_cast<std::size_t>(steps));
+
+    // The window starts at load 0 with the slider's range 0..2; record-sweep N solves at
+    // N load factors over that range, one after the other.
+    const fs::path state = dir / "state.jsonl", script = dir / "script.txt";
+    std::ofstream(script) << "wait\nrecord-sweep " << steps << "\nwait\nquit\n";
+    App app({thesis, "--method", method, "--load", "0", "--max-load", "2", "--state-file",
+             state.string(), "--script", script.string(), "--record-dir", (dir / "rec").string()});
+    const auto status = app.wait(120.0);
+    INFO("reported state:\n" << read_text(state));
+    REQUIRE(status);
+    CHECK(*status == 0);
+    std::vector<json> solved;
+    int frames = -1;
+    for (const json& e : events(state)) {
+      if (is(e, "solved")) solved.push_back(e);
+      if (is(e, "recorded")) frames = e["frames"].get<int>();
+    }
+    CHECK(frames == steps);
+    REQUIRE(solved.size() == static_cast<std::size_t>(steps));
+    for (int i = 0; i < steps; ++i) {
+      const json& window = solved[static_cast<std::size_t>(i)];
+      const json& solve = solved_steps[static_cast<std::size_t>(i)];
+      INFO("step " << i << " at load " << solve["load_factor"]);
+      CHECK(window["load_factor"].get<double>() ==
+            Approx(solve["load_factor"].get<double>()).margin(1e-12));
+      CHECK(window["converged"] == solve["converged"]);
+      CHECK(window["iterations"] == solve["iterations"]);
+    }
+  }
+}
+
 TEST_CASE("a screenshot or recording that cannot be written is an error event and status 5",
           "[script]") {
   REQUIRE(have_display());

@@ -143,3 +143,29 @@ TEST_CASE("MPRGP: many copies of a beam held only by contacts each carry what on
       CHECK(many->state.force[3 * i + k] ==
             Approx(one->state.force[k]).margin(1e-7 * testing::load_scale(one->model)));
 }
+
+TEST_CASE("MPRGP refuses more than 1,000 linked groups in one block, naming other methods") {
+  // A fixed base, then a row of free bars each resting on the next: every contact row
+  // links two groups, so all of them form one block of the balance (group_balance.hpp).
+  const auto chain = [](int floating) {
+    testing::SceneToml scene("bar", "[defaults]", "E = 2e11, area = 1e-4, elements = 1");
+    scene.strut("s0", {0.0, 0.0}, {1.0, 0.0}, "fixed = ['from']");
+    for (int i = 1; i <= floating; ++i) {
+      const double x = 1.001 * i;
+      scene.strut("s" + std::to_string(i), {x, 0.0}, {x + 1.0, 0.0});
+      scene.contact("s" + std::to_string(i - 1) + ".to", "s" + std::to_string(i) + ".from");
+    }
+    scene.load("s" + std::to_string(floating), "to", {-100.0, 0.0});
+    return solver::build_model(scenes::parse_scene(scene.str(), "chain.toml"));
+  };
+  constexpr int kLimit = solver::GroupBalance::kMaxBlock;
+  const solver::Model refused = chain(kLimit + 1);
+  REQUIRE_THROWS_WITH(solver::Mprgp(refused, {}),
+                      Catch::Contains(std::to_string(kLimit + 1) + " free motions") &&
+                          Catch::Contains("feti-c") && Catch::Contains("active-set"));
+  // One group fewer is balanced and solved (the chain rests on the base).
+  const solver::Model held = chain(kLimit);
+  solver::Mprgp accepted(held, {});
+  accepted.start(1.0);
+  CHECK(accepted.iteration() == 0);
+}
