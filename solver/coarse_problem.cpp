@@ -7,8 +7,8 @@
 #include <stdexcept>
 
 #include "solver/free_motion_space.hpp"
-#include "solver/stopwatch.hpp"
 #include "solver/interruption.hpp"
+#include "solver/stopwatch.hpp"
 
 namespace fetic::solver {
 namespace {
@@ -272,6 +272,7 @@ void CoarseProblem::find_unheld_groups() {
       const int a = queue.front();
       queue.pop();
       group.subdomains.push_back(a);
+      if (d.subdomains[a].mode_count == 0) held = true;  // FETI-DP: a clamp made primal
       for (int r : rows_of[a]) {
         const Row& row = d.rows[r];
         if (row.entries.size() < 2) {

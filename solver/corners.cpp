@@ -239,9 +239,36 @@ Joined join(const Model& model, const Decomposition& boxes, int cluster_size, De
   return joined;
 }
 
+long long dof_key(const RowEntry& e) {
+  return (static_cast<long long>(e.subdomain) << 32) | e.dof;
+}
+
+// The cluster DOFs that a gluing row (between distinct cluster DOFs) or a contact row
+// touches: a clamped DOF among them stays a Dirichlet row.
+std::unordered_set<long long> dofs_in_rows(const Decomposition& boxes, const Joined& joined) {
+  auto moved_key = [&](const RowEntry& e) {
+    return dof_key({joined.cluster_of_box[e.subdomain],
+                    joined.dof_of[boxes.subdomains[e.subdomain].dof_offset + e.dof], 0.0});
+  };
+  std::unordered_set<long long> touched;
+  for (const Row& row : boxes.rows) {
+    if (row.kind == RowKind::Dirichlet) continue;
+    std::unordered_set<long long> keys;
+    for (const auto* list : {&row.entries, &row.copies})
+      for (const RowEntry& entry : *list)
+        keys.insert(moved_key(entry));
+    if (row.kind == RowKind::Contact || keys.size() >= 2) touched.insert(keys.begin(), keys.end());
+  }
+  return touched;
+}
+
 // The rows of the boxes on the clusters: gluing rows per node component over the
-// distinct cluster DOFs of its copies (none when all are joined), Dirichlet rows once per
-// cluster DOF, contact rows with their entries moved.
+// distinct cluster DOFs of its copies (none when all are joined), contact rows with their
+// entries moved. A clamped DOF of a cluster of several boxes that no other row touches is
+// made primal (Subdomain::fixed): total FETI's Dirichlet rows would leave such a cluster
+// only its own rigid-body modes as coarse space, too few to hold the clamp (the condition
+// number grew like the square of the boxes along a strut, docs/METHODS.md "FETI-DP").
+// Other clamped DOFs keep a Dirichlet row, once per cluster DOF.
 void move_rows(const Decomposition& boxes, const Joined& joined, Decomposition& d) {
   auto moved = [&](const RowEntry& e) {
     return RowEntry{joined.cluster_of_box[e.subdomain],
@@ -250,13 +277,19 @@ void move_rows(const Decomposition& boxes, const Joined& joined, Decomposition& 
   auto same = [](const RowEntry& a, const RowEntry& b) {
     return a.subdomain == b.subdomain && a.dof == b.dof;
   };
+  const std::unordered_set<long long> touched = dofs_in_rows(boxes, joined);
   std::unordered_set<long long> held;
   for (int r = 0; r < boxes.equality_rows;) {
     const Row& row = boxes.rows[r];
     if (row.kind == RowKind::Dirichlet) {
       const RowEntry e = moved(row.entries.front());
-      const long long key = (static_cast<long long>(e.subdomain) << 32) | e.dof;
-      if (held.insert(key).second) d.rows.push_back({RowKind::Dirichlet, -1, 0.0, {e}, {}});
+      if (held.insert(dof_key(e)).second) {
+        Subdomain& cluster = d.subdomains[e.subdomain];
+        if (cluster.parts.size() >= 2 && !touched.count(dof_key(e)))
+          cluster.fixed.push_back(e.dof);
+        else
+          d.rows.push_back({RowKind::Dirichlet, -1, 0.0, {e}, {}});
+      }
       ++r;
       continue;
     }
@@ -312,6 +345,28 @@ void move_rows(const Decomposition& boxes, const Joined& joined, Decomposition& 
     if (boxes.pair_row[k] >= 0) d.pair_row[k] = new_row[boxes.pair_row[k]];
 }
 
+// A cluster's fixed DOFs: no load, and its kernel only the motions that leave them at
+// zero (none for a clamped strut; a pinned frame keeps its rotation about the pin).
+void hold_fixed(const Model& model, Subdomain& cluster) {
+  if (cluster.fixed.empty()) return;
+  std::sort(cluster.fixed.begin(), cluster.fixed.end());
+  for (int dof : cluster.fixed)
+    cluster.load(dof) = 0.0;
+  if (cluster.mode_count == 0) return;
+  const Eigen::MatrixXd R = subdomain_modes(model, cluster);
+  Eigen::MatrixXd C(cluster.fixed.size(), cluster.mode_count);
+  for (size_t f = 0; f < cluster.fixed.size(); ++f)
+    C.row(static_cast<int>(f)) = R.row(cluster.fixed[f]);
+  const Eigen::BDCSVD<Eigen::MatrixXd> svd(C, Eigen::ComputeFullV);
+  const Eigen::VectorXd& sigma = svd.singularValues();
+  const double tolerance = 1e-10 * (sigma.size() > 0 ? sigma(0) : 1.0);
+  int rank = 0;
+  while (rank < sigma.size() && sigma(rank) > tolerance)
+    ++rank;
+  cluster.part_modes = cluster.part_modes * svd.matrixV().rightCols(cluster.mode_count - rank);
+  cluster.mode_count = static_cast<int>(cluster.part_modes.cols());
+}
+
 }  // namespace
 
 Decomposition join_corners(const Model& model, const Decomposition& boxes, int cluster_size) {
@@ -322,6 +377,7 @@ Decomposition join_corners(const Model& model, const Decomposition& boxes, int c
   for (Subdomain& cluster : d.subdomains) {
     cluster.part_modes = cluster_kernel(model, cluster);
     cluster.mode_count = static_cast<int>(cluster.part_modes.cols());
+    hold_fixed(model, cluster);
     cluster.mode_offset = d.total_modes;
     d.total_modes += cluster.mode_count;
   }
@@ -330,12 +386,17 @@ Decomposition join_corners(const Model& model, const Decomposition& boxes, int c
 
 SparseMatrix subdomain_stiffness(const Model& model, const Subdomain& sub) {
   if (sub.parts.empty()) return assemble_stiffness(model.struts[sub.strut], sub.box);
+  std::vector<char> fixed(sub.dof_count, 0);
+  for (int dof : sub.fixed)
+    fixed[dof] = 1;
   std::vector<Eigen::Triplet<double>> entries;
   for (const SubdomainPart& part : sub.parts) {
     const SparseMatrix K = assemble_stiffness(model.struts[part.strut], part.box);
     for (int col = 0; col < K.outerSize(); ++col)
-      for (SparseMatrix::InnerIterator it(K, col); it; ++it)
-        entries.emplace_back(part.dofs[it.row()], part.dofs[col], it.value());
+      for (SparseMatrix::InnerIterator it(K, col); it; ++it) {
+        const int a = part.dofs[it.row()], b = part.dofs[col];
+        if (a == b || !(fixed[a] || fixed[b])) entries.emplace_back(a, b, it.value());
+      }
   }
   SparseMatrix K(sub.dof_count, sub.dof_count);
   K.setFromTriplets(entries.begin(), entries.end());

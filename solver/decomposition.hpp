@@ -47,6 +47,9 @@ struct Subdomain {
   // subdomain of one box.
   std::vector<SubdomainPart> parts;
   Eigen::MatrixXd part_modes;
+  // Clusters of several boxes: clamped DOFs made primal (corners.hpp) - held at zero in
+  // K (row and column cleared, diagonal kept), with no row of B and no load.
+  std::vector<int> fixed;
 };
 
 // The boxes of a subdomain: its parts, or the subdomain's own box as the only one.
