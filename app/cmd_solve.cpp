@@ -214,6 +214,13 @@ int refused_target(const SolveArgs& args, const RankPolicy& ranks) {
 
 // ---- phase 1: read the scene ----
 
+// What the memory check counts for this solve (app/memory_estimate.hpp).
+MemoryUse memory_use(const SolveArgs& args) {
+  MemoryUse use{{args.method.kind()}, !args.outputs.json.empty(), 0, !args.outputs.vtu.empty()};
+  if (args.reference) use.methods.push_back(solver::MethodKind::ActiveSet);
+  return use;
+}
+
 std::optional<scenes::Scene> read_scene(const SolveArgs& args, int& status) {
   auto scene = load_scene_or_report(args.scene, status);
   if (!scene) return std::nullopt;
@@ -225,9 +232,7 @@ std::optional<scenes::Scene> read_scene(const SolveArgs& args, int& status) {
     status = kExitUsage;
     return std::nullopt;
   }
-  MemoryUse use{{args.method.kind()}, !args.outputs.json.empty(), 0};
-  if (args.reference) use.methods.push_back(solver::MethodKind::ActiveSet);
-  if (!memory_suffices(*scene, args.scene, use, status)) return std::nullopt;
+  if (!memory_suffices(*scene, args.scene, memory_use(args), status)) return std::nullopt;
   return scene;
 }
 
@@ -503,6 +508,8 @@ int run_solve(const SolveArgs& args) {
     return solver::build_model(*scene);
   }();
   SetUp setup;
+  // Beside the measured peak in --profile: how well the memory check estimated it.
+  setup.profile.estimated_peak_bytes = estimate_memory(*scene, memory_use(args)).bytes;
   if (const int failed = set_up(args, model, ranks, setup)) return failed;
   PendingOutputs pending;  // every file waits for the commit in write_outputs
   SolveOutputArgs output_args;

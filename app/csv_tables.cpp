@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "scenes/message_text.hpp"
+#include "solver/element_results.hpp"
 
 namespace fetic::app {
 namespace {
@@ -95,6 +96,28 @@ void write_history_csv(std::ostream& out, const std::vector<solver::SweepStep>& 
     }
 }
 
+namespace {
+
+// The tracked nodes' displacements, reading one strut's nodes at a time.
+std::vector<solver::Vec2> node_displacements(const solver::Model& model,
+                                             const solver::Snapshot& state,
+                                             const std::vector<TrackedNode>& nodes) {
+  std::vector<solver::Vec2> result(nodes.size(), solver::Vec2::Zero());
+  std::vector<std::vector<size_t>> of_strut(model.struts.size());
+  for (size_t k = 0; k < nodes.size(); ++k)
+    of_strut[static_cast<size_t>(nodes[k].strut)].push_back(k);
+  const solver::StrutResults results(model, state);
+  for (size_t s = 0; s < of_strut.size(); ++s) {
+    if (of_strut[s].empty()) continue;
+    const std::vector<solver::Vec2> u = results.displacements(static_cast<int>(s));
+    for (size_t k : of_strut[s])
+      result[k] = u[static_cast<size_t>(nodes[k].node)];
+  }
+  return result;
+}
+
+}  // namespace
+
 void write_steps_csv(std::ostream& out, const solver::Model& model,
                      const std::vector<solver::SweepStep>& steps,
                      const std::vector<TrackedNode>& nodes) {
@@ -111,11 +134,8 @@ void write_steps_csv(std::ostream& out, const solver::Model& model,
     const solver::Snapshot& state = steps[k].state;
     out << k << ',' << number(steps[k].load_factor) << ',' << status_text(state) << ','
         << state.iteration << ',' << number(state.residual) << ',' << state.active_set_size();
-    const auto u = solver::strut_displacements(model, state);
-    for (const TrackedNode& node : nodes) {
-      const solver::Vec2& d = u[static_cast<size_t>(node.strut)][static_cast<size_t>(node.node)];
+    for (const solver::Vec2& d : node_displacements(model, state, nodes))
       out << ',' << number(d.x()) << ',' << number(d.y());
-    }
     for (size_t c = 0; c + 1 < model.contact_first_pair.size(); ++c) {
       double force = 0.0;
       int active = 0;

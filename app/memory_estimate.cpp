@@ -16,7 +16,7 @@ namespace {
 
 // Measured on generated scenes (fetic generate; peak resident memory of `fetic solve`,
 // /usr/bin/time -f %M; docs/RELIABILITY.md): bytes per item, least squares.
-constexpr double kBase = 10e6;  // the program itself
+constexpr double kBase = 18e6;  // the program itself (and its libraries: MPI, CHOLMOD, GL)
 // FETI and FETI-C: per subdomain a factor of K_j and one of its interior K_ii (the
 // Dirichlet preconditioner's), each freely ordered and kept as its nonzeros only
 // (solver/compact_factor.hpp), B's rows, the coarse problem, dual vectors. The factor's
@@ -33,9 +33,12 @@ constexpr double kActivePerUnknown = 320, kActivePerStrut = 3300, kActivePerFact
 constexpr double kModesPerSubdomain = 3, kFaceProjectorPerMode = 2000;
 // CG and SD: K and a few vectors.
 constexpr double kGradientPerUnknown = 600, kGradientPerStrut = 3300;
-// The result file is written streamed (app/json_stream.hpp): the final state's numbers
-// and one strut's JSON at a time.
-constexpr double kResultFilePerNode = 100;
+// The result file is written streamed (app/json_stream.hpp) and the ParaView files are
+// made a strut at a time (app/vtu_export.hpp; one array's compressed blocks are held):
+// together they added 17 MB to the 984,900-unknown solve's peak and 43 MB to the
+// 2.9e6-unknown one's (about 30 bytes a node; docs/RELIABILITY.md, "Memory").
+constexpr double kResultFilePerNode = 20;
+constexpr double kParaViewPerNode = 10;
 // A snapshot: the displacement pieces and the dual or primal iterate.
 constexpr double kIteratePerUnknown = 24, kIteratePerRow = 16;
 // toml++'s tree and the text, per byte of the file.
@@ -182,6 +185,7 @@ MemoryEstimate estimate_memory(const scenes::Scene& scene, const MemoryUse& use)
     }
   }
   if (use.result_file) estimate.bytes += kResultFilePerNode * c.nodes;
+  if (use.paraview) estimate.bytes += kParaViewPerNode * c.nodes;
   estimate.bytes +=
       use.kept_iterates * (kIteratePerUnknown * c.unknowns + kIteratePerRow * c.interface_rows);
   return estimate;

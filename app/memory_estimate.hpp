@@ -23,6 +23,7 @@ struct MemoryUse {
   std::vector<solver::MethodKind> methods;  // run one after another: the largest counts
   bool result_file = false;                 // the result JSON of every node
   int kept_iterates = 0;                    // snapshots held at once (the gui keeps a solve's)
+  bool paraview = false;                    // --vtu: ParaView files of every node
 };
 
 struct MemoryEstimate {

@@ -42,8 +42,11 @@ class SolveOutputs {
   // The result file and the CSV tables. Throws OutputError.
   void finish(const std::vector<solver::SweepStep>& steps, const RunInfo& info, bool sweeping);
 
-  // A progress line for the result file when writing it takes over a second.
-  void show_progress(ProgressMode mode) { progress_ = mode; }
+  // A progress line for a result file or ParaView frame that takes over a second.
+  void show_progress(ProgressMode mode) {
+    progress_ = mode;
+    if (vtu_) vtu_->show_progress(mode);
+  }
   bool writes_anything() const;
   // An output goes to standard output ("-"): the command reports on stderr then.
   bool uses_stdout() const;

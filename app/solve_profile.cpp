@@ -110,6 +110,7 @@ void write_solve_profile(const std::string& path, const solver::Communicator& pr
   profile["ranks"] = processes.size();
   profile["iterations"] = run.iterations;
   profile["setup_seconds"] = run.setup_seconds;
+  profile["estimated_peak_bytes"] = run.estimated_peak_bytes;
   profile["solve_seconds"] = run.solve_seconds;
   // As the OpenMP runtime read it at start-up (fetic sets "passive" unless given: main.cpp).
   const char* wait_policy = std::getenv("OMP_WAIT_POLICY");

@@ -20,6 +20,7 @@ struct ProfileRun {
   double setup_seconds = 0.0;
   double solve_seconds = 0.0;
   int iterations = 0;
+  double estimated_peak_bytes = 0.0;  // the memory check's estimate (memory_estimate.hpp)
   // MPRGP's steps in the last solve (the same on every process).
   std::optional<solver::Mprgp::Counts> mprgp_steps;
 };

@@ -110,19 +110,11 @@ void add_state(OrderedJson& out, const solver::Model& model, const solver::Snaps
   out["residual"] = state.residual;
   out["active_pairs"] = state.active_set_size();
 
-  struct Results {
-    std::vector<std::vector<solver::Vec2>> displacements;
-    std::vector<solver::StrutElements> elements;
-    std::vector<std::vector<double>> rotations;  // frame model: one per node
-  };
-  auto results = std::make_shared<Results>();
-  results->displacements = solver::strut_displacements(model, state);
-  results->elements = solver::element_results(model, state);
-  if (model.frame()) results->rotations = solver::strut_rotations(model, state);
+  // One strut's results at a time: the maker runs as the file is written (json_stream.hpp).
+  auto results = std::make_shared<solver::StrutResults>(model, state);
   const auto make = [&model, results](int s) {
-    const auto at = static_cast<size_t>(s);
-    OrderedJson strut = strut_json(model, s, results->displacements[at], results->elements[at]);
-    if (model.frame()) strut["rotations"] = results->rotations[at];
+    OrderedJson strut = strut_json(model, s, results->displacements(s), results->elements(s));
+    if (model.frame()) strut["rotations"] = results->rotations(s);
     return strut;
   };
   OrderedJson struts = OrderedJson::array();

@@ -39,83 +39,161 @@ void append_u64(std::vector<std::uint8_t>& bytes, std::uint64_t value) {
     bytes.push_back(static_cast<std::uint8_t>(value >> (8 * b)));  // little-endian
 }
 
-// The raw bytes of the values, little-endian (the machine's order on x86-64 and arm64).
+static_assert(std::endian::native == std::endian::little, "big-endian hosts need byte swaps");
+
+// Base64 of a byte stream handed over in pieces: one encoding, padded only at its end.
+class Base64Writer {
+ public:
+  explicit Base64Writer(std::ostream& out) : out_(out) { buffer_.reserve(kChunk); }
+  void write(const std::uint8_t* data, std::size_t size) {
+    while (size > 0) {
+      const std::size_t take = std::min(size, kChunk - buffer_.size());
+      buffer_.insert(buffer_.end(), data, data + take);
+      data += take;
+      size -= take;
+      if (buffer_.size() == kChunk) flush();
+    }
+  }
+  void flush() {  // whole groups of 3 bytes until the end: no padding in between
+    out_ << base64(buffer_.data(), buffer_.size());
+    buffer_.clear();
+  }
+
+ private:
+  static constexpr std::size_t kChunk = 3 * 16384;
+  std::ostream& out_;
+  std::vector<std::uint8_t> buffer_;
+};
+
+// Inline compressed: base64 of the header (blocks, block size, last block size, each
+// block's compressed size), then base64 of the compressed blocks - two streams, as VTK's
+// reader expects for inline data. The header needs every block's size, so the compressed
+// blocks of one array are held until its end (not the array itself).
+class ZlibBlocks {
+ public:
+  void write(const std::uint8_t* data, std::size_t size) {
+    while (size > 0) {
+      const std::size_t take = std::min(size, kBlockSize - block_.size());
+      block_.insert(block_.end(), data, data + take);
+      data += take;
+      size -= take;
+      if (block_.size() == kBlockSize) compress_block();
+    }
+  }
+  void finish(std::ostream& out) {
+    if (!block_.empty()) compress_block();
+    std::vector<std::uint8_t> header;
+    append_u64(header, sizes_.size());
+    append_u64(header, kBlockSize);
+    append_u64(header, last_);
+    for (std::uint64_t size : sizes_)
+      append_u64(header, size);
+    out << base64(header.data(), header.size());
+    Base64Writer text(out);
+    text.write(compressed_.data(), compressed_.size());
+    text.flush();
+  }
+
+ private:
+  void compress_block() {
+    uLongf length = compressBound(static_cast<uLong>(block_.size()));
+    const std::size_t at = compressed_.size();
+    compressed_.resize(at + length);
+    if (compress2(compressed_.data() + at, &length, block_.data(),
+                  static_cast<uLong>(block_.size()), Z_DEFAULT_COMPRESSION) != Z_OK)
+      throw std::runtime_error("zlib could not compress a data array");
+    compressed_.resize(at + length);
+    sizes_.push_back(length);
+    last_ = block_.size();
+    block_.clear();
+  }
+  std::vector<std::uint8_t> block_, compressed_;
+  std::vector<std::uint64_t> sizes_;
+  std::uint64_t last_ = 0;
+};
+
 template <typename T>
-std::vector<std::uint8_t> raw_bytes(const std::vector<T>& values) {
-  static_assert(std::endian::native == std::endian::little, "big-endian hosts need byte swaps");
-  std::vector<std::uint8_t> bytes(values.size() * sizeof(T));
-  if (!values.empty()) std::memcpy(bytes.data(), values.data(), bytes.size());
-  return bytes;
+void write_ascii_value(std::ostream& out, T value, bool line_end) {
+  char buffer[40];
+  if constexpr (std::is_floating_point_v<T>)
+    std::snprintf(buffer, sizeof buffer, "%.17g", value);  // reads back exactly
+  else
+    std::snprintf(buffer, sizeof buffer, "%lld", static_cast<long long>(value));
+  out << buffer << (line_end ? "\n" : " ");
 }
 
 template <typename T>
 void write_ascii(std::ostream& out, const std::vector<T>& values) {
-  char buffer[40];
-  for (std::size_t i = 0; i < values.size(); ++i) {
-    if constexpr (std::is_floating_point_v<T>)
-      std::snprintf(buffer, sizeof buffer, "%.17g", values[i]);  // reads back exactly
-    else
-      std::snprintf(buffer, sizeof buffer, "%lld", static_cast<long long>(values[i]));
-    out << buffer << ((i + 1) % 6 == 0 || i + 1 == values.size() ? "\n" : " ");
+  for (std::size_t i = 0; i < values.size(); ++i)
+    write_ascii_value(out, values[i], (i + 1) % 6 == 0 || i + 1 == values.size());
+}
+
+// The values `make` gives, encoded; throws std::logic_error unless they are `count`.
+template <typename T>
+void write_values(std::ostream& out, const std::function<void(const VtkSink<T>&)>& make,
+                  std::size_t count, VtkEncoding encoding) {
+  std::size_t made = 0;
+  if (encoding == VtkEncoding::Ascii) {
+    make([&](const T* values, std::size_t n) {
+      for (std::size_t k = 0; k < n; ++k, ++made)
+        write_ascii_value(out, values[k], (made + 1) % 6 == 0 || made + 1 == count);
+    });
+  } else if (encoding == VtkEncoding::Binary) {
+    // Inline binary: base64 of (UInt64 byte count, data) in one stream.
+    Base64Writer text(out);
+    std::vector<std::uint8_t> header;
+    append_u64(header, count * sizeof(T));
+    text.write(header.data(), header.size());
+    make([&](const T* values, std::size_t n) {
+      text.write(reinterpret_cast<const std::uint8_t*>(values), n * sizeof(T));
+      made += n;
+    });
+    text.flush();
+    out << '\n';
+  } else {
+    ZlibBlocks blocks;
+    make([&](const T* values, std::size_t n) {
+      blocks.write(reinterpret_cast<const std::uint8_t*>(values), n * sizeof(T));
+      made += n;
+    });
+    blocks.finish(out);
+    out << '\n';
   }
+  if (made != count) throw std::logic_error("a VTK array made another count than announced");
 }
 
-// Inline binary: base64 of (UInt64 byte count, data) in one stream.
-std::string encode_binary(const std::vector<std::uint8_t>& data) {
-  std::vector<std::uint8_t> bytes;
-  bytes.reserve(8 + data.size());
-  append_u64(bytes, data.size());
-  bytes.insert(bytes.end(), data.begin(), data.end());
-  return base64(bytes.data(), bytes.size());
-}
+// The value type of an array's maker.
+template <typename Maker>
+struct MakerValue;
+template <typename T>
+struct MakerValue<std::function<void(const VtkSink<T>&)>> {
+  using type = T;
+};
 
-// Inline compressed: base64 of the header (blocks, block size, last block size, each
-// block's compressed size), then base64 of the compressed blocks - two streams, as VTK's
-// reader expects for inline data.
-std::string encode_zlib(const std::vector<std::uint8_t>& data) {
-  const std::size_t blocks = (data.size() + kBlockSize - 1) / kBlockSize;
-  std::vector<std::uint8_t> compressed;
-  std::vector<std::uint64_t> sizes;
-  for (std::size_t b = 0; b < blocks; ++b) {
-    const std::size_t size = std::min(kBlockSize, data.size() - b * kBlockSize);
-    uLongf length = compressBound(static_cast<uLong>(size));
-    std::vector<std::uint8_t> block(length);
-    if (compress2(block.data(), &length, data.data() + b * kBlockSize, static_cast<uLong>(size),
-                  Z_DEFAULT_COMPRESSION) != Z_OK)
-      throw std::runtime_error("zlib could not compress a data array");
-    compressed.insert(compressed.end(), block.begin(), block.begin() + length);
-    sizes.push_back(length);
-  }
-  std::vector<std::uint8_t> header;
-  append_u64(header, blocks);
-  append_u64(header, kBlockSize);
-  const std::size_t last = data.size() - (blocks == 0 ? 0 : (blocks - 1) * kBlockSize);
-  append_u64(header, blocks == 0 ? 0 : last);
-  for (std::uint64_t size : sizes)
-    append_u64(header, size);
-  return base64(header.data(), header.size()) + base64(compressed.data(), compressed.size());
-}
-
-void write_array(std::ostream& out, const VtkArray& array, VtkEncoding encoding,
+void write_array(std::ostream& out, const VtkStreamedArray& array, VtkEncoding encoding,
                  const char* indent) {
   std::visit(
-      [&](const auto& values) {
-        using T = typename std::decay_t<decltype(values)>::value_type;
+      [&](const auto& make) {
+        using T = typename MakerValue<std::decay_t<decltype(make)>>::type;
         // An empty array is written as ASCII: there is nothing to encode.
-        const VtkEncoding used = values.empty() ? VtkEncoding::Ascii : encoding;
+        const VtkEncoding used = array.values == 0 ? VtkEncoding::Ascii : encoding;
         out << indent << "<DataArray type=\"" << vtk_type<T>() << "\" Name=\"" << array.name
             << "\"";
         if (array.components != 1) out << " NumberOfComponents=\"" << array.components << "\"";
         out << " format=\"" << (used == VtkEncoding::Ascii ? "ascii" : "binary") << "\">\n";
-        if (used == VtkEncoding::Ascii) {
-          write_ascii(out, values);
-        } else {
-          const auto bytes = raw_bytes(values);
-          out << (used == VtkEncoding::Zlib ? encode_zlib(bytes) : encode_binary(bytes)) << '\n';
-        }
+        write_values<T>(out, make, array.values, used);
         out << indent << "</DataArray>\n";
       },
-      array.values);
+      array.make);
+}
+
+template <typename T>
+VtkStreamedArray streamed_vector(const std::string& name, int components,
+                                 const std::vector<T>& values) {
+  VtkStreamedArray array{name, components, values.size(), {}};
+  array.make = std::function<void(const VtkSink<T>&)>(
+      [&values](const VtkSink<T>& put) { put(values.data(), values.size()); });
+  return array;
 }
 
 // Field data arrays say how many tuples they hold.
@@ -143,11 +221,14 @@ void write_field_text(std::ostream& out, const std::string& name, const std::str
   out << "0\n      </Array>\n";
 }
 
-void write_data(std::ostream& out, const char* tag, const std::vector<VtkArray>& arrays,
-                VtkEncoding encoding) {
+// `done` counts the arrays written.
+void write_data(std::ostream& out, const char* tag, const std::vector<VtkStreamedArray>& arrays,
+                VtkEncoding encoding, const std::function<void()>& done) {
   out << "      <" << tag << ">\n";
-  for (const VtkArray& array : arrays)
+  for (const VtkStreamedArray& array : arrays) {
     write_array(out, array, encoding, "        ");
+    done();
+  }
   out << "      </" << tag << ">\n";
 }
 
@@ -209,7 +290,31 @@ std::string base64(const std::uint8_t* data, std::size_t size) {
   return text;
 }
 
+VtkStreamedArray streamed(const VtkArray& array) {
+  return std::visit(
+      [&](const auto& values) { return streamed_vector(array.name, array.components, values); },
+      array.values);
+}
+
 void write_vtu(std::ostream& out, const VtkGrid& grid, VtkEncoding encoding) {
+  VtkStreamedGrid whole;
+  whole.points = grid.points.size() / 3;
+  whole.cells = grid.types.size();
+  for (const VtkArray& array : grid.point_data)
+    whole.point_data.push_back(streamed(array));
+  for (const VtkArray& array : grid.cell_data)
+    whole.cell_data.push_back(streamed(array));
+  whole.coordinates = streamed_vector("Points", 3, grid.points);
+  whole.connectivity = streamed_vector("connectivity", 1, grid.connectivity);
+  whole.offsets = streamed_vector("offsets", 1, grid.offsets);
+  whole.types = streamed_vector("types", 1, grid.types);
+  whole.field_data = grid.field_data;
+  whole.field_text = grid.field_text;
+  write_vtu(out, whole, encoding);
+}
+
+void write_vtu(std::ostream& out, const VtkStreamedGrid& grid, VtkEncoding encoding,
+               const std::function<void(int written, int arrays)>& written) {
   out << "<?xml version=\"1.0\"?>\n"
       << "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" "
          "header_type=\"UInt64\""
@@ -223,15 +328,18 @@ void write_vtu(std::ostream& out, const VtkGrid& grid, VtkEncoding encoding) {
       write_field_text(out, name, text);
     out << "    </FieldData>\n";
   }
-  out << "    <Piece NumberOfPoints=\"" << grid.points.size() / 3 << "\" NumberOfCells=\""
-      << grid.types.size() << "\">\n";
-  write_data(out, "PointData", grid.point_data, encoding);
-  write_data(out, "CellData", grid.cell_data, encoding);
-  write_data(out, "Points", {VtkArray{"Points", 3, grid.points}}, encoding);
-  write_data(out, "Cells",
-             {VtkArray{"connectivity", 1, grid.connectivity}, VtkArray{"offsets", 1, grid.offsets},
-              VtkArray{"types", 1, grid.types}},
-             encoding);
+  out << "    <Piece NumberOfPoints=\"" << grid.points << "\" NumberOfCells=\"" << grid.cells
+      << "\">\n";
+  const int arrays = static_cast<int>(grid.point_data.size() + grid.cell_data.size()) + 4;
+  int count = 0;
+  const auto done = [&] {
+    ++count;
+    if (written) written(count, arrays);
+  };
+  write_data(out, "PointData", grid.point_data, encoding, done);
+  write_data(out, "CellData", grid.cell_data, encoding, done);
+  write_data(out, "Points", {grid.coordinates}, encoding, done);
+  write_data(out, "Cells", {grid.connectivity, grid.offsets, grid.types}, encoding, done);
   out << "    </Piece>\n"
       << "  </UnstructuredGrid>\n"
       << "</VTKFile>\n";

@@ -6,6 +6,7 @@
 // writer produces and every VTK reader (ParaView, python3-vtk9, meshio) reads.
 
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <ostream>
 #include <string>
@@ -41,7 +42,37 @@ struct VtkGrid {
 inline constexpr std::uint8_t kVtkLine = 3;
 inline constexpr std::uint8_t kVtkQuad = 9;
 
+// An array made while it is written, a few values at a time (a strut's), so that a large
+// grid never exists whole: `make` hands the values, in order, to the sink it is given.
+template <typename T>
+using VtkSink = std::function<void(const T* values, std::size_t count)>;
+struct VtkStreamedArray {
+  std::string name;
+  int components = 1;
+  std::size_t values = 0;  // components per tuple times the tuples, all that make gives
+  std::variant<std::function<void(const VtkSink<double>&)>,
+               std::function<void(const VtkSink<std::int32_t>&)>,
+               std::function<void(const VtkSink<std::uint8_t>&)>,
+               std::function<void(const VtkSink<std::int64_t>&)>>
+      make;
+};
+// The array of a VtkArray (which must outlive it), made in one piece.
+VtkStreamedArray streamed(const VtkArray& array);
+
+// A grid whose arrays are made as they are written: the same file as write_vtu(VtkGrid).
+struct VtkStreamedGrid {
+  std::size_t points = 0, cells = 0;
+  std::vector<VtkStreamedArray> point_data, cell_data;
+  VtkStreamedArray coordinates;  // x, y, z per point
+  VtkStreamedArray connectivity, offsets, types;
+  std::vector<VtkArray> field_data;
+  std::vector<std::pair<std::string, std::string>> field_text;
+};
+
 void write_vtu(std::ostream& out, const VtkGrid& grid, VtkEncoding encoding);
+// `written` (when given) is called after each array: arrays written, arrays in all.
+void write_vtu(std::ostream& out, const VtkStreamedGrid& grid, VtkEncoding encoding,
+               const std::function<void(int written, int arrays)>& written = {});
 
 struct PvdEntry {
   double time = 0.0;

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <memory>
 #include <system_error>
 #include <utility>
 
@@ -66,119 +67,249 @@ bool append_pvd(const std::string& path, const PvdEntry& entry) {
 
 // Per strut node, its point in the grid: one per node, except that the ends a joint joins
 // share the point of the end met first (strut order) - so ParaView sees a frame as one
-// connected piece. `first_end` marks the nodes that made their point.
-std::vector<std::vector<std::int64_t>> point_numbers(const solver::Model& model,
-                                                     std::vector<std::vector<char>>& first_end) {
-  std::map<std::pair<int, int>, size_t> joint_of_end;
-  for (size_t j = 0; j < model.joints.size(); ++j)
-    for (const auto& end : model.joints[j].ends)
-      joint_of_end[end] = j;
-  std::vector<std::int64_t> joint_point(model.joints.size(), -1);
-  std::vector<std::vector<std::int64_t>> point(model.struts.size());
-  first_end.assign(model.struts.size(), {});
-  std::int64_t next = 0;
-  for (size_t s = 0; s < model.struts.size(); ++s) {
-    const int count = model.struts[s].node_count();
-    point[s].assign(static_cast<size_t>(count), -1);
-    first_end[s].assign(static_cast<size_t>(count), 1);
-    for (int n = 0; n < count; ++n) {
-      const auto joint = joint_of_end.find({static_cast<int>(s), n});
-      std::int64_t& shared = joint == joint_of_end.end() ? point[s][static_cast<size_t>(n)]
-                                                         : joint_point[joint->second];
-      if (shared < 0)
-        shared = next++;
-      else
-        first_end[s][static_cast<size_t>(n)] = 0;
-      point[s][static_cast<size_t>(n)] = shared;
+// connected piece. Made per strut when asked (only joint ends are kept for all struts).
+class PointNumbers {
+ public:
+  explicit PointNumbers(const solver::Model& model) {
+    std::map<std::pair<int, int>, size_t> joint_of_end;  // in (strut, node) order
+    for (size_t j = 0; j < model.joints.size(); ++j)
+      for (const auto& end : model.joints[j].ends)
+        joint_of_end[end] = j;
+    std::vector<std::int64_t> joint_point(model.joints.size(), -1);
+    shared_.resize(model.struts.size());
+    auto end = joint_of_end.begin();
+    std::int64_t next = 0;
+    for (size_t s = 0; s < model.struts.size(); ++s) {
+      first_.push_back(next);
+      counts_.push_back(model.struts[s].node_count());
+      std::int64_t skipped = 0;  // ends of this strut that share an earlier end's point
+      for (; end != joint_of_end.end() && end->first.first == static_cast<int>(s); ++end) {
+        std::int64_t& point = joint_point[end->second];
+        if (point >= 0) {
+          shared_[s].push_back({end->first.second, point});
+          ++skipped;
+        } else {
+          point = next + end->first.second - skipped;
+        }
+      }
+      next += counts_.back() - skipped;
+    }
+    points_ = next;
+  }
+  std::int64_t points() const { return points_; }
+  // Per node of the strut its point; `makes` marks the nodes that make theirs.
+  std::vector<std::int64_t> strut_points(int strut, std::vector<char>& makes) const {
+    const auto s = static_cast<size_t>(strut);
+    std::vector<std::int64_t> point(static_cast<size_t>(counts_[s]), 0);
+    makes.assign(point.size(), 1);
+    std::int64_t next = first_[s];
+    size_t e = 0;
+    for (size_t n = 0; n < point.size(); ++n) {
+      if (e < shared_[s].size() && shared_[s][e].first == static_cast<int>(n)) {
+        point[n] = shared_[s][e++].second;
+        makes[n] = 0;
+      } else {
+        point[n] = next++;
+      }
+    }
+    return point;
+  }
+
+ private:
+  std::vector<std::int64_t> first_, counts_;  // per strut: its first point, its nodes
+  std::vector<std::vector<std::pair<int, std::int64_t>>> shared_;  // (node, earlier point)
+  std::int64_t points_ = 0;
+};
+
+// Makes an array strut by strut: fill(s, values) appends strut s's values.
+template <typename T, typename Fill>
+VtkStreamedArray per_strut(std::string name, int components, std::size_t values, size_t struts,
+                           Fill fill) {
+  VtkStreamedArray array{std::move(name), components, values, {}};
+  array.make = std::function<void(const VtkSink<T>&)>([struts, fill](const VtkSink<T>& put) {
+    std::vector<T> chunk;
+    for (size_t s = 0; s < struts; ++s) {
+      chunk.clear();
+      fill(static_cast<int>(s), chunk);
+      put(chunk.data(), chunk.size());
+    }
+  });
+  return array;
+}
+
+// What the struts' arrays are made from, shared by their makers.
+struct StrutSource {
+  StrutSource(const solver::Model& of_model, const solver::Snapshot& of_state)
+      : model(of_model), state(of_state), results(of_model, of_state), numbers(of_model) {
+    for (size_t s = 0; s < model.struts.size(); ++s) {
+      const solver::StrutElements topology = results.topology(static_cast<int>(s));
+      elements.push_back(topology.element_count());
+      cells += static_cast<std::size_t>(topology.element_count());
+      corners += topology.connectivity.size();
+      if (s > 0) continue;
+      for (const solver::NamedValues& field : topology.stress)
+        fields.push_back("stress_" + field.name);
+      for (const solver::NamedValues& field : topology.resultants)
+        fields.push_back(field.name);
+      stress_fields = topology.stress.size();
     }
   }
-  return point;
-}
+  // Strut s's values of the nodes that make a point.
+  template <typename T, typename Value>
+  void point_values(int s, std::vector<T>& out, Value value) const {
+    std::vector<char> makes;
+    numbers.strut_points(s, makes);
+    for (size_t n = 0; n < makes.size(); ++n)
+      if (makes[n]) value(n, out);
+  }
+
+  const solver::Model& model;
+  const solver::Snapshot& state;
+  solver::StrutResults results;
+  PointNumbers numbers;
+  std::vector<int> elements;           // per strut
+  std::size_t cells = 0, corners = 0;  // elements, their nodes
+  std::vector<std::string> fields;     // stress_* then the resultants, as every strut has them
+  size_t stress_fields = 0;
+};
 
 // Frame struts: per element the rotations and bending moments at both of its ends (node
 // i, xi = 0, and node i + 1, xi = 1), so that the ends of a pinned joint keep their own
 // rotations and the moment's linear course along each element is there in full.
-void add_frame_cell_data(const solver::Model& model, const solver::Snapshot& state, VtkGrid& grid) {
-  const auto rotations = solver::strut_rotations(model, state);
-  const auto moments = solver::strut_moments(model, state);
-  std::vector<double> end_rotations, end_moments;
-  for (size_t s = 0; s < model.struts.size(); ++s) {
-    const int elements = model.struts[s].node_count() - 1;
-    for (int k = 0; k < elements; ++k) {
-      const auto at = static_cast<size_t>(k);
-      end_rotations.insert(end_rotations.end(), {rotations[s][at], rotations[s][at + 1]});
-      const bool known = s < moments.size() && !moments[s].empty();
-      end_moments.insert(end_moments.end(), {known ? moments[s].at(k, 0.0) : 0.0,
-                                             known ? moments[s].at(k, 1.0) : 0.0});
-    }
-  }
-  grid.cell_data.push_back(VtkArray{"end_rotations", 2, std::move(end_rotations)});
-  grid.cell_data.push_back(VtkArray{"bending_moment_ends", 2, std::move(end_moments)});
+void add_frame_cell_data(const std::shared_ptr<StrutSource>& source, VtkStreamedGrid& grid) {
+  const solver::Model& model = source->model;
+  grid.cell_data.push_back(per_strut<double>(
+      "end_rotations", 2, 2 * source->cells, model.struts.size(),
+      [source](int s, std::vector<double>& out) {
+        const std::vector<double> rotations = source->results.rotations(s);
+        for (int k = 0; k < source->elements[static_cast<size_t>(s)]; ++k)
+          out.insert(out.end(),
+                     {rotations[static_cast<size_t>(k)], rotations[static_cast<size_t>(k) + 1]});
+      }));
+  // A frame's struts are few and short: their moments are made at once.
+  auto moments = std::make_shared<std::vector<solver::BeamMoments>>();
+  grid.cell_data.push_back(
+      per_strut<double>("bending_moment_ends", 2, 2 * source->cells, model.struts.size(),
+                        [source, moments](int s, std::vector<double>& out) {
+                          if (moments->empty())
+                            *moments = solver::strut_moments(source->model, source->state);
+                          const auto at = static_cast<size_t>(s);
+                          const bool known = at < moments->size() && !(*moments)[at].empty();
+                          for (int k = 0; k < source->elements[at]; ++k)
+                            out.insert(out.end(), {known ? (*moments)[at].at(k, 0.0) : 0.0,
+                                                   known ? (*moments)[at].at(k, 1.0) : 0.0});
+                        }));
+}
+
+void add_cell_data(const std::shared_ptr<StrutSource>& source, VtkStreamedGrid& grid) {
+  const size_t struts = source->model.struts.size();
+  const std::size_t cells = source->cells;
+  grid.cell_data.push_back(
+      per_strut<std::int32_t>("strut", 1, cells, struts, [source](int s, auto& out) {
+        out.assign(static_cast<size_t>(source->elements[static_cast<size_t>(s)]), s);
+      }));
+  grid.cell_data.push_back(
+      per_strut<std::int32_t>("element", 1, cells, struts, [source](int s, auto& out) {
+        for (int k = 0; k < source->elements[static_cast<size_t>(s)]; ++k)
+          out.push_back(k);
+      }));
+  grid.cell_data.push_back(
+      per_strut<std::int32_t>("subdomain", 1, cells, struts, [source](int s, auto& out) {
+        const std::vector<int> subdomains = source->results.topology(s).subdomain;
+        out.assign(subdomains.begin(), subdomains.end());
+      }));
+  for (size_t f = 0; f < source->fields.size(); ++f)
+    grid.cell_data.push_back(per_strut<double>(
+        source->fields[f], 1, cells, struts, [source, f](int s, std::vector<double>& out) {
+          const solver::StrutElements e = source->results.elements(s);
+          const size_t stress = source->stress_fields;
+          const auto& values = f < stress ? e.stress[f].values : e.resultants[f - stress].values;
+          out.assign(values.begin(), values.end());
+        }));
+}
+
+void add_cells(const std::shared_ptr<StrutSource>& source, VtkStreamedGrid& grid) {
+  const size_t struts = source->model.struts.size();
+  grid.connectivity = per_strut<std::int64_t>(
+      "connectivity", 1, source->corners, struts, [source](int s, auto& out) {
+        std::vector<char> makes;
+        const std::vector<std::int64_t> point = source->numbers.strut_points(s, makes);
+        for (int node : source->results.topology(s).connectivity)
+          out.push_back(point[static_cast<size_t>(node)]);
+      });
+  auto end = std::make_shared<std::int64_t>(0);  // the running offset
+  grid.offsets =
+      per_strut<std::int64_t>("offsets", 1, source->cells, struts, [source, end](int s, auto& out) {
+        if (s == 0) *end = 0;
+        const solver::StrutElements e = source->results.topology(s);
+        for (int k = 0; k < e.element_count(); ++k)
+          out.push_back(*end += e.nodes_per_element);
+      });
+  grid.types =
+      per_strut<std::uint8_t>("types", 1, source->cells, struts, [source](int s, auto& out) {
+        const std::uint8_t type =
+            source->results.topology(s).nodes_per_element == 4 ? kVtkQuad : kVtkLine;
+        out.assign(static_cast<size_t>(source->elements[static_cast<size_t>(s)]), type);
+      });
 }
 
 }  // namespace
 
-VtkGrid struts_grid(const solver::Model& model, const solver::Snapshot& state) {
-  VtkGrid grid;
-  const auto u = solver::strut_displacements(model, state);
-  const auto elements = solver::element_results(model, state);
-  const bool frame = model.frame();
-  const auto rotations =
-      frame ? solver::strut_rotations(model, state) : std::vector<std::vector<double>>{};
-  std::vector<std::vector<char>> first_end;
-  const auto point_of = point_numbers(model, first_end);
-  std::vector<double> displacement, rotation;
-  std::vector<std::int32_t> strut_ids, element_ids, subdomains;
-  std::vector<VtkArray> fields;  // stress_* and resultants, concatenated over struts
-  for (size_t s = 0; s < model.struts.size(); ++s) {
-    const solver::StrutMesh& mesh = model.struts[s];
-    for (int n = 0; n < mesh.node_count(); ++n) {
-      const auto at = static_cast<size_t>(n);
-      if (!first_end[s][at]) continue;  // a joint's point, made by an earlier end
-      add_point(grid, displacement, mesh.nodes[at], u[s][at]);
-      if (frame) rotation.push_back(rotations[s][at]);
-    }
-    const solver::StrutElements& e = elements[s];
-    for (int k = 0; k < e.element_count(); ++k) {
-      for (int a = 0; a < e.nodes_per_element; ++a)
-        grid.connectivity.push_back(point_of[s][static_cast<size_t>(
-            e.connectivity[static_cast<size_t>(k * e.nodes_per_element + a)])]);
-      grid.offsets.push_back(static_cast<std::int64_t>(grid.connectivity.size()));
-      grid.types.push_back(e.nodes_per_element == 4 ? kVtkQuad : kVtkLine);
-      strut_ids.push_back(static_cast<std::int32_t>(s));
-      element_ids.push_back(k);
-      subdomains.push_back(e.subdomain[static_cast<size_t>(k)]);
-    }
-    // Every strut of a model has the same fields in the same order.
-    std::vector<std::pair<std::string, const std::vector<double>*>> named;
-    for (const solver::NamedValues& field : e.stress)
-      named.emplace_back("stress_" + field.name, &field.values);
-    for (const solver::NamedValues& field : e.resultants)
-      named.emplace_back(field.name, &field.values);
-    if (fields.empty())
-      for (const auto& [name, values] : named)
-        fields.push_back(VtkArray{name, 1, std::vector<double>{}});
-    for (size_t f = 0; f < named.size() && f < fields.size(); ++f) {
-      auto& target = std::get<std::vector<double>>(fields[f].values);
-      target.insert(target.end(), named[f].second->begin(), named[f].second->end());
-    }
-  }
-  grid.point_data.push_back(VtkArray{"displacement", 3, std::move(displacement)});
-  if (frame) grid.point_data.push_back(VtkArray{"rotation", 1, std::move(rotation)});
-  grid.cell_data.push_back(VtkArray{"strut", 1, std::move(strut_ids)});
-  grid.cell_data.push_back(VtkArray{"element", 1, std::move(element_ids)});
-  grid.cell_data.push_back(VtkArray{"subdomain", 1, std::move(subdomains)});
-  for (VtkArray& field : fields)
-    grid.cell_data.push_back(std::move(field));
-  if (frame) add_frame_cell_data(model, state, grid);
+VtkStreamedGrid struts_grid(const solver::Model& model, const solver::Snapshot& state) {
+  auto source = std::make_shared<StrutSource>(model, state);
+  const size_t struts = model.struts.size();
+  VtkStreamedGrid grid;
+  grid.points = static_cast<std::size_t>(source->numbers.points());
+  grid.cells = source->cells;
+  grid.point_data.push_back(per_strut<double>(
+      "displacement", 3, 3 * grid.points, struts, [source](int s, std::vector<double>& out) {
+        const std::vector<solver::Vec2> u = source->results.displacements(s);
+        source->point_values(s, out, [&](size_t n, std::vector<double>& values) {
+          values.insert(values.end(), {u[n].x(), u[n].y(), 0.0});
+        });
+      }));
+  if (model.frame())
+    grid.point_data.push_back(per_strut<double>(
+        "rotation", 1, grid.points, struts, [source](int s, std::vector<double>& out) {
+          const std::vector<double> rotations = source->results.rotations(s);
+          source->point_values(s, out, [&](size_t n, std::vector<double>& values) {
+            values.push_back(rotations[n]);
+          });
+        }));
+  add_cell_data(source, grid);
+  if (model.frame()) add_frame_cell_data(source, grid);
+  grid.coordinates = per_strut<double>(
+      "Points", 3, 3 * grid.points, struts, [source](int s, std::vector<double>& out) {
+        const solver::StrutMesh& mesh = source->model.struts[static_cast<size_t>(s)];
+        source->point_values(s, out, [&](size_t n, std::vector<double>& values) {
+          values.insert(values.end(), {mesh.nodes[n].x(), mesh.nodes[n].y(), 0.0});
+        });
+      });
+  add_cells(source, grid);
   grid.field_data = state_field_data(state);
   grid.field_text = field_text(model);
   return grid;
 }
 
 VtkGrid contacts_grid(const solver::Model& model, const solver::Snapshot& state) {
+  // The pairs' end displacements, read strut by strut (not every strut's nodes at once).
+  std::vector<std::vector<size_t>> pairs_of(model.struts.size());
+  for (size_t p = 0; p < model.pairs.size(); ++p) {
+    pairs_of[static_cast<size_t>(model.pairs[p].strut_a)].push_back(p);
+    pairs_of[static_cast<size_t>(model.pairs[p].strut_b)].push_back(p);
+  }
+  std::vector<solver::Vec2> end_a(model.pairs.size()), end_b(model.pairs.size());
+  const solver::StrutResults results(model, state);
+  for (size_t s = 0; s < model.struts.size(); ++s) {
+    if (pairs_of[s].empty()) continue;
+    const std::vector<solver::Vec2> u = results.displacements(static_cast<int>(s));
+    for (size_t p : pairs_of[s]) {
+      const solver::ContactPair& pair = model.pairs[p];
+      if (static_cast<size_t>(pair.strut_a) == s) end_a[p] = u[static_cast<size_t>(pair.node_a)];
+      if (static_cast<size_t>(pair.strut_b) == s) end_b[p] = u[static_cast<size_t>(pair.node_b)];
+    }
+  }
   VtkGrid grid;
-  const auto u = solver::strut_displacements(model, state);
   std::vector<double> displacement, gap, force, normal;
   std::vector<std::int32_t> contact, pair_index;
   std::vector<std::uint8_t> active;
@@ -186,9 +317,9 @@ VtkGrid contacts_grid(const solver::Model& model, const solver::Snapshot& state)
     const solver::ContactPair& pair = model.pairs[p];
     const auto a = static_cast<size_t>(pair.strut_a), b = static_cast<size_t>(pair.strut_b);
     add_point(grid, displacement, model.struts[a].nodes[static_cast<size_t>(pair.node_a)],
-              u[a][static_cast<size_t>(pair.node_a)]);
+              end_a[p]);
     add_point(grid, displacement, model.struts[b].nodes[static_cast<size_t>(pair.node_b)],
-              u[b][static_cast<size_t>(pair.node_b)]);
+              end_b[p]);
     grid.connectivity.insert(grid.connectivity.end(), {static_cast<std::int64_t>(2 * p),
                                                        static_cast<std::int64_t>(2 * p + 1)});
     grid.offsets.push_back(static_cast<std::int64_t>(grid.connectivity.size()));
@@ -231,8 +362,16 @@ std::string VtuSeries::file_name(const char* dataset, int index) const {
 void VtuSeries::write(const solver::Snapshot& state, double time) {
   const int index = frames();
   const std::filesystem::path dir(directory_);
-  write_output((dir / file_name("struts", index)).string(),
-               [&](std::ostream& out) { write_vtu(out, struts_grid(model_, state), encoding_); });
+  const std::string struts = (dir / file_name("struts", index)).string();
+  ProgressLine line(progress_);
+  write_output(struts, [&](std::ostream& out) {
+    write_vtu(out, struts_grid(model_, state), encoding_, [&](int written, int arrays) {
+      if (line.elapsed_seconds() > 1.0)
+        line.update("writing " + struts + ": " + std::to_string(written) + " of " +
+                    std::to_string(arrays) + " arrays");
+    });
+  });
+  line.clear();
   write_output((dir / file_name("contacts", index)).string(),
                [&](std::ostream& out) { write_vtu(out, contacts_grid(model_, state), encoding_); });
   times_.push_back(time);

@@ -15,12 +15,15 @@
 #include <string>
 #include <vector>
 
+#include "app/progress.hpp"
 #include "app/vtk_xml.hpp"
 #include "solver/method.hpp"
 
 namespace fetic::app {
 
-VtkGrid struts_grid(const solver::Model& model, const solver::Snapshot& state);
+// The struts' grid is made strut by strut while it is written (a 1e7-unknown scene's
+// grid is never whole in memory); it refers to `model` and `state`.
+VtkStreamedGrid struts_grid(const solver::Model& model, const solver::Snapshot& state);
 VtkGrid contacts_grid(const solver::Model& model, const solver::Snapshot& state);
 
 // Frames written one by one; the .pvd files always list the frames written so far (the
@@ -33,6 +36,8 @@ class VtuSeries {
   // Writes the frame's two .vtu files and updates the .pvd files; `time` is the frame's
   // time value in ParaView.
   void write(const solver::Snapshot& state, double time);
+  // A progress line for a frame that takes over a second to write.
+  void show_progress(ProgressMode mode) { progress_ = mode; }
   int frames() const { return static_cast<int>(times_.size()); }
   const std::string& directory() const { return directory_; }
 
@@ -43,6 +48,7 @@ class VtuSeries {
   const solver::Model& model_;
   VtkEncoding encoding_;
   std::vector<double> times_;
+  ProgressMode progress_ = ProgressMode::Never;
 };
 
 }  // namespace fetic::app

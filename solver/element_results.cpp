@@ -168,26 +168,35 @@ void recover_frame(const StrutMesh& mesh, const NodeBox& box, const Eigen::Vecto
 
 }  // namespace
 
-std::vector<StrutElements> element_topology(const Model& model) {
-  std::vector<StrutElements> result;
-  int first_subdomain = 0;
+StrutResults::StrutResults(const Model& model, const Snapshot& snapshot)
+    : model_(model), snapshot_(snapshot), pieces_(pieces_by_strut(model, snapshot)) {
+  int first = 0;
   for (const StrutMesh& mesh : model.struts) {
-    result.push_back(topology(mesh, first_subdomain));
-    first_subdomain += subdomains_of(mesh);
+    first_subdomain_.push_back(first);
+    first += subdomains_of(mesh);
   }
-  return result;
 }
 
-std::vector<StrutElements> element_results(const Model& model, const Snapshot& snapshot) {
-  std::vector<StrutElements> result = element_topology(model);
-  std::vector<std::vector<char>> clamped;
-  for (size_t s = 0; s < model.struts.size(); ++s)
-    clamped.push_back(clamped_flags(model, static_cast<int>(s)));
-  for (const Piece& piece : snapshot.pieces) {
-    const StrutMesh& mesh = model.struts[static_cast<size_t>(piece.strut)];
-    const Eigen::VectorXd dofs =
-        clamped_piece_dofs(mesh, piece, clamped[static_cast<size_t>(piece.strut)]);
-    StrutElements& out = result[static_cast<size_t>(piece.strut)];
+std::vector<Vec2> StrutResults::displacements(int strut) const {
+  return strut_displacements(model_, snapshot_, strut, pieces_[static_cast<size_t>(strut)]);
+}
+
+std::vector<double> StrutResults::rotations(int strut) const {
+  return strut_rotations(model_, snapshot_, strut, pieces_[static_cast<size_t>(strut)]);
+}
+
+StrutElements StrutResults::topology(int strut) const {
+  const auto at = static_cast<size_t>(strut);
+  return fetic::solver::topology(model_.struts[at], first_subdomain_[at]);
+}
+
+StrutElements StrutResults::elements(int strut) const {
+  StrutElements out = topology(strut);
+  const StrutMesh& mesh = model_.struts[static_cast<size_t>(strut)];
+  const std::vector<char> clamped = clamped_flags(model_, strut);
+  for (int p : pieces_[static_cast<size_t>(strut)]) {
+    const Piece& piece = snapshot_.pieces[static_cast<size_t>(p)];
+    const Eigen::VectorXd dofs = clamped_piece_dofs(mesh, piece, clamped);
     if (mesh.dofs_per_node == 1) {
       recover_bar(mesh, piece.box, dofs, out);
     } else if (is_plane(mesh)) {
@@ -201,7 +210,26 @@ std::vector<StrutElements> element_results(const Model& model, const Snapshot& s
           field.values.assign(field.values.size(), std::numeric_limits<double>::quiet_NaN());
     }
   }
+  return out;
+}
+
+std::vector<StrutElements> element_topology(const Model& model) {
+  std::vector<StrutElements> result;
+  int first_subdomain = 0;
+  for (const StrutMesh& mesh : model.struts) {
+    result.push_back(topology(mesh, first_subdomain));
+    first_subdomain += subdomains_of(mesh);
+  }
   return result;
+}
+
+std::vector<StrutElements> element_results(const Model& model, const Snapshot& snapshot) {
+  const StrutResults results(model, snapshot);
+  std::vector<StrutElements> all;
+  all.reserve(model.struts.size());
+  for (size_t s = 0; s < model.struts.size(); ++s)
+    all.push_back(results.elements(static_cast<int>(s)));
+  return all;
 }
 
 namespace {

@@ -45,6 +45,24 @@ std::vector<StrutElements> element_results(const Model& model, const Snapshot& s
 // The element topology alone (connectivity and subdomains, no values).
 std::vector<StrutElements> element_topology(const Model& model);
 
+// One strut's results at a time, the same values as the whole-model functions: what
+// writes the results of a large scene (app/vtu_export.cpp, app/state_json.cpp) then holds
+// one strut's nodes and elements, not every one's.
+class StrutResults {
+ public:
+  StrutResults(const Model& model, const Snapshot& snapshot);
+  std::vector<Vec2> displacements(int strut) const;  // strut_displacements(...)[strut]
+  std::vector<double> rotations(int strut) const;    // strut_rotations(...)[strut]
+  StrutElements topology(int strut) const;           // element_topology(...)[strut]
+  StrutElements elements(int strut) const;           // element_results(...)[strut]
+
+ private:
+  const Model& model_;
+  const Snapshot& snapshot_;
+  std::vector<std::vector<int>> pieces_;  // per strut: its pieces in snapshot_
+  std::vector<int> first_subdomain_;      // per strut: the number of its first subdomain
+};
+
 // The bending moment M = E I w'' along the beam elements of a frame strut. An
 // Euler-Bernoulli element's w is cubic, so M is linear along it: its two end values come
 // from the element's end rotations and transverse end displacements in local axes (the

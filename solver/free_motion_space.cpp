@@ -18,18 +18,22 @@ namespace {
 // Entries below this (relative to a unit motion) are rounding.
 constexpr double kNegligible = 1e-12;
 
-}  // namespace
-
-FreeMotionSpace::FreeMotionSpace(const FetiSystem& system) : system_(system) {
-  const Model& model = system.model();
-  const Decomposition& d = system.decomposition();
-  const auto& motions = model.kinematics.motions;
-  const int k = static_cast<int>(motions.size());
-  std::vector<Eigen::Triplet<double>> entries;
+// The subdomains of each group of struts (model.kinematics.groups).
+std::vector<std::vector<int>> subdomains_by_group(const Model& model, const Decomposition& d) {
   std::vector<std::vector<int>> subdomains_of(model.kinematics.groups.size());
   for (size_t j = 0; j < d.subdomains.size(); ++j)
     subdomains_of[model.kinematics.group_of_strut[d.subdomains[j].strut]].push_back(
         static_cast<int>(j));
+  return subdomains_of;
+}
+
+// Z (modes x motions): every free motion as amplitudes of the rigid modes of its group's
+// subdomains.
+Eigen::SparseMatrix<double> motion_amplitudes(const Model& model, const Decomposition& d,
+                                              const std::vector<std::vector<int>>& subdomains_of) {
+  const auto& motions = model.kinematics.motions;
+  const int k = static_cast<int>(motions.size());
+  std::vector<Eigen::Triplet<double>> entries;
   for (int m = 0; m < k; ++m) {
     for (int j : subdomains_of[motions[m].group]) {
       const Subdomain& sub = d.subdomains[j];
@@ -50,9 +54,16 @@ FreeMotionSpace::FreeMotionSpace(const FetiSystem& system) : system_(system) {
         if (values(i) != 0.0) entries.emplace_back(sub.mode_offset + i, m, values(i));
     }
   }
-  Z_.resize(d.total_modes, k);
-  Z_.setFromTriplets(entries.begin(), entries.end());
+  Eigen::SparseMatrix<double> Z(d.total_modes, k);
+  Z.setFromTriplets(entries.begin(), entries.end());
+  return Z;
+}
 
+// G'Z (contact rows x motions).
+Eigen::SparseMatrix<double, Eigen::RowMajor> row_changes(const Model& model, const Decomposition& d,
+                                                         const Eigen::SparseMatrix<double>& Z) {
+  const auto& motions = model.kinematics.motions;
+  const int k = static_cast<int>(motions.size());
   // (G'Z)(r, m) = sum over row r's entries of value * (R_j Z_j)(dof, m): the change of
   // contact row r per unit of motion m. From the replicated decomposition and the rigid
   // modes of the subdomains contact rows touch, not from G, whose columns a process
@@ -62,7 +73,7 @@ FreeMotionSpace::FreeMotionSpace(const FetiSystem& system) : system_(system) {
   std::vector<std::vector<int>> motions_of_group(model.kinematics.groups.size());
   for (int m = 0; m < k; ++m)
     motions_of_group[motions[m].group].push_back(m);
-  const Eigen::SparseMatrix<double, Eigen::RowMajor> Z_rows = Z_;
+  const Eigen::SparseMatrix<double, Eigen::RowMajor> Z_rows = Z;
   const int first_contact = d.equality_rows;
   std::vector<Eigen::Triplet<double>> gz;
   std::vector<Eigen::MatrixXd> modes_of(d.subdomains.size());  // R_j Z_j, when needed
@@ -86,8 +97,21 @@ FreeMotionSpace::FreeMotionSpace(const FetiSystem& system) : system_(system) {
         if (RZ(entry.dof, c) != 0.0)
           gz.emplace_back(r - first_contact, moving[c], entry.value * RZ(entry.dof, c));
     }
-  GZ_.resize(d.contact_rows(), k);
-  GZ_.setFromTriplets(gz.begin(), gz.end());
+  Eigen::SparseMatrix<double, Eigen::RowMajor> GZ(d.contact_rows(), k);
+  GZ.setFromTriplets(gz.begin(), gz.end());
+  return GZ;
+}
+
+}  // namespace
+
+FreeMotionSpace::FreeMotionSpace(const FetiSystem& system) : system_(system) {
+  const Model& model = system.model();
+  const Decomposition& d = system.decomposition();
+  const auto& motions = model.kinematics.motions;
+  const int k = static_cast<int>(motions.size());
+  const std::vector<std::vector<int>> subdomains_of = subdomains_by_group(model, d);
+  Z_ = motion_amplitudes(model, d, subdomains_of);
+  GZ_ = row_changes(model, d, Z_);
 
   // Clusters: motions that a contact row changes together.
   scenes::UnionFind sets(k);

@@ -140,57 +140,80 @@ void run_to_end(Method& method, const std::function<bool()>& keep_going) {
     method.step();
 }
 
-std::vector<std::vector<Vec2>> strut_displacements(const Model& model, const Snapshot& snapshot) {
-  std::vector<std::vector<Vec2>> sum(model.struts.size());
-  std::vector<std::vector<int>> count(model.struts.size());
-  for (size_t s = 0; s < model.struts.size(); ++s) {
-    sum[s].assign(model.struts[s].node_count(), Vec2::Zero());
-    count[s].assign(model.struts[s].node_count(), 0);
-  }
-  for (const Piece& piece : snapshot.pieces) {
-    const StrutMesh& mesh = model.struts[piece.strut];
-    for (int i = piece.box.i0; i <= piece.box.i1; ++i)
-      for (int k = piece.box.k0; k <= piece.box.k1; ++k) {
-        sum[piece.strut][mesh.node(i, k)] += piece.displacement[piece.box.local(i, k)];
-        count[piece.strut][mesh.node(i, k)] += 1;
-      }
-  }
-  for (size_t s = 0; s < sum.size(); ++s)
-    for (size_t n = 0; n < sum[s].size(); ++n)
-      if (count[s][n] > 1) sum[s][n] /= count[s][n];
-  // Clamped nodes are exactly at rest; total FETI holds them by multipliers, which leaves
-  // rounding-level displacements (1e-19) there.
-  for (size_t s = 0; s < sum.size(); ++s)
-    for (int node : model.clamped_nodes[s])
-      sum[s][static_cast<size_t>(node)].setZero();
-  return sum;
-}
-
 void add_node_state(const StrutMesh& mesh, const double* node_dofs, Piece& piece) {
   piece.displacement.push_back(node_displacement(mesh, node_dofs));
   if (mesh.dofs_per_node == 3) piece.rotation.push_back(node_rotation(mesh, node_dofs));
 }
 
-std::vector<std::vector<double>> strut_rotations(const Model& model, const Snapshot& snapshot) {
-  std::vector<std::vector<double>> sum(model.struts.size());
-  std::vector<std::vector<int>> count(model.struts.size());
-  for (size_t s = 0; s < model.struts.size(); ++s) {
-    sum[s].assign(model.struts[s].node_count(), 0.0);
-    count[s].assign(model.struts[s].node_count(), 0);
-  }
-  for (const Piece& piece : snapshot.pieces) {
-    if (piece.rotation.empty()) continue;
-    const StrutMesh& mesh = model.struts[piece.strut];
+std::vector<std::vector<int>> pieces_by_strut(const Model& model, const Snapshot& snapshot) {
+  std::vector<std::vector<int>> pieces(model.struts.size());
+  for (size_t p = 0; p < snapshot.pieces.size(); ++p)
+    pieces[static_cast<size_t>(snapshot.pieces[p].strut)].push_back(static_cast<int>(p));
+  return pieces;
+}
+
+namespace {
+
+// The average over the pieces of `strut` of a per-box-node value (`of` gives a piece's).
+template <typename T, typename Values>
+std::vector<T> strut_average(const Model& model, const Snapshot& snapshot, int strut,
+                             const std::vector<int>& pieces, const T& zero, Values of) {
+  const StrutMesh& mesh = model.struts[static_cast<size_t>(strut)];
+  std::vector<T> sum(static_cast<size_t>(mesh.node_count()), zero);
+  std::vector<int> count(sum.size(), 0);
+  for (int p : pieces) {
+    const Piece& piece = snapshot.pieces[static_cast<size_t>(p)];
+    const auto& values = of(piece);
+    if (values.empty()) continue;
     for (int i = piece.box.i0; i <= piece.box.i1; ++i)
       for (int k = piece.box.k0; k <= piece.box.k1; ++k) {
-        sum[piece.strut][mesh.node(i, k)] += piece.rotation[piece.box.local(i, k)];
-        count[piece.strut][mesh.node(i, k)] += 1;
+        const auto node = static_cast<size_t>(mesh.node(i, k));
+        sum[node] += values[static_cast<size_t>(piece.box.local(i, k))];
+        count[node] += 1;
       }
   }
-  for (size_t s = 0; s < sum.size(); ++s)
-    for (size_t n = 0; n < sum[s].size(); ++n)
-      if (count[s][n] > 1) sum[s][n] /= count[s][n];
+  for (size_t n = 0; n < sum.size(); ++n)
+    if (count[n] > 1) sum[n] /= count[n];
   return sum;
+}
+
+}  // namespace
+
+std::vector<Vec2> strut_displacements(const Model& model, const Snapshot& snapshot, int strut,
+                                      const std::vector<int>& pieces) {
+  std::vector<Vec2> u = strut_average<Vec2>(
+      model, snapshot, strut, pieces, Vec2::Zero(),
+      [](const Piece& piece) -> const std::vector<Vec2>& { return piece.displacement; });
+  // Clamped nodes are exactly at rest; total FETI holds them by multipliers, which leaves
+  // rounding-level displacements (1e-19) there.
+  for (int node : model.clamped_nodes[static_cast<size_t>(strut)])
+    u[static_cast<size_t>(node)].setZero();
+  return u;
+}
+
+std::vector<double> strut_rotations(const Model& model, const Snapshot& snapshot, int strut,
+                                    const std::vector<int>& pieces) {
+  return strut_average<double>(
+      model, snapshot, strut, pieces, 0.0,
+      [](const Piece& piece) -> const std::vector<double>& { return piece.rotation; });
+}
+
+std::vector<std::vector<Vec2>> strut_displacements(const Model& model, const Snapshot& snapshot) {
+  const auto pieces = pieces_by_strut(model, snapshot);
+  std::vector<std::vector<Vec2>> u;
+  u.reserve(model.struts.size());
+  for (size_t s = 0; s < model.struts.size(); ++s)
+    u.push_back(strut_displacements(model, snapshot, static_cast<int>(s), pieces[s]));
+  return u;
+}
+
+std::vector<std::vector<double>> strut_rotations(const Model& model, const Snapshot& snapshot) {
+  const auto pieces = pieces_by_strut(model, snapshot);
+  std::vector<std::vector<double>> rotations;
+  rotations.reserve(model.struts.size());
+  for (size_t s = 0; s < model.struts.size(); ++s)
+    rotations.push_back(strut_rotations(model, snapshot, static_cast<int>(s), pieces[s]));
+  return rotations;
 }
 
 double relative_error(const std::vector<std::vector<Vec2>>& u,

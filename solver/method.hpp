@@ -178,6 +178,15 @@ std::vector<std::vector<Vec2>> strut_displacements(const Model& model, const Sna
 // displacements.
 std::vector<std::vector<double>> strut_rotations(const Model& model, const Snapshot& snapshot);
 
+// The pieces of `snapshot` that hold each strut's nodes (indices into snapshot.pieces).
+std::vector<std::vector<int>> pieces_by_strut(const Model& model, const Snapshot& snapshot);
+// One strut's node displacements and rotations from its pieces (pieces_by_strut), as the
+// forms above give them: the outputs of a large scene made a strut at a time.
+std::vector<Vec2> strut_displacements(const Model& model, const Snapshot& snapshot, int strut,
+                                      const std::vector<int>& pieces);
+std::vector<double> strut_rotations(const Model& model, const Snapshot& snapshot, int strut,
+                                    const std::vector<int>& pieces);
+
 // ||u - reference|| / ||reference|| over all strut nodes (absolute when the reference is 0).
 double relative_error(const std::vector<std::vector<Vec2>>& u,
                       const std::vector<std::vector<Vec2>>& reference);
