@@ -95,6 +95,20 @@ void join_copies(const Copies& c, int dofs_per_node, int components, const Decom
     }
 }
 
+// An orthonormal basis of C's kernel: the right singular vectors whose singular values
+// are below 1e-10 of the largest. Relative, since C's rows are rigid-mode rows whose
+// rotation entries carry the scene's length scale (scenes::null_space's absolute floor
+// suits only unit-scaled rows).
+Eigen::MatrixXd kernel_of(const Eigen::MatrixXd& C) {
+  const Eigen::BDCSVD<Eigen::MatrixXd> svd(C, Eigen::ComputeFullV);
+  const Eigen::VectorXd& sigma = svd.singularValues();
+  const double tolerance = 1e-10 * (sigma.size() > 0 ? sigma(0) : 1.0);
+  int rank = 0;
+  while (rank < sigma.size() && sigma(rank) > tolerance)
+    ++rank;
+  return svd.matrixV().rightCols(C.cols() - rank);
+}
+
 // The kernel of a cluster as amplitudes of its parts' rigid-body modes.
 Eigen::MatrixXd cluster_kernel(const Model& model, const Subdomain& cluster) {
   const std::vector<SubdomainPart>& parts = cluster.parts;
@@ -148,13 +162,7 @@ Eigen::MatrixXd cluster_kernel(const Model& model, const Subdomain& cluster) {
   Eigen::MatrixXd C = Eigen::MatrixXd::Zero(std::max<size_t>(conditions.size(), 1), n);
   for (size_t r = 0; r < conditions.size(); ++r)
     C.row(static_cast<int>(r)) = conditions[r];
-  const Eigen::BDCSVD<Eigen::MatrixXd> svd(C, Eigen::ComputeFullV);
-  const Eigen::VectorXd& sigma = svd.singularValues();
-  const double tolerance = 1e-10 * (sigma.size() > 0 ? sigma(0) : 1.0);
-  int rank = 0;
-  while (rank < sigma.size() && sigma(rank) > tolerance)
-    ++rank;
-  return svd.matrixV().rightCols(n - rank);
+  return kernel_of(C);
 }
 
 }  // namespace
@@ -357,13 +365,7 @@ void hold_fixed(const Model& model, Subdomain& cluster) {
   Eigen::MatrixXd C(cluster.fixed.size(), cluster.mode_count);
   for (size_t f = 0; f < cluster.fixed.size(); ++f)
     C.row(static_cast<int>(f)) = R.row(cluster.fixed[f]);
-  const Eigen::BDCSVD<Eigen::MatrixXd> svd(C, Eigen::ComputeFullV);
-  const Eigen::VectorXd& sigma = svd.singularValues();
-  const double tolerance = 1e-10 * (sigma.size() > 0 ? sigma(0) : 1.0);
-  int rank = 0;
-  while (rank < sigma.size() && sigma(rank) > tolerance)
-    ++rank;
-  cluster.part_modes = cluster.part_modes * svd.matrixV().rightCols(cluster.mode_count - rank);
+  cluster.part_modes = cluster.part_modes * kernel_of(C);
   cluster.mode_count = static_cast<int>(cluster.part_modes.cols());
 }
 
