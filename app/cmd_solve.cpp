@@ -437,6 +437,7 @@ int write_outputs(const SolveArgs& args, const std::vector<solver::SweepStep>& s
     profile.iterations = steps.empty() ? 0 : steps.back().state.iteration;
     if (const auto* mprgp = dynamic_cast<const solver::Mprgp*>(setup.dual))
       profile.mprgp_steps = mprgp->counts();
+    profile.condition = setup.dual->condition_estimate();
     try {
       write_solve_profile(args.profile, ranks.processes(), profile);
     } catch (const OutputError& error) {

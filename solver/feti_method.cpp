@@ -239,6 +239,8 @@ FetiMethod::PcpgStep FetiMethod::pcpg_step(const Eigen::VectorXd& w, const std::
   coarse_.project(y);
   const double yw = space().dot(y, w);
   const double beta = restart || !(yw_previous > 0.0) ? 0.0 : yw / yw_previous;
+  if (iteration_ == 0) condition_.clear();
+  if (beta == 0.0) condition_.restart();
   p = restart ? y : Eigen::VectorXd(y + beta * p);
   system_.apply_F(p, q);
   const double pq = space().dot(p, q);
@@ -247,6 +249,7 @@ FetiMethod::PcpgStep FetiMethod::pcpg_step(const Eigen::VectorXd& w, const std::
     fail_breakdown(yw, pq);
     return {};
   }
+  condition_.add(yw / pq, beta);
   return {yw / pq, yw, true};
 }
 

@@ -65,6 +65,7 @@ class Mprgp final : public FetiMethod, private MprgpProblem {
     int cg = 0, expansion = 0, proportioning = 0, outer = 0;
   };
   Counts counts() const;
+  ConditionEstimate condition_estimate() const override { return inner_.condition().estimate(); }
 
  private:
   void begin(const Snapshot* warm) override;
