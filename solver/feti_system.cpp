@@ -232,6 +232,12 @@ void FetiSystem::solve_subdomains(const Eigen::VectorXd* lambda, double s,
     if (lambda)
       for (const Incidence& in : op.incidence)
         x(in.dof) += s * in.value * (*lambda)(in.row);
+    // K^+ 0 = 0: a subdomain the vector does not touch needs no solve (FETI-DP's contact
+    // coarse space applies F to columns that touch two clusters).
+    if (x.isZero(0.0)) {
+      y_.segment(dof_offsets_[i], sub.dof_count).setZero();
+      continue;
+    }
     op.K_plus.apply(x_.data() + dof_offsets_[i], y_.data() + dof_offsets_[i]);
   }
 }
