@@ -216,7 +216,11 @@ int refused_target(const SolveArgs& args, const RankPolicy& ranks) {
 
 // What the memory check counts for this solve (app/memory_estimate.hpp).
 MemoryUse memory_use(const SolveArgs& args) {
-  MemoryUse use{{args.method.kind()}, !args.outputs.json.empty(), 0, !args.outputs.vtu.empty()};
+  MemoryUse use{{args.method.kind()},
+                !args.outputs.json.empty(),
+                0,
+                !args.outputs.vtu.empty(),
+                args.method.single_factors};
   if (args.reference) use.methods.push_back(solver::MethodKind::ActiveSet);
   return use;
 }

@@ -13,6 +13,7 @@
 #include "solver/feti_system.hpp"
 #include "tests/support/random_frames.hpp"
 #include "tests/support/random_scenes.hpp"
+#include "tests/support/random_trials.hpp"
 #include "tests/support/solve_helpers.hpp"
 
 using namespace fetic;
@@ -51,7 +52,7 @@ int check_dp(const std::string& text, int trial, int cluster_size = -1) {
 TEST_CASE("FETI-DP agrees with CGAL on 100 random bar scenes") {
   std::mt19937 rng(2424);
   int active = 0;
-  for (int trial = 0; trial < 100; ++trial)
+  for (int trial = 0; trial < testing::random_trials(100); ++trial)
     active += check_dp(testing::random_bar_scene(rng), trial);
   CHECK(active > 0);
 }
@@ -59,7 +60,7 @@ TEST_CASE("FETI-DP agrees with CGAL on 100 random bar scenes") {
 TEST_CASE("FETI-DP agrees with CGAL on 100 random plane scenes") {
   std::mt19937 rng(2425);
   int active = 0;
-  for (int trial = 0; trial < 100; ++trial)
+  for (int trial = 0; trial < testing::random_trials(100); ++trial)
     active += check_dp(testing::random_plane_pairs(rng, 1 + trial % 2), trial);
   CHECK(active > 0);
 }
@@ -70,7 +71,7 @@ TEST_CASE("FETI-DP agrees with CGAL on 100 random frame scenes of four kinds") {
       testing::FrameKind::PostOnBeam, testing::FrameKind::ApexOnStop,
       testing::FrameKind::PortalOnStop, testing::FrameKind::FloatingBeam};
   int active = 0;
-  for (int trial = 0; trial < 100; ++trial)
+  for (int trial = 0; trial < testing::random_trials(100); ++trial)
     active += check_dp(testing::random_frame_scene(rng, kinds[trial % 4]), trial);
   CHECK(active > 0);
 }
