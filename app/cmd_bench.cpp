@@ -23,6 +23,7 @@
 #include "app/output_options.hpp"
 #include "app/scene_input.hpp"
 #include "scenes/scene_error.hpp"
+#include "solver/feti_method.hpp"
 #include "solver/load_sweep.hpp"
 #include "solver/method.hpp"
 
@@ -57,6 +58,7 @@ struct Measurement {
   bool converged = false;
   double setup_ms = 0.0, solve_ms = 0.0;
   int warm_iterations = -1, cold_iterations = -1;  // after a 5% load change
+  double kappa = 0.0;  // the dual methods' Lanczos estimate (solver/condition_estimate.hpp)
 };
 
 double milliseconds(std::chrono::steady_clock::duration d) {
@@ -114,6 +116,8 @@ Measurement measure(const solver::Model& model, const std::string& scene, const 
   m.iterations = method->iteration();
   if (!method->history().empty()) m.f_applications = method->history().back().f_applications;
   m.converged = method->status() == solver::Status::Converged;
+  if (const auto* dual = dynamic_cast<const solver::FetiMethod*>(method.get()))
+    m.kappa = dual->condition_estimate().kappa();
   if (m.converged && solver::handles_contact(variant.method)) {
     // A load step as fetic solve --load-steps takes it, and the same solve cold.
     m.warm_iterations = driver->solve(1.05).state.iteration;
@@ -215,11 +219,11 @@ int run_bench(const BenchArgs& args) {
     try {
       write_output(args.csv, [&](std::ostream& out) {
         out << "scene,method,unknowns,iterations,converged,setup_ms,solve_ms,warm_iterations,"
-               "cold_iterations,f_applications\n";
+               "cold_iterations,f_applications,kappa\n";
         for (const Measurement& m : rows)
           out << m.scene << ',' << m.variant << ',' << m.unknowns << ',' << m.iterations << ','
               << m.converged << ',' << m.setup_ms << ',' << m.solve_ms << ',' << m.warm_iterations
-              << ',' << m.cold_iterations << ',' << m.f_applications << '\n';
+              << ',' << m.cold_iterations << ',' << m.f_applications << ',' << m.kappa << '\n';
       });
     } catch (const OutputError& error) {
       return report_output_error(error);

@@ -216,7 +216,11 @@ int refused_target(const SolveArgs& args, const RankPolicy& ranks) {
 
 // What the memory check counts for this solve (app/memory_estimate.hpp).
 MemoryUse memory_use(const SolveArgs& args) {
-  MemoryUse use{{args.method.kind()}, !args.outputs.json.empty(), 0, !args.outputs.vtu.empty()};
+  MemoryUse use{{args.method.kind()},
+                !args.outputs.json.empty(),
+                0,
+                !args.outputs.vtu.empty(),
+                args.method.single_factors};
   if (args.reference) use.methods.push_back(solver::MethodKind::ActiveSet);
   return use;
 }
@@ -433,6 +437,7 @@ int write_outputs(const SolveArgs& args, const std::vector<solver::SweepStep>& s
     profile.iterations = steps.empty() ? 0 : steps.back().state.iteration;
     if (const auto* mprgp = dynamic_cast<const solver::Mprgp*>(setup.dual))
       profile.mprgp_steps = mprgp->counts();
+    profile.condition = setup.dual->condition_estimate();
     try {
       write_solve_profile(args.profile, ranks.processes(), profile);
     } catch (const OutputError& error) {

@@ -22,8 +22,11 @@ constexpr double kBase = 18e6;  // the program itself (and its libraries: MPI, C
 // (solver/compact_factor.hpp), B's rows, the coarse problem, dual vectors. The factor's
 // cost per estimated entry was refitted for them (docs/BENCHMARKS.md, "Lean factors"):
 // 5.2 bytes on 20x24-element subdomains (the fill estimate is about twice the true fill).
-constexpr double kFetiPerUnknown = 380, kFetiPerStrut = 4500, kFetiPerSubdomain = 5000,
-                 kFetiPerFactorEntry = 5.2, kFetiPerInterfaceRow = 2500;
+// Per unknown 200 bytes less since K_j's storage is really freed (solver/feti_system.cpp:
+// an Eigen matrix assigned an empty one kept its arrays; 1,014 -> 819 MB at 984,900).
+// Single precision factors (--single-factors) keep 6 of the 10 bytes an entry.
+constexpr double kFetiPerUnknown = 180, kFetiPerStrut = 4500, kFetiPerSubdomain = 5000,
+                 kFetiPerFactorEntry = 5.2, kFetiPerInterfaceRow = 2500, kSingleFactorShare = 0.6;
 // Active set: K factorized per strut, the contact rows solved against it (dense, per
 // strut), the working-set system (dense, up to every pair: twice, for the LU).
 constexpr double kActivePerUnknown = 320, kActivePerStrut = 3300, kActivePerFactorEntry = 5,
@@ -101,16 +104,17 @@ Counts count(const scenes::Scene& scene) {
   return c;
 }
 
-double method_bytes(const Counts& c, solver::MethodKind method) {
+double method_bytes(const Counts& c, solver::MethodKind method, bool single_factors) {
+  const double per_entry = kFetiPerFactorEntry * (single_factors ? kSingleFactorShare : 1.0);
   switch (method) {
     case solver::MethodKind::Feti:
     case solver::MethodKind::FetiC:
       return kBase + kFetiPerUnknown * c.unknowns + kFetiPerStrut * c.struts +
-             kFetiPerSubdomain * c.subdomains + kFetiPerFactorEntry * c.subdomain_fill +
+             kFetiPerSubdomain * c.subdomains + per_entry * c.subdomain_fill +
              kFetiPerInterfaceRow * c.interface_rows;
     case solver::MethodKind::Mprgp:
     case solver::MethodKind::FetiDp:
-      return method_bytes(c, solver::MethodKind::FetiC) +
+      return method_bytes(c, solver::MethodKind::FetiC, single_factors) +
              kFaceProjectorPerMode * kModesPerSubdomain * c.subdomains;
     case solver::MethodKind::ActiveSet:
       return kBase + kActivePerUnknown * c.unknowns + kActivePerStrut * c.struts +
@@ -178,7 +182,7 @@ MemoryEstimate estimate_memory(const scenes::Scene& scene, const MemoryUse& use)
   const Counts c = count(scene);
   MemoryEstimate estimate;
   for (const solver::MethodKind method : use.methods) {
-    const double bytes = method_bytes(c, method);
+    const double bytes = method_bytes(c, method, use.single_factors);
     if (bytes > estimate.bytes) {
       estimate.bytes = bytes;
       estimate.largest = solver::to_string(method);

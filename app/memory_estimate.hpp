@@ -24,6 +24,7 @@ struct MemoryUse {
   bool result_file = false;                 // the result JSON of every node
   int kept_iterates = 0;                    // snapshots held at once (the gui keeps a solve's)
   bool paraview = false;                    // --vtu: ParaView files of every node
+  bool single_factors = false;              // --single-factors: 6 bytes a factor entry, not 10
 };
 
 struct MemoryEstimate {

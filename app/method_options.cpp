@@ -17,6 +17,7 @@ solver::SolveOptions MethodArgs::options() const {
   options.max_iterations = max_iterations;
   options.preconditioner = *solver::parse_preconditioner(preconditioner);
   options.scaling = !no_scaling;
+  options.single_factors = single_factors;
   options.corner_clusters = clusters;
   return options;
 }
@@ -135,6 +136,8 @@ void add_method_options(CLI::App* command, MethodArgs& args) {
   });
   command->add_flag("--no-scaling", args.no_scaling,
                     "FETI preconditioners without stiffness scaling");
+  command->add_flag("--single-factors", args.single_factors,
+                    "Dual methods: subdomain factors' entries kept as floats (less memory)");
   // A relative tolerance of 1 or more lets the first iterate pass as converged.
   command->add_option("--tol", args.tolerance, "Relative tolerance, 0 < T < 1")
       ->check(number_in(0.0, 1.0, Bound::Open, Bound::Open))

@@ -17,6 +17,7 @@ struct MethodArgs {
   std::string method = "feti-c";
   std::string preconditioner = "dirichlet";
   bool no_scaling = false;
+  bool single_factors = false;  // --single-factors
   int clusters = 0;  // feti-dp: clusters of about N subdomains (0: as large as corners join)
   double tolerance = 1e-10;
   int max_iterations = 0;

@@ -121,6 +121,11 @@ void write_solve_profile(const std::string& path, const solver::Communicator& pr
                               {"expansion", run.mprgp_steps->expansion},
                               {"proportioning", run.mprgp_steps->proportioning},
                               {"outer", run.mprgp_steps->outer}};
+  if (run.condition.steps > 0)
+    profile["condition_estimate"] = {{"cg_steps", run.condition.steps},
+                                     {"lambda_min", run.condition.lambda_min},
+                                     {"lambda_max", run.condition.lambda_max},
+                                     {"kappa", run.condition.kappa()}};
   nlohmann::json list = nlohmann::json::array();
   const size_t fields = mine.size();
   for (int q = 0; q < processes.size(); ++q) {

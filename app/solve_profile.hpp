@@ -23,6 +23,8 @@ struct ProfileRun {
   double estimated_peak_bytes = 0.0;  // the memory check's estimate (memory_estimate.hpp)
   // MPRGP's steps in the last solve (the same on every process).
   std::optional<solver::Mprgp::Counts> mprgp_steps;
+  // Lanczos estimate of the preconditioned dual operator's condition (the last solve).
+  solver::ConditionEstimate condition;
 };
 
 // Collective. Rank 0 writes `path` (throws OutputError when it cannot).

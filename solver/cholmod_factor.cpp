@@ -195,9 +195,29 @@ void add_supernodal_column(const cholmod_factor* L, int s, int j, CompactFactor&
   }
 }
 
+// Nonzeros below the diagonal of a supernodal factor: the compact copy's exact size, so
+// that it is allocated once (reserving the padded size and shrinking after copied every
+// factor once more and left the larger blocks free between long-lived ones).
+std::size_t supernodal_nonzeros(const cholmod_factor* L) {
+  const int* super = static_cast<const int*>(L->super);
+  const int* pi = static_cast<const int*>(L->pi);
+  const int* px = static_cast<const int*>(L->px);
+  const double* lx = static_cast<const double*>(L->x);
+  std::size_t count = 0;
+  for (int s = 0; s < static_cast<int>(L->nsuper); ++s) {
+    const int rows = pi[s + 1] - pi[s];
+    for (int jj = 0; jj < super[s + 1] - super[s]; ++jj) {
+      const double* column = lx + px[s] + static_cast<std::size_t>(jj) * rows;
+      for (int r = jj + 1; r < rows; ++r)
+        count += column[r] != 0.0;
+    }
+  }
+  return count;
+}
+
 }  // namespace
 
-bool CholmodFactor::compact() {
+bool CholmodFactor::compact(bool single) {
   if (compact_) return true;
   if (!impl_) return false;
   cholmod_factor* L = impl_->factor;
@@ -208,8 +228,8 @@ bool CholmodFactor::compact() {
     if (c.status == CHOLMOD_OUT_OF_MEMORY) throw std::bad_alloc();
     return false;
   }
-  const std::size_t hint = L->is_super ? L->xsize : L->nzmax;
-  auto out = std::make_unique<CompactFactor>(size_, static_cast<const int*>(L->Perm), hint);
+  const std::size_t hint = L->is_super ? supernodal_nonzeros(L) : L->nzmax;
+  auto out = std::make_unique<CompactFactor>(size_, static_cast<const int*>(L->Perm), hint, single);
   if (L->is_super) {
     const int* super = static_cast<const int*>(L->super);
     for (int s = 0; s < static_cast<int>(L->nsuper); ++s)

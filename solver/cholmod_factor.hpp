@@ -39,7 +39,8 @@ class CholmodFactor {
   // nonzeros alone, 10 bytes each, and faster solves for small factors). Afterwards only
   // solve() and the queries work; refactorize() and update() throw.
   // Returns false (and keeps CHOLMOD's factor) when the order is too large for it.
-  bool compact();
+  // `single`: L's entries below the diagonal kept as floats (CompactFactor).
+  bool compact(bool single = false);
   bool compacted() const { return compact_ != nullptr; }
   // Column where factorization broke down (valid after NotPositiveDefinite).
   int failed_column() const { return failed_column_; }

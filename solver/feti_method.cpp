@@ -13,7 +13,7 @@ FetiMethod::FetiMethod(const Model& model, const SolveOptions& options, int defa
     : Method(model, options, default_max_iterations),
       system_(model, communicator,
               options.preconditioner == Preconditioner::Dirichlet && options.shared_interior_factor,
-              options.corner_clusters),
+              options.corner_clusters, options.single_factors),
       preconditioner_(system_, options.preconditioner, options.scaling),
       coarse_(system_),
       Gt_(system_.G().transpose()) {
@@ -274,6 +274,8 @@ FetiMethod::PcpgStep FetiMethod::pcpg_step(const Eigen::VectorXd& w, const std::
   coarse_.project(y);
   const double yw = space().dot(y, w);
   const double beta = restart || !(yw_previous > 0.0) ? 0.0 : yw / yw_previous;
+  if (iteration_ == 0) condition_.clear();
+  if (beta == 0.0) condition_.restart();
   p = restart ? y : Eigen::VectorXd(y + beta * p);
   system_.apply_F(p, q);
   const double pq = space().dot(p, q);
@@ -282,6 +284,7 @@ FetiMethod::PcpgStep FetiMethod::pcpg_step(const Eigen::VectorXd& w, const std::
     fail_breakdown(yw, pq);
     return {};
   }
+  condition_.add(yw / pq, beta);
   return {yw / pq, yw, true};
 }
 

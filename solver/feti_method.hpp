@@ -10,6 +10,7 @@
 #include <Eigen/Core>
 
 #include "solver/coarse_problem.hpp"
+#include "solver/condition_estimate.hpp"
 #include "solver/feti_preconditioner.hpp"
 #include "solver/feti_system.hpp"
 #include "solver/method.hpp"
@@ -44,6 +45,9 @@ struct ProcessProfile {
 class FetiMethod : public Method {
  public:
   ProcessProfile profile() const;
+  // The condition number of the preconditioned dual operator, from the coefficients of the
+  // longest run of CG steps in the last solve (the same on every process).
+  virtual ConditionEstimate condition_estimate() const { return condition_.estimate(); }
   // This process' part of the state: its subdomains' pieces, the forces of the contact
   // pairs whose rows it holds, the working set of all pairs, its local multipliers.
   Snapshot snapshot() const override;
@@ -102,6 +106,7 @@ class FetiMethod : public Method {
   double best_residual_ = 0.0;
   int best_iteration_ = 0;
 
+  ConditionRecord condition_;  // pcpg_step's coefficients
   FetiSystem system_;
   FetiPreconditioner preconditioner_;
   CoarseProblem coarse_;

@@ -57,7 +57,7 @@ auto timed(double& seconds, Build build) {
 }  // namespace
 
 FetiSystem::FetiSystem(const Model& model, const Communicator& communicator, bool interior_first,
-                       int corner_clusters)
+                       int corner_clusters, bool single_factors)
     : model_(model),
       decomposition_(timed(setup_times_.decomposition,
                            [&] { return decomposition_for(model, corner_clusters); })),
@@ -66,7 +66,7 @@ FetiSystem::FetiSystem(const Model& model, const Communicator& communicator, boo
   build_incidence();
   {
     Stopwatch watch(setup_times_.factorization);
-    factorize_subdomains(interior_first);
+    factorize_subdomains(interior_first, single_factors);
   }
   Stopwatch watch(setup_times_.coarse_space);
   c_ = Eigen::VectorXd::Zero(space_.rows());
@@ -117,7 +117,7 @@ void FetiSystem::build_incidence() {
   y_.resize(dofs);
 }
 
-void FetiSystem::factorize_subdomains(bool interior_first) {
+void FetiSystem::factorize_subdomains(bool interior_first, bool single_factors) {
   const Decomposition& d = decomposition_;
   const int count = static_cast<int>(subdomains_.size());
   std::vector<CholmodFactor::Result> results(count, CholmodFactor::Result::Ok);
@@ -130,8 +130,12 @@ void FetiSystem::factorize_subdomains(bool interior_first) {
     if (stop_requested()) continue;  // Ctrl-C: skip the rest (no throw inside OpenMP)
     SubdomainOperator& op = subdomains_[i];
     const Subdomain& sub = d.subdomains[op.index];
-    op.K = subdomain_stiffness(model_, sub);
+    // swap, not assign: Eigen's SparseMatrix assignment copies into the target's storage
+    // and keeps its capacity, so an assigned-over K_j kept every byte it ever had.
+    SparseMatrix K = subdomain_stiffness(model_, sub);
+    op.K.swap(K);
     op.R = subdomain_modes(model_, sub);
+    op.K_plus.use_single_precision(single_factors);
     // Not for FETI-DP's clusters: their boundary (every torn interface DOF of the
     // cluster's boxes, coupled through the corners) would be one dense trailing block.
     if (interior_first && sub.parts.empty()) {
@@ -144,7 +148,10 @@ void FetiSystem::factorize_subdomains(bool interior_first) {
       // The preconditioner reads only K_j's boundary columns (K_bb, K_ib and the
       // diagonal at B's DOFs) when K_j's factor solves with K_ii: the rest goes now, not
       // after every subdomain is factorized (K_j is about a quarter of the factor).
-      if (op.K_plus.has_interior_solve()) op.K = boundary_columns(op.K, boundary);
+      if (op.K_plus.has_interior_solve()) {
+        SparseMatrix cut = boundary_columns(op.K, boundary);
+        op.K.swap(cut);
+      }
     } else {
       results[i] = op.K_plus.factorize(op.K, op.R);
     }
@@ -233,6 +240,12 @@ void FetiSystem::solve_subdomains(const Eigen::VectorXd* lambda, double s,
     if (lambda)
       for (const Incidence& in : op.incidence)
         x(in.dof) += s * in.value * (*lambda)(in.row);
+    // K^+ 0 = 0: a subdomain the vector does not touch needs no solve (FETI-DP's contact
+    // coarse space applies F to columns that touch two clusters).
+    if (x.isZero(0.0)) {
+      y_.segment(dof_offsets_[i], sub.dof_count).setZero();
+      continue;
+    }
     op.K_plus.apply(x_.data() + dof_offsets_[i], y_.data() + dof_offsets_[i]);
   }
 }
@@ -427,8 +440,10 @@ void FetiSystem::project_onto_range_of_B(Eigen::VectorXd& v) const {
 }
 
 void FetiSystem::release_stiffness() {
-  for (SubdomainOperator& op : subdomains_)
-    op.K = SparseMatrix();
+  for (SubdomainOperator& op : subdomains_) {
+    SparseMatrix empty;  // swapped in: assigning an empty matrix would keep K_j's storage
+    op.K.swap(empty);
+  }
 }
 
 LocalMemory FetiSystem::memory() const {

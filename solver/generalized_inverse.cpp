@@ -58,7 +58,7 @@ CholmodFactor::Result GeneralizedInverse::factorize(const SparseMatrix& K,
   K_ii.setFromTriplets(entries.begin(), entries.end());
   // A singular K_ii leaves has_interior_solve() false: the preconditioner reports it.
   if (interior_factor_.factorize(K_ii) == CholmodFactor::Result::Ok)
-    interior_factor_.compact();
+    interior_factor_.compact(single_);
   else
     interior_factor_ = CholmodFactor();
   return result;
@@ -90,7 +90,7 @@ CholmodFactor::Result GeneralizedInverse::factorize_kept(const SparseMatrix& K) 
 
 CholmodFactor::Result GeneralizedInverse::compacted(CholmodFactor::Result result) {
   // K^+ is only ever solved with: the lean copy holds the factor from here on.
-  if (result == CholmodFactor::Result::Ok) factor_.compact();
+  if (result == CholmodFactor::Result::Ok) factor_.compact(single_);
   return result;
 }
 

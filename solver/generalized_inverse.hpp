@@ -23,6 +23,9 @@ class GeneralizedInverse {
   // is no interior or K_ii is singular.
   CholmodFactor::Result factorize(const SparseMatrix& K, const Eigen::MatrixXd& kernel,
                                   const std::vector<int>& boundary);
+  // Keep the factors' entries below the diagonal as floats (CompactFactor), for the
+  // factorizations after this call.
+  void use_single_precision(bool single) { single_ = single; }
   bool has_interior_solve() const { return interior_factor_.size() > 0; }
   // y = K_ii^-1 x over the interior DOFs (those not in the boundary, in increasing order).
   void interior_solve(const double* x, double* y) const;
@@ -52,6 +55,7 @@ class GeneralizedInverse {
   CholmodFactor::Result compacted(CholmodFactor::Result result);
   CholmodFactor factor_;
   CholmodFactor interior_factor_;  // K_ii's (empty unless asked for)
+  bool single_ = false;
 };
 
 // DOFs (rows of `kernel`) whose rows form the best-conditioned square block of the

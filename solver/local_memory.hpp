@@ -26,9 +26,10 @@ struct LocalMemory {
   }
 };
 
-// Bytes of a compressed sparse matrix's arrays.
+// Bytes of a compressed sparse matrix's arrays, as allocated (an Eigen matrix assigned a
+// smaller one keeps its storage).
 inline double sparse_bytes(const SparseMatrix& A) {
-  return static_cast<double>(A.nonZeros()) * (sizeof(double) + sizeof(int)) +
+  return static_cast<double>(A.data().allocatedSize()) * (sizeof(double) + sizeof(int)) +
          (static_cast<double>(A.outerSize()) + 1.0) * sizeof(int);
 }
 

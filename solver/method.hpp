@@ -49,6 +49,11 @@ struct SolveOptions {
   // to its boundary columns at once; off: the preconditioner factorizes K_ii from the
   // whole K_j, kept until then (only to measure the difference: fetic-bench-scale).
   bool shared_interior_factor = true;
+  // The subdomain factors' entries below the diagonal kept as floats (half the bytes of
+  // the factors' values; the diagonal and the arithmetic stay double). The local solves
+  // are then exact for K_j + E_j, |E_j| about 6e-8 |L_j||L_j'|: an option, since it moves
+  // the answer by about that much times K_j's condition number (docs/BENCHMARKS.md).
+  bool single_factors = false;
 };
 
 // A problem found while setting a method up (singular strut, unsupported scene, ...).

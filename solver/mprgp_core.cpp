@@ -14,6 +14,7 @@ void MprgpCore::place(const Eigen::VectorXd& b, const Eigen::VectorXd& lower,
   c_.setZero(rows);
   qx_.setZero(rows);
   steps_ = {};
+  condition_.clear();
 }
 
 void MprgpCore::start() {
@@ -64,6 +65,8 @@ void MprgpCore::step_to_bound(double a, const Eigen::VectorXd& p) {
 
 void MprgpCore::restart() {
   face_steps_ = 0;
+  condition_.restart();
+  beta_ = 0.0;
   split_gradient();
   problem_.precondition(g_free_, free_, z_);
   p_ = z_;
@@ -113,6 +116,7 @@ std::optional<MprgpCore::Breakdown> MprgpCore::conjugate_gradient_or_expansion()
   if (a_cg <= a_feasible) {
     ++steps_.cg;
     ++face_steps_;
+    condition_.add(a_cg, beta_);
     x_ -= a_cg * p_;
     g_ -= a_cg * Ap;
     ftx_ -= a_cg * ftp;
@@ -121,6 +125,7 @@ std::optional<MprgpCore::Breakdown> MprgpCore::conjugate_gradient_or_expansion()
     problem_.precondition(g_free_, free_, z_);
     const double beta = space().dot(z_, Ap) / pAp;
     p_ = z_ - beta * p_;
+    beta_ = -beta;
     return std::nullopt;
   }
   expand(a_cg, a_feasible, Ap);

@@ -17,6 +17,7 @@
 
 #include <Eigen/Core>
 
+#include "solver/condition_estimate.hpp"
 #include "solver/dual_space.hpp"
 
 namespace fetic::solver {
@@ -95,6 +96,8 @@ class MprgpCore {
   const Eigen::VectorXd& qx() const { return qx_; }    // Q_C x
   const std::vector<char>& free() const { return free_; }
   const Steps& steps() const { return steps_; }
+  // The CG steps' coefficients since place(), run by run (a restart starts a run).
+  const ConditionRecord& condition() const { return condition_; }
 
  private:
   const DualSpace& space() const { return problem_.dual_space(); }
@@ -115,6 +118,8 @@ class MprgpCore {
   std::vector<char> free_;
   Eigen::VectorXd g_free_, g_chopped_, g_reduced_;
   Steps steps_;
+  ConditionRecord condition_;
+  double beta_ = 0.0;   // the last direction update, as p = z + beta p (ConditionRecord's sign)
   int face_steps_ = 0;  // CG steps since the direction was last restarted
 };
 

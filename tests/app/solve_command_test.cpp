@@ -248,6 +248,14 @@ TEST_CASE("solve --profile: per process counts, and MPRGP's iterations by step k
     // The subdomains' DOFs: the scene's 340 plus a copy of every interface node's.
     CHECK(process["unknowns"].get<double>() > 340.0);
     CHECK(process["f_applications"].get<double>() >= profile["iterations"].get<double>());
+    // The Lanczos estimate of the longest CG run: Ritz values of an SPD operator.
+    const nlohmann::json& condition = profile["condition_estimate"];
+    CHECK(condition["cg_steps"].get<int>() > 0);
+    CHECK(condition["cg_steps"].get<int>() <= profile["iterations"].get<int>());
+    CHECK(condition["lambda_min"].get<double>() > 0.0);
+    CHECK(condition["kappa"].get<double>() >= 1.0);
+    CHECK(condition["kappa"].get<double>() ==
+          Approx(condition["lambda_max"].get<double>() / condition["lambda_min"].get<double>()));
     if (method == "feti-c") {
       CHECK(!profile.contains("mprgp_steps"));
     } else {

@@ -9,6 +9,7 @@
 
 #include "solver/feti_c.hpp"
 #include "tests/support/random_scenes.hpp"
+#include "tests/support/random_trials.hpp"
 #include "tests/support/scene_toml.hpp"
 #include "tests/support/solve_helpers.hpp"
 
@@ -33,7 +34,7 @@ TEST_CASE(
     "scenes") {
   std::mt19937 rng(97);
   int active = 0, floating = 0;
-  for (int trial = 0; trial < 250; ++trial) {
+  for (int trial = 0; trial < testing::random_trials(250); ++trial) {
     const std::string text = testing::random_bar_scene(rng);
     const double load_factor = std::uniform_real_distribution<double>(0.2, 1.5)(rng);
     const Preconditioner preconditioner = std::array{

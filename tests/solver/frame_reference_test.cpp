@@ -9,6 +9,7 @@
 #include <random>
 
 #include "tests/support/random_frames.hpp"
+#include "tests/support/random_trials.hpp"
 #include "tests/support/solve_helpers.hpp"
 
 using namespace fetic;
@@ -46,7 +47,7 @@ TEST_CASE("frame: active set and FETI-C agree with CGAL on 120 random frame scen
                                                     solver::Preconditioner::Lumped,
                                                     solver::Preconditioner::None};
   int contacts = 0, active = 0;
-  for (int trial = 0; trial < 120; ++trial) {
+  for (int trial = 0; trial < testing::random_trials(120); ++trial) {
     const std::string text = testing::random_frame_scene(rng, kinds[trial % 4]);
     INFO("trial " << trial << "\n" << text);
     const scenes::Scene scene = scenes::parse_scene(text, "random_frame.toml");

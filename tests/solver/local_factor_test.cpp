@@ -78,6 +78,30 @@ TEST_CASE("A compacted factor solves as CHOLMOD's factor did, in fewer bytes") {
   }
 }
 
+TEST_CASE("A factor kept in single precision solves A to its rounding, in 40% fewer bytes") {
+  const solver::SparseMatrix A = grid_matrix(40, 30);  // supernodal, condition about 800
+  const int n = static_cast<int>(A.rows());
+  solver::CholmodFactor full, single;
+  REQUIRE(full.factorize(A) == solver::CholmodFactor::Result::Ok);
+  REQUIRE(single.factorize(A) == solver::CholmodFactor::Result::Ok);
+  REQUIRE(full.compact());
+  REQUIRE(single.compact(true));
+  std::mt19937 random(11);
+  std::uniform_real_distribution<double> value(-1.0, 1.0);
+  Eigen::VectorXd b(n), x_full(n), x_single(n);
+  for (int k = 0; k < n; ++k)
+    b(k) = value(random);
+  full.solve(b.data(), x_full.data());
+  single.solve(b.data(), x_single.data());
+  // Exact for A + E, |E| ~ 6e-8 |L||L'|: the residual is that size, not double's 1e-16.
+  const double residual = (A * x_single - b).norm() / b.norm();
+  CHECK(residual <= 1e-6);
+  CHECK(residual > 1e-12);  // the entries really are floats
+  CHECK((x_single - x_full).norm() <= 1e-5 * x_full.norm());
+  CHECK(static_cast<double>(single.memory_in_use()) <= 0.7 * full.memory_in_use());
+  CHECK(single.factor_nonzeros() == full.factor_nonzeros());
+}
+
 TEST_CASE("The Dirichlet preconditioner through K_j's factor equals it with its own K_ii") {
   const scenes::Scene scene = small_plane();
   const solver::Model model = solver::build_model(scene);
@@ -119,4 +143,36 @@ TEST_CASE("MPRGP with one factor per subdomain reaches the solution of two facto
     }
   CHECK(largest > 0.0);
   CHECK(difference <= 1e-6 * largest);
+}
+
+TEST_CASE("MPRGP with single precision factors reaches the double factors' solution") {
+  std::vector<std::pair<std::string, scenes::Scene>> scenes_to_check = {
+      {"generated plane", small_plane()}};
+  for (const char* name : {"thesis.toml", "plane_pair.toml", "two_bars.toml", "chain.toml",
+                           "cantilevers.toml", "frame_scaffold.toml"})
+    scenes_to_check.emplace_back(name, testing::bundled_scene(name));
+  for (const auto& [name, scene] : scenes_to_check) {
+    CAPTURE(name);
+    solver::SolveOptions double_factors, single_factors;
+    single_factors.single_factors = true;
+    const auto a = testing::solve(scene, solver::MethodKind::Mprgp, 1.0, double_factors);
+    const auto b = testing::solve(scene, solver::MethodKind::Mprgp, 1.0, single_factors);
+    REQUIRE(a->method->status() == solver::Status::Converged);
+    REQUIRE(b->method->status() == solver::Status::Converged);
+    const auto ua = solver::strut_displacements(a->model, a->state);
+    const auto ub = solver::strut_displacements(b->model, b->state);
+    double largest = 0.0, difference = 0.0;
+    for (size_t s = 0; s < ua.size(); ++s)
+      for (size_t k = 0; k < ua[s].size(); ++k) {
+        largest = std::max(largest, ua[s][k].norm());
+        difference = std::max(difference, (ua[s][k] - ub[s][k]).norm());
+      }
+    const int it_a = a->method->iteration(), it_b = b->method->iteration();
+    CAPTURE(largest, difference, it_a, it_b);
+    CHECK(largest > 0.0);
+    CHECK(difference <= 1e-6 * largest);
+    CHECK(std::abs(it_a - it_b) <= 1 + it_a / 10);
+    WARN("single factors: " << name << " difference " << difference / largest << " iterations "
+                            << it_a << " / " << it_b);
+  }
 }
