@@ -225,6 +225,7 @@ void FetiSystem::build_redundant_groups() {
 void FetiSystem::solve_subdomains(const Eigen::VectorXd* lambda, double s,
                                   double load_factor) const {
   Stopwatch watch(times_.local_solves);
+  ++subdomain_passes_;
   const Decomposition& d = decomposition_;
   const int count = static_cast<int>(subdomains_.size());
 #pragma omp parallel for schedule(dynamic, 4) num_threads(threads_for(x_.size()))
