@@ -127,9 +127,15 @@ std::string write_all(int fd, const char* data, size_t size, bool& interrupted_o
       }
       continue;
     }
-    if (n < 0 && (errno == EAGAIN || errno == EWOULDBLOCK)) {  // a non-blocking stdout
+    if (n < 0 && (errno == EAGAIN || errno == EWOULDBLOCK)) {  // a FIFO, a non-blocking stdout
+      // Waits for room a tenth of a second at a time, asking for a stop in between (under
+      // MPI that also takes in another process' stop notice).
       pollfd wait{fd, POLLOUT, 0};
-      ::poll(&wait, 1, 1000);
+      ::poll(&wait, 1, 100);
+      if (interrupted()) {
+        interrupted_out = true;
+        return std::string("interrupted by ") + interrupt_name();
+      }
       continue;
     }
     return n == 0 ? "the device accepted no more bytes" : reason(errno);
@@ -170,16 +176,28 @@ class FdBuffer : public std::streambuf {
   bool interrupted_ = false;
 };
 
-// Opens a device or FIFO for writing; waits for a FIFO's reader unless a signal ends it.
+// Opens a device or FIFO for writing. A FIFO is opened without blocking - which fails
+// (ENXIO) while it has no reader - and tried again every 50 ms until a reader comes or a
+// stop is asked for (a signal, or under MPI another process' stop notice, which a blocking
+// open could never take in). The FIFO stays non-blocking: write_all waits for room the
+// same way. A device gets its blocking writes back.
 int open_stream(const Target& target, const std::string& given) {
   while (true) {
-    const int fd = ::open(target.path.c_str(), O_WRONLY | O_NOCTTY | O_CLOEXEC);
-    if (fd >= 0) return fd;
-    if (errno == EINTR && interrupted())
+    const int fd = ::open(target.path.c_str(), O_WRONLY | O_NOCTTY | O_CLOEXEC | O_NONBLOCK);
+    if (fd >= 0) {
+      struct stat info {};
+      if (::fstat(fd, &info) == 0 && !S_ISFIFO(info.st_mode))
+        (void)::fcntl(fd, F_SETFL, ::fcntl(fd, F_GETFL) & ~O_NONBLOCK);
+      return fd;
+    }
+    const int error = errno;
+    if (error != ENXIO && error != EINTR)
+      throw OutputError(shown(given) + ": cannot open (" + reason(error) + ")");
+    if (interrupted())
       throw OutputError(shown(given) + ": interrupted by " + interrupt_name() +
                             " while waiting to open it (a FIFO without a reader?)",
                         true);
-    if (errno != EINTR) throw OutputError(shown(given) + ": cannot open (" + reason(errno) + ")");
+    if (error == ENXIO) ::poll(nullptr, 0, 50);
   }
 }
 

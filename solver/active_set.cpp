@@ -387,13 +387,7 @@ std::vector<char> ActiveSet::working_set() const {
 }
 
 Snapshot ActiveSet::snapshot() const {
-  Snapshot s;
-  s.method = MethodKind::ActiveSet;
-  s.iteration = iteration_;
-  s.status = status();
-  s.message = message();
-  s.load_factor = load_factor_;
-  s.residual = history().empty() ? 0.0 : history().back().residual;
+  Snapshot s = snapshot_header();
   const int m = static_cast<int>(model_.pairs.size());
   s.in_working_set.assign(m, 0);
   s.force.assign(m, 0.0);

@@ -55,7 +55,6 @@ class FetiC final : public FetiMethod {
   std::vector<char> face_;    // A: rows of the current step
   std::vector<char> previous_face_;
   Eigen::VectorXd w_hat_, p_, q_;
-  SparseMatrix Gt_;            // G' (local rows x modes): a column per mode
   std::vector<double> along_;  // hold_loaded_groups' scratch
   double yw_previous_ = 0.0;
   bool restart_ = true;

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
+#include <vector>
 
 namespace fetic::solver {
 
@@ -13,9 +15,34 @@ FetiMethod::FetiMethod(const Model& model, const SolveOptions& options, int defa
               options.preconditioner == Preconditioner::Dirichlet && options.shared_interior_factor,
               options.corner_clusters, options.single_factors),
       preconditioner_(system_, options.preconditioner, options.scaling),
-      coarse_(system_) {
+      coarse_(system_),
+      Gt_(system_.G().transpose()) {
   system_.release_stiffness();
 }
+
+namespace {
+
+// (G'z)_k on the rows that the modes of `direction` reach, as (row, rate) in increasing row
+// order; `along` is zero on entry and on return. Accumulated mode by mode in increasing
+// mode order, as the dense product G' z adds them.
+void reached_rows(const SparseMatrix& Gt, const Eigen::SparseVector<double>& direction,
+                  std::vector<double>& along, std::vector<std::pair<int, double>>& out) {
+  std::vector<int> reached;
+  for (Eigen::SparseVector<double>::InnerIterator mode(direction); mode; ++mode)
+    for (SparseMatrix::InnerIterator row(Gt, mode.index()); row; ++row) {
+      if (along[static_cast<size_t>(row.index())] == 0.0) reached.push_back(row.index());
+      along[static_cast<size_t>(row.index())] += row.value() * mode.value();
+    }
+  std::sort(reached.begin(), reached.end());
+  reached.erase(std::unique(reached.begin(), reached.end()), reached.end());
+  out.clear();
+  for (int k : reached) {
+    out.emplace_back(k, along[static_cast<size_t>(k)]);
+    along[static_cast<size_t>(k)] = 0.0;
+  }
+}
+
+}  // namespace
 
 Eigen::VectorXd FetiMethod::rigid_amplitudes() const {
   // alpha = (G^G^')^+ G^ (F lambda - d) = -(G^G^')^+ G^ r.
@@ -25,28 +52,34 @@ Eigen::VectorXd FetiMethod::rigid_amplitudes() const {
   // A group the active rows leave free carries no load (else lambda would not balance
   // it): any translation that keeps its gaps open is a solution. Choose the one that
   // moves it least, i.e. keep it where it is unless a neighbour pushes it.
+  // Linear in the groups: the displacements and B u are made once; moving a group by s
+  // along z moves only its own subdomains (u += s R z there) and changes B u only on the
+  // rows its modes reach (by s G'z), so each group costs its own rows and DOFs.
   const Decomposition& d = system_.decomposition();
   const DualSpace& space = system_.space();
+  const Eigen::VectorXd u = system_.subdomain_displacements(lambda_, alpha, load_factor_);
+  Eigen::VectorXd Bu;
+  system_.apply_B(u, Bu);
+  std::vector<double> along_rows(static_cast<size_t>(space.rows()), 0.0);
+  std::vector<std::pair<int, double>> rate;  // (row, (G'z)_row) on the rows reached
   for (const UnheldGroup& group : coarse_.unheld()) {
-    const Eigen::VectorXd u = system_.subdomain_displacements(lambda_, alpha, load_factor_);
-    Eigen::VectorXd Bu;
-    system_.apply_B(u, Bu);
-    // Gap of every row under the current placement, and its rate of change per unit
-    // translation s of the group along its direction z: gap(s) = gap(0) - s (G'z)_k.
-    const Eigen::VectorXd rate = system_.G().transpose() * Eigen::VectorXd(group.direction);
+    // Gap of every row the group reaches under the current placement, and its rate of
+    // change per unit translation s along z: gap(s) = gap(0) - s (G'z)_k.
+    reached_rows(Gt_, group.direction, along_rows, rate);
     double low = -std::numeric_limits<double>::infinity();
     double high = std::numeric_limits<double>::infinity();
-    for (int r = space.first_contact(); r < space.rows(); ++r) {
-      if (rate(r) == 0.0) continue;
+    for (const auto& [r, g] : rate) {
+      if (r < space.first_contact() || g == 0.0) continue;
       const double gap = std::max(0.0, system_.rhs()(r) - Bu(r));
-      if (rate(r) > 0.0)
-        high = std::min(high, gap / rate(r));
+      if (g > 0.0)
+        high = std::min(high, gap / g);
       else
-        low = std::max(low, gap / rate(r));
+        low = std::max(low, gap / g);
     }
     low = space.max(low);
     high = -space.max(-high);
-    // Displacement of the group per unit s, and the s that minimizes its norm.
+    // Displacement of the group per unit s, and the s that minimizes its norm (u is not
+    // updated: no later group reads this group's DOFs).
     ExactSum sums[2];  // along, size: exact, so alike for any number of processes
     for (int j : group.subdomains) {
       const int i = system_.own_index(j);
@@ -64,6 +97,8 @@ Eigen::VectorXd FetiMethod::rigid_amplitudes() const {
     const double along = sums[0].value(), size = sums[1].value();
     const double s = size > 0.0 ? std::clamp(-along / size, std::min(low, high), high) : 0.0;
     alpha += s * group.direction;
+    for (const auto& [r, g] : rate)
+      Bu(r) += s * g;
   }
   return alpha;
 }

@@ -110,6 +110,7 @@ class FetiMethod : public Method {
   FetiSystem system_;
   FetiPreconditioner preconditioner_;
   CoarseProblem coarse_;
+  SparseMatrix Gt_;  // G' (local rows x modes): a column per mode, the rows it reaches
   Eigen::VectorXd d_;
   Eigen::VectorXd e_;
   double scale_ = 0.0;

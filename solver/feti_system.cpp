@@ -225,6 +225,7 @@ void FetiSystem::build_redundant_groups() {
 void FetiSystem::solve_subdomains(const Eigen::VectorXd* lambda, double s,
                                   double load_factor) const {
   Stopwatch watch(times_.local_solves);
+  ++subdomain_passes_;
   const Decomposition& d = decomposition_;
   const int count = static_cast<int>(subdomains_.size());
 #pragma omp parallel for schedule(dynamic, 4) num_threads(threads_for(x_.size()))
@@ -239,6 +240,12 @@ void FetiSystem::solve_subdomains(const Eigen::VectorXd* lambda, double s,
     if (lambda)
       for (const Incidence& in : op.incidence)
         x(in.dof) += s * in.value * (*lambda)(in.row);
+    // K^+ 0 = 0: a subdomain the vector does not touch needs no solve (FETI-DP's contact
+    // coarse space applies F to columns that touch two clusters).
+    if (x.isZero(0.0)) {
+      y_.segment(dof_offsets_[i], sub.dof_count).setZero();
+      continue;
+    }
     op.K_plus.apply(x_.data() + dof_offsets_[i], y_.data() + dof_offsets_[i]);
   }
 }

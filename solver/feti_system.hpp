@@ -94,6 +94,9 @@ class FetiSystem {
   OperatorTimes& times() const { return times_; }
   // Applications of F so far (apply_F, residual and d each count one).
   long long f_applications() const { return f_applications_; }
+  // Passes of K^+ over all own subdomains so far (F, d, the residual, the displacements):
+  // the work a method does per iteration, counted for tests of its growth.
+  long long subdomain_passes() const { return subdomain_passes_; }
 
   // out = B K^+ (t f - B' lambda) - c, i.e. d - F lambda: the dual residual, one pass.
   void residual(const Eigen::VectorXd& lambda, double load_factor, Eigen::VectorXd& out) const;
@@ -190,6 +193,7 @@ class FetiSystem {
   mutable Eigen::VectorXd x_, y_;  // workspaces over the own subdomains' DOFs
   mutable OperatorTimes times_;
   mutable long long f_applications_ = 0;
+  mutable long long subdomain_passes_ = 0;
 };
 
 }  // namespace fetic::solver

@@ -33,6 +33,16 @@ Mprgp::Mprgp(const Model& model, const SolveOptions& options, const Communicator
   estimate_operator_norm();
   inner_.set_norm(norm_A_);
   if (!groups_.empty()) outer_.emplace(inner_, parameters_, rho_);
+  // Plain FETI-DP (not the hybrid, whose floating clusters carry their modes in G, nor
+  // --clusters 1, which is FETI-1): the contact faces' coarse space (contact_coarse.hpp).
+  if (options.corner_clusters < 0 && options.preconditioner != Preconditioner::None &&
+      system_.decomposition().contact_rows() > 0) {
+    throw_if_stopped("setting up the contact faces' coarse space");
+    contact_coarse_.emplace(system_, [this](const Eigen::VectorXd& x, Eigen::VectorXd& out) {
+      Eigen::VectorXd ftx, qx;
+      apply_A(x, out, ftx, qx);
+    });
+  }
 }
 
 // Groups of struts the equality rows leave free: their balance z'G x = 0 involves only
@@ -102,6 +112,20 @@ void Mprgp::apply_A(const Eigen::VectorXd& x, Eigen::VectorXd& out, Eigen::Vecto
 
 void Mprgp::precondition(const Eigen::VectorXd& g_free, const std::vector<char>& free,
                          Eigen::VectorXd& z) {
+  if (!contact_coarse_) {
+    precondition_in_face(g_free, free, z);
+    return;
+  }
+  contact_coarse_->apply(
+      g_free, free,
+      [this](const Eigen::VectorXd& g, const std::vector<char>& face, Eigen::VectorXd& out) {
+        precondition_in_face(g, face, out);
+      },
+      z);
+}
+
+void Mprgp::precondition_in_face(const Eigen::VectorXd& g_free, const std::vector<char>& free,
+                                 Eigen::VectorXd& z) {
   if (preconditioner_.kind() == Preconditioner::None) {
     z = g_free;
     return;

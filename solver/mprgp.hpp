@@ -38,6 +38,7 @@
 #include <optional>
 #include <vector>
 
+#include "solver/contact_coarse.hpp"
 #include "solver/face_projector.hpp"
 #include "solver/feti_method.hpp"
 #include "solver/group_balance.hpp"
@@ -57,9 +58,12 @@ class Mprgp final : public FetiMethod, private MprgpProblem {
   // The contact rows off their bound (collective: gathers the flags of all processes).
   std::vector<char> working_set() const override;
 
-  // ||H|| as estimated at set-up, and the applications of F that took.
+  // ||H|| as estimated at set-up, and the applications of F the set-up took (the power
+  // method's and, for FETI-DP, one per column of the contact faces' coarse space).
   double operator_norm() const { return norm_H_; }
-  int setup_f_applications() const { return power_steps_; }
+  int setup_f_applications() const { return power_steps_ + contact_columns(); }
+  // Columns of FETI-DP's coarse space of the contact faces (0: none).
+  int contact_columns() const { return contact_coarse_ ? contact_coarse_->columns() : 0; }
   // Steps of each kind in the current solve, and SMALBE outer iterations.
   struct Counts {
     int cg = 0, expansion = 0, proportioning = 0, outer = 0;
@@ -79,6 +83,8 @@ class Mprgp final : public FetiMethod, private MprgpProblem {
   const DualSpace& dual_space() const override { return space(); }
 
   void find_group_constraints();
+  void precondition_in_face(const Eigen::VectorXd& g_free, const std::vector<char>& free,
+                            Eigen::VectorXd& z);
   void estimate_operator_norm();
   Eigen::VectorXd to_multipliers(const Eigen::VectorXd& x) const;  // T x
   Eigen::VectorXd to_gradient(const Eigen::VectorXd& w) const;     // T'w
@@ -88,6 +94,8 @@ class Mprgp final : public FetiMethod, private MprgpProblem {
 
   MprgpParameters parameters_;
   std::optional<FaceProjector> face_;  // projector of the current face, for preconditioning
+  // Plain FETI-DP with contacts, preconditioned: the contact faces' modes, balanced.
+  std::optional<ContactCoarseSpace> contact_coarse_;
   double norm_H_ = 0.0, norm_A_ = 0.0, rho_ = 0.0;
   int power_steps_ = 0;
   // Balance of the groups held only by contacts: C = [G'z] and Q_C.

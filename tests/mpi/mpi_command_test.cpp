@@ -8,6 +8,7 @@
 
 #include <fcntl.h>
 #include <signal.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -209,12 +210,15 @@ TEST_CASE("under mpirun every failure gives one message and the same status on e
   }
 }
 
-// A long distributed load sweep (3 processes), started in the background.
+// A distributed solve started in the background: by default a long load sweep on 3
+// processes; else `arguments` (the result file is added) on `processes`.
 class LongSolve {
  public:
-  LongSolve() {
-    const std::string command = kMpirun + " -np 3 " + FETIC_EXECUTABLE + " solve " +
-                                scene("chain.toml") + " --load-steps 0:1:100000 --json " + json_;
+  explicit LongSolve(const std::string& arguments = scene("chain.toml") +
+                                                    " --load-steps 0:1:100000",
+                     int processes = 3) {
+    const std::string command = kMpirun + " -np " + std::to_string(processes) + " " +
+                                FETIC_EXECUTABLE + " solve " + arguments + " --json " + json_;
     child_ = fork();
     if (child_ == 0) {
       const int out = ::open(log_.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
@@ -238,6 +242,18 @@ class LongSolve {
     const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
     while (std::chrono::steady_clock::now() < deadline) {
       if (output().find("t = ") != std::string::npos) return ranks().size() == 3;
+      std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    }
+    return false;
+  }
+  // Waits until `count` processes run, then `settle` more seconds (at most 60 s in all).
+  bool wait_for_processes(size_t count, double settle) {
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+    while (std::chrono::steady_clock::now() < deadline) {
+      if (ranks().size() == count) {
+        std::this_thread::sleep_for(std::chrono::duration<double>(settle));
+        return ranks().size() == count;
+      }
       std::this_thread::sleep_for(std::chrono::milliseconds(50));
     }
     return false;
@@ -346,6 +362,65 @@ TEST_CASE("SIGTERM and SIGINT to mpirun stop every process, no partial file") {
     if (solve.wrote_result()) CHECK(solve.wrote_interrupted_result());
     CHECK_FALSE(solve.left_temporaries());
   }
+}
+
+namespace {
+
+// The MPI rank of a process mpirun started (Open MPI puts it in the environment).
+int rank_of(pid_t pid) {
+  std::ifstream in("/proc/" + std::to_string(pid) + "/environ");
+  const std::string prefix = "OMPI_COMM_WORLD_RANK=";
+  for (std::string entry; std::getline(in, entry, '\0');)
+    if (entry.rfind(prefix, 0) == 0) return std::stoi(entry.substr(prefix.size()));
+  return -1;
+}
+
+}  // namespace
+
+// Rank 0 waits for a reader of its result FIFO (or monitor FIFO) that never comes while
+// rank 1 waits for it in the next collective. A signal to either process, or to mpirun,
+// must end both: the process that gets it tells the other (a stop notice; the waits poll
+// for it), and rank 0 says why it stopped.
+TEST_CASE("under mpirun a signal ends a run whose rank 0 waits for a FIFO's reader: 130") {
+  const std::string fifo = temporary("reader_never_comes.fifo");
+  fs::remove(fifo);
+  REQUIRE(::mkfifo(fifo.c_str(), 0600) == 0);
+  struct Case {
+    const char* what;
+    bool monitor;  // the FIFO is the monitor stream, else the result file
+    int target;    // 0, 1: that rank's process; -1: mpirun
+    int signal;
+  };
+  for (const Case& c : {Case{"--json FIFO, SIGTERM to rank 1", false, 1, SIGTERM},
+                        Case{"--json FIFO, SIGINT to rank 1", false, 1, SIGINT},
+                        Case{"--json FIFO, SIGTERM to rank 0", false, 0, SIGTERM},
+                        Case{"--monitor FIFO, SIGTERM to rank 1", true, 1, SIGTERM},
+                        Case{"--json FIFO, SIGTERM to mpirun", false, -1, SIGTERM}}) {
+    INFO(c.what);
+    // The result file (LongSolve's) is a link to the FIFO, made before the run starts.
+    if (!c.monitor) fs::create_symlink(fifo, temporary("interrupted.json"));
+    LongSolve solve(scene("thesis.toml") + (c.monitor ? " --monitor " + fifo : ""), 2);
+    REQUIRE(solve.wait_for_processes(2, 2.0));  // the set-up takes a fraction of this
+    pid_t target = solve.mpirun();
+    for (pid_t pid : solve.ranks())
+      if (rank_of(pid) == c.target) target = pid;
+    REQUIRE((c.target < 0 || target != solve.mpirun()));
+    ::kill(target, c.signal);
+    const auto [ranks_gone, mpirun_gone] = solve.time_to_stop();
+    const std::string output = solve.output();
+    INFO("processes gone after " << ranks_gone << " s, mpirun after " << mpirun_gone << " s\n"
+                                 << output);
+    REQUIRE(mpirun_gone >= 0.0);  // without the stop notice: no end at all
+    CHECK(ranks_gone < 8.0);      // a hang check, not a speed check
+    CHECK(solve.status() != 0);
+    if (c.target >= 0) {  // (mpirun may no longer pass the processes' output on)
+      CHECK(solve.status() == 130);
+      CHECK(occurrences(output, "interrupted by SIG") == 1);
+      CHECK(occurrences(output, "a FIFO without a reader?") == 1);
+    }
+    CHECK_FALSE(solve.left_temporaries());
+  }
+  fs::remove(fifo);
 }
 
 namespace {

@@ -212,20 +212,22 @@ class Process {
   }
 
  private:
-  // One poll: the process blocks opening a FIFO (`seen` counts polls that saw the open
-  // system call where the wait channel is hidden).
+  // One poll: the process waits to open a FIFO - blocked in the open (a scene FIFO), or,
+  // for an output, in the pause between two non-blocking opens (poll(NULL, 0, 50) in
+  // app/output_file.cpp). `seen` counts polls in a row that saw the open system call
+  // where the wait channel is hidden, or that pause.
   static bool blocked_opening_fifo(pid_t pid, int& seen) {
     std::ifstream wchan("/proc/" + std::to_string(pid) + "/wchan");
     std::string where;
     wchan >> where;
     if (where == "wait_for_partner") return true;
-    if (where != "0" && !where.empty()) {
-      seen = 0;
-      return false;
-    }
     std::ifstream syscall("/proc/" + std::to_string(pid) + "/syscall");
     long current = -1;
-    seen = (syscall >> current) && current == SYS_openat ? seen + 1 : 0;
+    unsigned long fds = 1, count = 1;
+    syscall >> current >> std::hex >> fds >> count;
+    const bool pausing = current == SYS_poll && fds == 0 && count == 0;
+    const bool opening = (where == "0" || where.empty()) && current == SYS_openat;
+    seen = pausing || opening ? seen + 1 : 0;
     std::this_thread::sleep_for(std::chrono::milliseconds(40));
     return seen >= 3;
   }
