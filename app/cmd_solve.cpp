@@ -220,7 +220,8 @@ MemoryUse memory_use(const SolveArgs& args) {
                 !args.outputs.json.empty(),
                 0,
                 !args.outputs.vtu.empty(),
-                args.method.single_factors};
+                args.method.single_factors,
+                args.method.preconditioner == "dirichlet"};
   if (args.reference) use.methods.push_back(solver::MethodKind::ActiveSet);
   return use;
 }
