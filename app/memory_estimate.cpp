@@ -59,7 +59,7 @@ double fill_per_dof(double a, double b, double per_node) {
 
 struct Counts {
   double unknowns = 0, struts = 0, subdomains = 0, interface_rows = 0, pairs = 0;
-  double subdomain_fill = 0, strut_fill = 0, contact_columns = 0, nodes = 0;
+  double subdomain_fill = 0, interior_fill = 0, strut_fill = 0, contact_columns = 0, nodes = 0;
 };
 
 Counts count(const scenes::Scene& scene) {
@@ -92,9 +92,9 @@ Counts count(const scenes::Scene& scene) {
     const double inner_along = std::max(1.0, box_along - 2.0);
     const double inner_across = across > 1 ? std::max(1.0, box_across - 2.0) : 1.0;
     c.subdomain_fill +=
-        sx * sy *
-        (box_along * box_across * per_node * fill_per_dof(box_along, box_across, per_node) +
-         inner_along * inner_across * per_node * fill_per_dof(inner_along, inner_across, per_node));
+        sx * sy * box_along * box_across * per_node * fill_per_dof(box_along, box_across, per_node);
+    c.interior_fill += sx * sy * inner_along * inner_across * per_node *
+                       fill_per_dof(inner_along, inner_across, per_node);
     c.strut_fill += dofs * fill_per_dof(along, across, per_node);
     c.interface_rows += ((sx - 1) * across + (sy - 1) * along) * per_node +
                         ((s.fixed_from ? 1 : 0) + (s.fixed_to ? 1 : 0)) * across * per_node;
@@ -104,17 +104,19 @@ Counts count(const scenes::Scene& scene) {
   return c;
 }
 
-double method_bytes(const Counts& c, solver::MethodKind method, bool single_factors) {
-  const double per_entry = kFetiPerFactorEntry * (single_factors ? kSingleFactorShare : 1.0);
+double method_bytes(const Counts& c, solver::MethodKind method, const MemoryUse& use) {
+  const double per_entry = kFetiPerFactorEntry * (use.single_factors ? kSingleFactorShare : 1.0);
+  // The interior factors are the Dirichlet preconditioner's only.
+  const double fill = c.subdomain_fill + (use.dirichlet ? c.interior_fill : 0.0);
   switch (method) {
     case solver::MethodKind::Feti:
     case solver::MethodKind::FetiC:
       return kBase + kFetiPerUnknown * c.unknowns + kFetiPerStrut * c.struts +
-             kFetiPerSubdomain * c.subdomains + per_entry * c.subdomain_fill +
+             kFetiPerSubdomain * c.subdomains + per_entry * fill +
              kFetiPerInterfaceRow * c.interface_rows;
     case solver::MethodKind::Mprgp:
     case solver::MethodKind::FetiDp:
-      return method_bytes(c, solver::MethodKind::FetiC, single_factors) +
+      return method_bytes(c, solver::MethodKind::FetiC, use) +
              kFaceProjectorPerMode * kModesPerSubdomain * c.subdomains;
     case solver::MethodKind::ActiveSet:
       return kBase + kActivePerUnknown * c.unknowns + kActivePerStrut * c.struts +
@@ -182,7 +184,7 @@ MemoryEstimate estimate_memory(const scenes::Scene& scene, const MemoryUse& use)
   const Counts c = count(scene);
   MemoryEstimate estimate;
   for (const solver::MethodKind method : use.methods) {
-    const double bytes = method_bytes(c, method, use.single_factors);
+    const double bytes = method_bytes(c, method, use);
     if (bytes > estimate.bytes) {
       estimate.bytes = bytes;
       estimate.largest = solver::to_string(method);

@@ -25,6 +25,7 @@ struct MemoryUse {
   int kept_iterates = 0;                    // snapshots held at once (the gui keeps a solve's)
   bool paraview = false;                    // --vtu: ParaView files of every node
   bool single_factors = false;              // --single-factors: 6 bytes a factor entry, not 10
+  bool dirichlet = true;                    // the Dirichlet preconditioner's K_ii factors
 };
 
 struct MemoryEstimate {

@@ -65,21 +65,20 @@ void set_headers(BytesTables& t) {
                      "index",
                      "work",
                      "loads",
-                     "total",
-                     "RSS growth"};
+                     "total"};
   t.setup_header = {"scene",       "set-up s",       "decomposition",          "B_j",
                     "K_j factors", "preconditioner", "coarse and power method"};
   t.apply_header = {"scene",    "F ms",       "M ms", "factor MB read (F)",
                     "GB/s (F)", "triad GB/s", "ratio"};
 }
 
-void add_scene(const scenes::GenerateOptions& generate, const std::string& name, bool shared,
+void add_scene(const scenes::GenerateOptions& generate, const std::string& name, bool single,
                BytesTables& t) {
   const scenes::Scene scene = scenes::generate_scene(generate);
   const solver::Model model = solver::build_model(scene);
   const double unknowns = static_cast<double>(model.dof_count());
   solver::SolveOptions options;
-  options.shared_interior_factor = shared;
+  options.single_factors = single;
   const auto start = Clock::now();
   auto method = solver::make_method(solver::MethodKind::Mprgp, model, options);
   const double setup = seconds_since(start);
@@ -125,10 +124,9 @@ BytesTables local_bytes(const std::vector<scenes::GenerateOptions>& scenes,
   set_headers(t);
   t.triad = triad_bandwidth(solver::thread_budget());
   for (std::size_t s = 0; s < scenes.size(); ++s)
-    for (const bool shared : {false, true}) {
-      const std::string name =
-          names[s] + (shared ? ", K_ii factor beside K_j's" : ", K_ii factor in the preconditioner");
-      add_scene(scenes[s], name, shared, t);
+    for (const bool single : {false, true}) {
+      const std::string name = names[s] + (single ? ", single factors" : ", double factors");
+      add_scene(scenes[s], name, single, t);
       std::cerr << "  done: " << name << "\n";
     }
   return t;

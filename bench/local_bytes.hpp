@@ -22,8 +22,8 @@ struct BytesTables {
 // the caches, in bytes per second (24 bytes moved per element, as STREAM counts).
 double triad_bandwidth(int threads);
 
-// Each scene twice: the Dirichlet preconditioner with its own K_ii factors (as before)
-// and through K_j's factors.
+// Each scene twice: the subdomain factors' entries in double and in single precision
+// (SolveOptions::single_factors).
 BytesTables local_bytes(const std::vector<scenes::GenerateOptions>& scenes,
                         const std::vector<std::string>& names);
 

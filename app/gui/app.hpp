@@ -270,7 +270,8 @@ class App {
   bool subdomains_ = true, stress_ = false, moment_ = false;
   bool forces_ = true, gaps_ = true, show_overlay_ = true;
   bool labels_ = false;
-  bool chart_ = false;  // the per-contact chart beside the picture (render/contact_chart.hpp)
+  bool corners_ = false;  // FETI-DP's primal corners (render/corner_marks.hpp)
+  bool chart_ = false;    // the per-contact chart beside the picture (render/contact_chart.hpp)
   bool help_ = false;
   bool dragging_slider_ = false, draft_ = false;
   bool typing_load_ = false;

@@ -172,6 +172,10 @@ void App::display_toggles() {
   if (ImGui::Checkbox("strut labels", &value)) push({RequestKind::Toggle, 0.0, "labels"});
   value = chart_;
   if (ImGui::Checkbox("contact chart", &value)) push({RequestKind::Toggle, 0.0, "chart"});
+  value = corners_;
+  if (ImGui::Checkbox("FETI-DP corners", &value)) push({RequestKind::Toggle, 0.0, "corners"});
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("Amber discs at the nodes --method feti-dp keeps primal (any method)");
 }
 
 // Screenshots, reload and recordings.

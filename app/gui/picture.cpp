@@ -32,6 +32,7 @@ render::View App::view(int width, int height) const {
   v.show_gaps = gaps_;
   v.show_overlay = show_overlay_;
   v.show_labels = labels_;
+  v.show_corners = corners_;
   v.show_chart = chart_;
   v.min_text_size = std::ceil(kSmallestText / 0.68f * ui_scale_);
   // The scales are fixed for the whole slider (the survey at its top) or by a loaded view.

@@ -53,8 +53,8 @@ bool is_on_off(const std::string& name) {
   return name == "on" || name == "off";
 }
 bool is_toggle(const std::string& name) {
-  for (const char* t :
-       {"subdomains", "forces", "gaps", "stress", "moment", "overlay", "labels", "chart", "help"})
+  for (const char* t : {"subdomains", "forces", "gaps", "stress", "moment", "overlay", "labels",
+                        "chart", "corners", "help"})
     if (name == t) return true;
   return false;
 }
@@ -81,7 +81,8 @@ const ActionSpec kActions[] = {
     {"live", RequestKind::SetLive, Argument::Choice, 0, 0, "on or off", &is_on_off},
     {"scrub", RequestKind::Scrub, Argument::Number, 0.0, 1e9},
     {"toggle", RequestKind::Toggle, Argument::Choice, 0, 0,
-     "subdomains, forces, gaps, stress, moment, overlay, labels, chart or help", &is_toggle},
+     "subdomains, forces, gaps, stress, moment, overlay, labels, chart, corners or help",
+     &is_toggle},
     {"color", RequestKind::SetColor, Argument::Choice, 0, 0, "subdomain, strut, stress or moment",
      &is_color},
     {"screenshot", RequestKind::Screenshot, Argument::Optional},

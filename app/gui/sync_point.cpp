@@ -278,6 +278,7 @@ void App::apply_display_request(const Request& r) {
       }
       if (r.text == "overlay") show_overlay_ = !show_overlay_;
       if (r.text == "labels") labels_ = !labels_;
+      if (r.text == "corners") corners_ = !corners_;
       if (r.text == "chart") {
         chart_ = !chart_;
         framing_key_ = {};  // the scene region changes

@@ -17,6 +17,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -25,10 +26,12 @@
 #include <optional>
 #include <string>
 #include <thread>
+#include <utility>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
+#include "render/corner_marks.hpp"
 #include "render/golden.hpp"
 
 #include "tests/support/process.hpp"
@@ -960,4 +963,59 @@ TEST_CASE("the window opens at the work area and scales its text", "[script]") {
     REQUIRE(status);
     CHECK(*status == 0);
   }
+}
+
+TEST_CASE("the corners toggle marks FETI-DP's corners in the window", "[script]") {
+  // plane_pair.toml: two struts of 4x2 boxes, 11 corners each (tests/render/
+  // corner_marks_test.cpp checks their positions in `fetic render --corners`).
+  REQUIRE(have_display());
+  const fs::path dir = fresh_directory("fetic_gui_corners");
+  const fs::path state = dir / "state.jsonl";
+  const fs::path script = dir / "script.txt";
+  std::ofstream(script) << "wait\nscreenshot " << (dir / "plain.png").string()
+                        << "\ntoggle corners\nscreenshot " << (dir / "corners.png").string()
+                        << "\ntoggle corners\nscreenshot " << (dir / "off.png").string()
+                        << "\n0.2 quit\n";
+  App app({scene("plane_pair.toml"), "--method", "feti-dp", "--no-overlay", "--size", "1280x800",
+           "--state-file", state.string(), "--script", script.string()});
+  const auto status = app.wait(90.0);
+  INFO("reported state:\n" << read_text(state));
+  REQUIRE(status);
+  CHECK(*status == 0);
+  const auto plain = fetic::testing::read_png((dir / "plain.png").string());
+  const auto marked = fetic::testing::read_png((dir / "corners.png").string());
+  const auto off = fetic::testing::read_png((dir / "off.png").string());
+  REQUIRE(marked.width == plain.width);
+  REQUIRE(marked.height == plain.height);
+  const auto amber = [](const fetic::render::Image& image, int i) {
+    const std::uint8_t* p = image.rgba.data() + 4 * static_cast<std::size_t>(i);
+    const fetic::render::Color c = fetic::render::kCornerMark;
+    return std::abs(p[0] - c.r) <= 24 && std::abs(p[1] - c.g) <= 24 && std::abs(p[2] - c.b) <= 24;
+  };
+  // The pixels amber with the toggle on and not without, in 4-connected blobs: one per mark.
+  const int w = plain.width, h = plain.height;
+  std::vector<char> mark(static_cast<std::size_t>(w) * h);
+  int marks = 0, back_off = 0;
+  for (int i = 0; i < w * h; ++i) {
+    mark[i] = amber(marked, i) && !amber(plain, i);
+    back_off += amber(off, i) != amber(plain, i);
+  }
+  for (int i = 0; i < w * h; ++i) {
+    if (!mark[i]) continue;
+    ++marks;
+    std::vector<int> stack{i};
+    mark[i] = 0;
+    while (!stack.empty()) {
+      const int j = stack.back();
+      stack.pop_back();
+      const int x = j % w, y = j / w;
+      for (const auto& [nx, ny] : {std::pair{x - 1, y}, {x + 1, y}, {x, y - 1}, {x, y + 1}})
+        if (nx >= 0 && nx < w && ny >= 0 && ny < h && mark[ny * w + nx]) {
+          mark[ny * w + nx] = 0;
+          stack.push_back(ny * w + nx);
+        }
+    }
+  }
+  CHECK(marks == 22);
+  CHECK(back_off == 0);  // toggled off again: the picture without marks
 }
