@@ -436,8 +436,11 @@ int write_outputs(const SolveArgs& args, const std::vector<solver::SweepStep>& s
     profile.setup_seconds = setup.info.setup_seconds;
     profile.solve_seconds = setup.info.solve_seconds;
     profile.iterations = steps.empty() ? 0 : steps.back().state.iteration;
-    if (const auto* mprgp = dynamic_cast<const solver::Mprgp*>(setup.dual))
+    if (const auto* mprgp = dynamic_cast<const solver::Mprgp*>(setup.dual)) {
       profile.mprgp_steps = mprgp->counts();
+      profile.setup_f_applications = mprgp->setup_f_applications();
+      profile.contact_coarse_columns = mprgp->contact_columns();
+    }
     profile.condition = setup.dual->condition_estimate();
     try {
       write_solve_profile(args.profile, ranks.processes(), profile);

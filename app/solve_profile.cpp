@@ -121,6 +121,9 @@ void write_solve_profile(const std::string& path, const solver::Communicator& pr
                               {"expansion", run.mprgp_steps->expansion},
                               {"proportioning", run.mprgp_steps->proportioning},
                               {"outer", run.mprgp_steps->outer}};
+  if (run.mprgp_steps) profile["setup_f_applications"] = run.setup_f_applications;
+  if (run.contact_coarse_columns > 0)
+    profile["contact_coarse_columns"] = run.contact_coarse_columns;
   if (run.condition.steps > 0)
     profile["condition_estimate"] = {{"cg_steps", run.condition.steps},
                                      {"lambda_min", run.condition.lambda_min},

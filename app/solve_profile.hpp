@@ -25,6 +25,10 @@ struct ProfileRun {
   std::optional<solver::Mprgp::Counts> mprgp_steps;
   // Lanczos estimate of the preconditioned dual operator's condition (the last solve).
   solver::ConditionEstimate condition;
+  // MPRGP's set-up: applications of F (power method, FETI-DP's contact coarse space) and
+  // the columns of FETI-DP's coarse space of the contact faces.
+  int setup_f_applications = 0;
+  int contact_coarse_columns = 0;
 };
 
 // Collective. Rank 0 writes `path` (throws OutputError when it cannot).

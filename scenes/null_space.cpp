@@ -18,4 +18,14 @@ Eigen::MatrixXd null_space(const Eigen::MatrixXd& C, int columns) {
   return svd.matrixV().rightCols(columns - rank);
 }
 
+Eigen::MatrixXd null_space_relative(const Eigen::MatrixXd& C, double relative) {
+  const Eigen::BDCSVD<Eigen::MatrixXd> svd(C, Eigen::ComputeFullV);
+  const Eigen::VectorXd& sigma = svd.singularValues();
+  const double tolerance = relative * (sigma.size() > 0 ? sigma(0) : 1.0);
+  int rank = 0;
+  while (rank < sigma.size() && sigma(rank) > tolerance)
+    ++rank;
+  return svd.matrixV().rightCols(C.cols() - rank);
+}
+
 }  // namespace fetic::scenes

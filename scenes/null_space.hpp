@@ -1,7 +1,8 @@
 #pragma once
 // The null space of a small dense matrix, by SVD: used by the frame kinematics (free
-// motions of groups of struts) and by the solver's free-motion space. One translation
-// unit holds the SVD, the heaviest template of Eigen to compile.
+// motions of groups of struts), by the solver's free-motion space and by FETI-DP's
+// clusters. One translation unit holds the SVD, the heaviest template of Eigen to compile
+// (about 50 s of CPU at -O3 each copy; keep it the only one).
 
 #include <Eigen/Core>
 
@@ -11,5 +12,10 @@ namespace fetic::scenes {
 // vectors whose singular values are below 1e-9 max(1, sigma_max) - rounding, for the
 // unit-scaled constraint rows the callers build. All of R^columns when C has no rows.
 Eigen::MatrixXd null_space(const Eigen::MatrixXd& C, int columns);
+
+// The same with the cut relative to the largest singular value alone: the right singular
+// vectors whose singular values are at most `relative` sigma_max (at most `relative` when
+// C is empty). For rows that carry a length scale, as rigid-mode rows do (solver/corners).
+Eigen::MatrixXd null_space_relative(const Eigen::MatrixXd& C, double relative);
 
 }  // namespace fetic::scenes

@@ -3,9 +3,7 @@
 #include <numeric>
 #include <unordered_set>
 
-#include <Eigen/QR>
-#include <Eigen/SVD>
-
+#include "scenes/null_space.hpp"
 #include "solver/rigid_modes.hpp"
 
 namespace fetic::solver {
@@ -99,14 +97,9 @@ void join_copies(const Copies& c, int dofs_per_node, int components, const Decom
 // are below 1e-10 of the largest. Relative, since C's rows are rigid-mode rows whose
 // rotation entries carry the scene's length scale (scenes::null_space's absolute floor
 // suits only unit-scaled rows).
+// The SVD itself is scenes/null_space.cpp's (one copy of Eigen's BDCSVD in the build).
 Eigen::MatrixXd kernel_of(const Eigen::MatrixXd& C) {
-  const Eigen::BDCSVD<Eigen::MatrixXd> svd(C, Eigen::ComputeFullV);
-  const Eigen::VectorXd& sigma = svd.singularValues();
-  const double tolerance = 1e-10 * (sigma.size() > 0 ? sigma(0) : 1.0);
-  int rank = 0;
-  while (rank < sigma.size() && sigma(rank) > tolerance)
-    ++rank;
-  return svd.matrixV().rightCols(C.cols() - rank);
+  return scenes::null_space_relative(C, 1e-10);
 }
 
 // The kernel of a cluster as amplitudes of its parts' rigid-body modes.

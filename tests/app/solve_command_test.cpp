@@ -230,7 +230,7 @@ TEST_CASE("fetic bench prints a table with ratios to the active-set method") {
 }
 
 TEST_CASE("solve --profile: per process counts, and MPRGP's iterations by step kind") {
-  for (const std::string method : {"feti-c", "mprgp"}) {
+  for (const std::string method : {"feti-c", "mprgp", "feti-dp"}) {
     const std::string profile_path = temporary("fetic_profile_" + method + ".json");
     const std::string json_path = temporary("fetic_profile_result_" + method + ".json");
     const Run r = run("solve " + scene("plane_pair.toml") + " --method " + method +
@@ -266,6 +266,11 @@ TEST_CASE("solve --profile: per process counts, and MPRGP's iterations by step k
             profile["iterations"].get<int>());
       CHECK(steps["conjugate_gradient"].get<int>() > 0);
       CHECK(steps["outer"].get<int>() == 0);  // plane struts are clamped: no SMALBE groups
+      // FETI-DP: a uniform and a linear column per contact and pair of boxes its rows
+      // cross (2 boxes across each strut: 2 segments), one F each at set-up.
+      const int columns = method == "feti-dp" ? 4 : 0;
+      CHECK(profile.value("contact_coarse_columns", 0) == columns);
+      CHECK(profile["setup_f_applications"].get<int>() > columns);
     }
     std::filesystem::remove(profile_path);
     std::filesystem::remove(json_path);
