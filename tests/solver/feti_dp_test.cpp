@@ -47,6 +47,18 @@ int check_dp(const std::string& text, int trial, int cluster_size = -1) {
   return solved->state.active_set_size();
 }
 
+// One generated pair of plane struts in contact, H/h = 8, `boxes` x `boxes` / 2 boxes a
+// strut.
+scenes::Scene plane_pair_in_boxes(int boxes) {
+  scenes::GenerateOptions options;
+  options.pairs = 1;
+  options.elements = 8 * boxes;
+  options.elements_across = 4 * boxes;
+  options.subdomains = boxes;
+  options.subdomains_across = boxes / 2;
+  return scenes::generate_scene(options);
+}
+
 }  // namespace
 
 TEST_CASE("FETI-DP agrees with CGAL on 100 random bar scenes") {
@@ -160,13 +172,7 @@ TEST_CASE("FETI-DP's iterations do not grow with the boxes of clamped plane stru
   // boxes, still growing; with the clamp primal 18 / 23 / 25 (docs/METHODS.md "FETI-DP").
   std::vector<int> iterations;
   for (int boxes : {4, 8, 16}) {
-    scenes::GenerateOptions options;
-    options.pairs = 1;
-    options.elements = 8 * boxes;
-    options.elements_across = 4 * boxes;
-    options.subdomains = boxes;
-    options.subdomains_across = boxes / 2;
-    scenes::Scene scene = scenes::generate_scene(options);
+    scenes::Scene scene = plane_pair_in_boxes(boxes);
     scene.contacts.clear();
     const auto solved = testing::solve(scene, MethodKind::FetiDp, 1.0, solver::SolveOptions{});
     REQUIRE(solved->state.status == solver::Status::Converged);
@@ -184,14 +190,8 @@ TEST_CASE("FETI-DP's iterations stay bounded with the boxes of plane struts in c
   // 8x4 / 16x8 boxes; with it 27 / 30 / 31 (docs/METHODS.md "FETI-DP").
   std::vector<int> iterations;
   for (int boxes : {4, 8, 16}) {
-    scenes::GenerateOptions options;
-    options.pairs = 1;
-    options.elements = 8 * boxes;
-    options.elements_across = 4 * boxes;
-    options.subdomains = boxes;
-    options.subdomains_across = boxes / 2;
-    const auto solved = testing::solve(scenes::generate_scene(options), MethodKind::FetiDp, 1.0,
-                                       solver::SolveOptions{});
+    const auto solved =
+        testing::solve(plane_pair_in_boxes(boxes), MethodKind::FetiDp, 1.0, solver::SolveOptions{});
     REQUIRE(solved->state.status == solver::Status::Converged);
     CHECK(solved->state.active_set_size() > 0);
     iterations.push_back(solved->state.iteration);

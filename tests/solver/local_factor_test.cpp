@@ -17,6 +17,20 @@ using namespace fetic;
 
 namespace {
 
+// The largest node displacement of `a` and the largest difference between the two
+// solutions' node displacements.
+std::pair<double, double> displacement_gap(const testing::Solved& a, const testing::Solved& b) {
+  const auto ua = solver::strut_displacements(a.model, a.state);
+  const auto ub = solver::strut_displacements(b.model, b.state);
+  double largest = 0.0, difference = 0.0;
+  for (size_t s = 0; s < ua.size(); ++s)
+    for (size_t k = 0; k < ua[s].size(); ++k) {
+      largest = std::max(largest, ua[s][k].norm());
+      difference = std::max(difference, (ua[s][k] - ub[s][k]).norm());
+    }
+  return {largest, difference};
+}
+
 // The 5-point Laplacian of an nx x ny grid plus a small shift: sparse, SPD, 2D fill.
 solver::SparseMatrix grid_matrix(int nx, int ny) {
   std::vector<Eigen::Triplet<double>> entries;
@@ -133,14 +147,7 @@ TEST_CASE("MPRGP with one factor per subdomain reaches the solution of two facto
   const auto b = testing::solve(scene, solver::MethodKind::Mprgp, 1.0, two);
   REQUIRE(a->method->status() == solver::Status::Converged);
   REQUIRE(b->method->status() == solver::Status::Converged);
-  const auto ua = solver::strut_displacements(a->model, a->state);
-  const auto ub = solver::strut_displacements(b->model, b->state);
-  double largest = 0.0, difference = 0.0;
-  for (size_t s = 0; s < ua.size(); ++s)
-    for (size_t k = 0; k < ua[s].size(); ++k) {
-      largest = std::max(largest, ua[s][k].norm());
-      difference = std::max(difference, (ua[s][k] - ub[s][k]).norm());
-    }
+  const auto [largest, difference] = displacement_gap(*a, *b);
   CHECK(largest > 0.0);
   CHECK(difference <= 1e-6 * largest);
 }
@@ -159,14 +166,7 @@ TEST_CASE("MPRGP with single precision factors reaches the double factors' solut
     const auto b = testing::solve(scene, solver::MethodKind::Mprgp, 1.0, single_factors);
     REQUIRE(a->method->status() == solver::Status::Converged);
     REQUIRE(b->method->status() == solver::Status::Converged);
-    const auto ua = solver::strut_displacements(a->model, a->state);
-    const auto ub = solver::strut_displacements(b->model, b->state);
-    double largest = 0.0, difference = 0.0;
-    for (size_t s = 0; s < ua.size(); ++s)
-      for (size_t k = 0; k < ua[s].size(); ++k) {
-        largest = std::max(largest, ua[s][k].norm());
-        difference = std::max(difference, (ua[s][k] - ub[s][k]).norm());
-      }
+    const auto [largest, difference] = displacement_gap(*a, *b);
     const int it_a = a->method->iteration(), it_b = b->method->iteration();
     CAPTURE(largest, difference, it_a, it_b);
     CHECK(largest > 0.0);
