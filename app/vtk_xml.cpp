@@ -41,18 +41,26 @@ void append_u64(std::vector<std::uint8_t>& bytes, std::uint64_t value) {
 
 static_assert(std::endian::native == std::endian::little, "big-endian hosts need byte swaps");
 
+// Appends `size` bytes to `buffer` in pieces that fill it to `chunk` bytes, calling
+// `full()` (which empties it) each time it is full.
+template <class Full>
+void append_in_chunks(std::vector<std::uint8_t>& buffer, std::size_t chunk,
+                      const std::uint8_t* data, std::size_t size, Full full) {
+  while (size > 0) {
+    const std::size_t take = std::min(size, chunk - buffer.size());
+    buffer.insert(buffer.end(), data, data + take);
+    data += take;
+    size -= take;
+    if (buffer.size() == chunk) full();
+  }
+}
+
 // Base64 of a byte stream handed over in pieces: one encoding, padded only at its end.
 class Base64Writer {
  public:
   explicit Base64Writer(std::ostream& out) : out_(out) { buffer_.reserve(kChunk); }
   void write(const std::uint8_t* data, std::size_t size) {
-    while (size > 0) {
-      const std::size_t take = std::min(size, kChunk - buffer_.size());
-      buffer_.insert(buffer_.end(), data, data + take);
-      data += take;
-      size -= take;
-      if (buffer_.size() == kChunk) flush();
-    }
+    append_in_chunks(buffer_, kChunk, data, size, [this] { flush(); });
   }
   void flush() {  // whole groups of 3 bytes until the end: no padding in between
     out_ << base64(buffer_.data(), buffer_.size());
@@ -72,13 +80,7 @@ class Base64Writer {
 class ZlibBlocks {
  public:
   void write(const std::uint8_t* data, std::size_t size) {
-    while (size > 0) {
-      const std::size_t take = std::min(size, kBlockSize - block_.size());
-      block_.insert(block_.end(), data, data + take);
-      data += take;
-      size -= take;
-      if (block_.size() == kBlockSize) compress_block();
-    }
+    append_in_chunks(block_, kBlockSize, data, size, [this] { compress_block(); });
   }
   void finish(std::ostream& out) {
     if (!block_.empty()) compress_block();
