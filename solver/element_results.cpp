@@ -112,6 +112,17 @@ int subdomains_of(const StrutMesh& mesh) {
   return mesh.subdomains_along * (is_plane(mesh) ? mesh.subdomains_across : 1);
 }
 
+// Per strut, the number of its first subdomain (the subdomains numbered strut by strut).
+std::vector<int> first_subdomains(const Model& model) {
+  std::vector<int> first;
+  int next = 0;
+  for (const StrutMesh& mesh : model.struts) {
+    first.push_back(next);
+    next += subdomains_of(mesh);
+  }
+  return first;
+}
+
 // Bar: axial stress E (u_{i+1} - u_i) / h and axial force stress * area.
 void recover_bar(const StrutMesh& mesh, const NodeBox& box, const Eigen::VectorXd& dofs,
                  StrutElements& out) {
@@ -169,13 +180,10 @@ void recover_frame(const StrutMesh& mesh, const NodeBox& box, const Eigen::Vecto
 }  // namespace
 
 StrutResults::StrutResults(const Model& model, const Snapshot& snapshot)
-    : model_(model), snapshot_(snapshot), pieces_(pieces_by_strut(model, snapshot)) {
-  int first = 0;
-  for (const StrutMesh& mesh : model.struts) {
-    first_subdomain_.push_back(first);
-    first += subdomains_of(mesh);
-  }
-}
+    : model_(model),
+      snapshot_(snapshot),
+      pieces_(pieces_by_strut(model, snapshot)),
+      first_subdomain_(first_subdomains(model)) {}
 
 std::vector<Vec2> StrutResults::displacements(int strut) const {
   return strut_displacements(model_, snapshot_, strut, pieces_[static_cast<size_t>(strut)]);
@@ -214,12 +222,10 @@ StrutElements StrutResults::elements(int strut) const {
 }
 
 std::vector<StrutElements> element_topology(const Model& model) {
+  const std::vector<int> first = first_subdomains(model);
   std::vector<StrutElements> result;
-  int first_subdomain = 0;
-  for (const StrutMesh& mesh : model.struts) {
-    result.push_back(topology(mesh, first_subdomain));
-    first_subdomain += subdomains_of(mesh);
-  }
+  for (size_t s = 0; s < model.struts.size(); ++s)
+    result.push_back(topology(model.struts[s], first[s]));
   return result;
 }
 
