@@ -50,6 +50,7 @@ struct Segments {
   std::vector<int> of_row;  // per global contact row (from d.equality_rows), its segment
   std::vector<double> coordinate;
   std::vector<double> low, high, mean;  // per segment, of the coordinates
+  std::vector<char> floating;           // per segment: a cluster it touches has modes in G
 };
 
 Segments find_segments(const Model& model, const Decomposition& d) {
@@ -70,8 +71,11 @@ Segments find_segments(const Model& model, const Decomposition& d) {
       s.high.push_back(std::numeric_limits<double>::lowest());
       sum.push_back(0.0);
       count.push_back(0.0);
+      s.floating.push_back(0);
     }
     const int g = found->second;
+    for (const RowEntry& e : row.entries)
+      if (d.subdomains[e.subdomain].mode_count > 0) s.floating[g] = 1;
     const double t = pair.pair;
     s.of_row.push_back(g);
     s.coordinate.push_back(t);
@@ -87,24 +91,28 @@ Segments find_segments(const Model& model, const Decomposition& d) {
 
 }  // namespace
 
-ContactCoarseSpace::ContactCoarseSpace(const FetiSystem& system, const Operator& apply_A)
+ContactCoarseSpace::ContactCoarseSpace(const FetiSystem& system, const Operator& apply_A,
+                                       bool clamped_only)
     : space_(&system.space()) {
   const Decomposition& d = system.decomposition();
   const Segments s = find_segments(system.model(), d);
   // Column numbers from the replicated segments: uniform, then linear where a segment has
   // two or more coordinates - the same on every process.
   const int segments = static_cast<int>(s.mean.size());
-  std::vector<int> uniform(segments), linear(segments, -1);
+  std::vector<int> uniform(segments, -1), linear(segments, -1);
   int next = 0;
   for (int g = 0; g < segments; ++g) {
+    if (clamped_only && s.floating[g]) continue;
     uniform[g] = next++;
     if (s.high[g] > s.low[g]) linear[g] = next++;
   }
+  if (next == 0) return;  // no segment qualifies: no coarse space (the caller drops it)
   U_.resize(next);
   const DualSpace& space = *space_;
   for (int k = space.first_contact(); k < space.rows(); ++k) {
     const int c = space.global_row(k) - d.equality_rows;
     const int g = s.of_row[c];
+    if (uniform[g] < 0) continue;
     U_[uniform[g]].rows.push_back(k);
     U_[uniform[g]].values.push_back(1.0);
     if (linear[g] < 0) continue;

@@ -39,8 +39,10 @@ class ContactCoarseSpace {
       std::function<void(const Eigen::VectorXd&, const std::vector<char>&, Eigen::VectorXd&)>;
 
   ContactCoarseSpace() = default;
-  // The columns of `system`'s contact rows and W = A U (collective: |U| applications).
-  ContactCoarseSpace(const FetiSystem& system, const Operator& apply_A);
+  // The columns of `system`'s contact rows and W = A U (collective: |U| applications);
+  // with `clamped_only` only the segments between clusters without rigid-body modes
+  // (hybrid FETI-DP: a floating cluster's modes are in G already).
+  ContactCoarseSpace(const FetiSystem& system, const Operator& apply_A, bool clamped_only = false);
 
   int columns() const { return static_cast<int>(U_.size()); }
   // z for the free gradient g (zero off the face) with `inner` as M^-1 (collective).

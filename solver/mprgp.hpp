@@ -94,7 +94,8 @@ class Mprgp final : public FetiMethod, private MprgpProblem {
 
   MprgpParameters parameters_;
   std::optional<FaceProjector> face_;  // projector of the current face, for preconditioning
-  // Plain FETI-DP with contacts, preconditioned: the contact faces' modes, balanced.
+  // FETI-DP with contacts, preconditioned: the contact faces' modes, balanced (the hybrid:
+  // only between clusters without modes).
   std::optional<ContactCoarseSpace> contact_coarse_;
   double norm_H_ = 0.0, norm_A_ = 0.0, rho_ = 0.0;
   int power_steps_ = 0;
