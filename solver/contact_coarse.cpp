@@ -112,6 +112,7 @@ ContactCoarseSpace::ContactCoarseSpace(const FetiSystem& system, const Operator&
   std::vector<std::vector<int>> column_rows(next);  // global, for the batches
   for (int r = d.equality_rows; r < d.row_count(); ++r) {
     const int g = s.of_row[r - d.equality_rows];
+    if (uniform[g] < 0) continue;  // a segment without columns
     column_rows[uniform[g]].push_back(r);
     if (linear[g] >= 0) column_rows[linear[g]].push_back(r);
   }
