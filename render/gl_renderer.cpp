@@ -102,18 +102,25 @@ out vec4 output_color;
 void main() { output_color = fragment_color; }
 )";
 
+// A shader or program that failed to build: deleted, and the driver's log thrown.
+void throw_unless_built(GLint built, GLuint object,
+                        void (*info_log)(GLuint, GLsizei, GLsizei*, GLchar*),
+                        void (*destroy)(GLuint), const char* what) {
+  if (built) return;
+  char log[1024] = {};
+  info_log(object, sizeof log, nullptr, log);
+  destroy(object);
+  throw RenderError(std::string("cannot ") + what + ": " + log);
+}
+
 GLuint compile(GLenum kind, const char* source) {
   const GLuint shader = glCreateShader(kind);
   glShaderSource(shader, 1, &source, nullptr);
   glCompileShader(shader);
   GLint ok = 0;
   glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
-  if (!ok) {
-    char log[1024] = {};
-    glGetShaderInfoLog(shader, sizeof log, nullptr, log);
-    glDeleteShader(shader);
-    throw RenderError(std::string("cannot compile the renderer's shader: ") + log);
-  }
+  throw_unless_built(ok, shader, glGetShaderInfoLog, glDeleteShader,
+                     "compile the renderer's shader");
   return shader;
 }
 
@@ -128,12 +135,8 @@ GLuint link(const char* vertex_source, const char* fragment_source) {
   glDeleteShader(fragment);
   GLint linked = 0;
   glGetProgramiv(program, GL_LINK_STATUS, &linked);
-  if (!linked) {
-    char log[1024] = {};
-    glGetProgramInfoLog(program, sizeof log, nullptr, log);
-    glDeleteProgram(program);
-    throw RenderError(std::string("cannot link the renderer's shader program: ") + log);
-  }
+  throw_unless_built(linked, program, glGetProgramInfoLog, glDeleteProgram,
+                     "link the renderer's shader program");
   return program;
 }
 
