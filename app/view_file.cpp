@@ -196,11 +196,12 @@ SavedView parse_view(const std::string& text, const std::string& path) {
   }
   if (const json* show = r.find(root, "show")) {
     if (!show->is_object()) r.fail("show", "must be an object of true/false toggles");
-    r.only(*show, {"forces", "gaps", "overlay", "labels"}, " in 'show'");
+    r.only(*show, {"forces", "gaps", "overlay", "labels", "corners"}, " in 'show'");
     view.forces = r.boolean(*show, "forces");
     view.gaps = r.boolean(*show, "gaps");
     view.overlay = r.boolean(*show, "overlay");
     view.labels = r.boolean(*show, "labels");
+    view.corners = r.boolean(*show, "corners");
   }
   if (const json* scales = r.find(root, "scales")) {
     if (!scales->is_object()) r.fail("scales", "must be an object");
@@ -253,6 +254,7 @@ std::string view_json(const SavedView& view) {
   if (view.gaps) show["gaps"] = *view.gaps;
   if (view.overlay) show["overlay"] = *view.overlay;
   if (view.labels) show["labels"] = *view.labels;
+  if (view.corners) show["corners"] = *view.corners;
   if (!show.empty()) root["show"] = show;
   if (view.scales) {
     const render::RunExtent& e = *view.scales;
@@ -283,6 +285,7 @@ void apply_view(const SavedView& saved, render::View& view) {
   if (saved.gaps) view.show_gaps = *saved.gaps;
   if (saved.overlay) view.show_overlay = *saved.overlay;
   if (saved.labels) view.show_labels = *saved.labels;
+  if (saved.corners) view.show_corners = *saved.corners;
   if (saved.zoom) view.zoom = *saved.zoom;
   if (saved.text_size) view.min_text_size = static_cast<float>(*saved.text_size);
   if (saved.center_x && saved.center_y) {

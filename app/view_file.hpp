@@ -24,6 +24,7 @@ struct SavedView {
   std::optional<double> text_size;           // the smallest base text size (the window's)
   std::optional<render::ColorBy> color_by;
   std::optional<bool> forces, gaps, overlay, labels;
+  std::optional<bool> corners;  // FETI-DP's primal corners (render/corner_marks.hpp)
   // The run's scales the picture was drawn with (colour map and glyph ends, axes).
   std::optional<render::RunExtent> scales;
   // What those scales are the largest over, as the window's legends say ("over loads 0-2").

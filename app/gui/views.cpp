@@ -43,6 +43,7 @@ SavedView App::current_view() const {
   saved.gaps = gaps_;
   saved.overlay = show_overlay_;
   saved.labels = labels_;
+  saved.corners = corners_;
   if (shown_ && shown_->extent) saved.scales = drawn_extent_;
   return saved;
 }
@@ -101,6 +102,7 @@ void App::use_view(const SavedView& saved) {
   if (saved.gaps) gaps_ = *saved.gaps;
   if (saved.overlay) show_overlay_ = *saved.overlay;
   if (saved.labels) labels_ = *saved.labels;
+  if (saved.corners) corners_ = *saved.corners;
   if (saved.zoom) zoom_ = static_cast<float>(*saved.zoom);
   if (saved.center_x && saved.center_y) {
     // Placed when the picture is next framed (the fit depends on the frame's size).

@@ -974,8 +974,10 @@ TEST_CASE("the corners toggle marks FETI-DP's corners in the window", "[script]"
   const fs::path script = dir / "script.txt";
   std::ofstream(script) << "wait\nscreenshot " << (dir / "plain.png").string()
                         << "\ntoggle corners\nscreenshot " << (dir / "corners.png").string()
+                        << "\nsave-view " << (dir / "corners.json").string()
                         << "\ntoggle corners\nscreenshot " << (dir / "off.png").string()
-                        << "\n0.2 quit\n";
+                        << "\nview " << (dir / "corners.json").string() << "\nscreenshot "
+                        << (dir / "restored.png").string() << "\n0.2 quit\n";
   App app({scene("plane_pair.toml"), "--method", "feti-dp", "--no-overlay", "--size", "1280x800",
            "--state-file", state.string(), "--script", script.string()});
   const auto status = app.wait(90.0);
@@ -994,28 +996,40 @@ TEST_CASE("the corners toggle marks FETI-DP's corners in the window", "[script]"
   };
   // The pixels amber with the toggle on and not without, in 4-connected blobs: one per mark.
   const int w = plain.width, h = plain.height;
-  std::vector<char> mark(static_cast<std::size_t>(w) * h);
-  int marks = 0, back_off = 0;
-  for (int i = 0; i < w * h; ++i) {
-    mark[i] = amber(marked, i) && !amber(plain, i);
-    back_off += amber(off, i) != amber(plain, i);
-  }
-  for (int i = 0; i < w * h; ++i) {
-    if (!mark[i]) continue;
-    ++marks;
-    std::vector<int> stack{i};
-    mark[i] = 0;
-    while (!stack.empty()) {
-      const int j = stack.back();
-      stack.pop_back();
-      const int x = j % w, y = j / w;
-      for (const auto& [nx, ny] : {std::pair{x - 1, y}, {x + 1, y}, {x, y - 1}, {x, y + 1}})
-        if (nx >= 0 && nx < w && ny >= 0 && ny < h && mark[ny * w + nx]) {
-          mark[ny * w + nx] = 0;
-          stack.push_back(ny * w + nx);
-        }
+  const auto count_marks = [&](const fetic::render::Image& image) {
+    std::vector<char> mark(static_cast<std::size_t>(w) * h);
+    for (int i = 0; i < w * h; ++i)
+      mark[i] = amber(image, i) && !amber(plain, i);
+    int marks = 0;
+    for (int i = 0; i < w * h; ++i) {
+      if (!mark[i]) continue;
+      ++marks;
+      std::vector<int> stack{i};
+      mark[i] = 0;
+      while (!stack.empty()) {
+        const int j = stack.back();
+        stack.pop_back();
+        const int x = j % w, y = j / w;
+        for (const auto& [nx, ny] : {std::pair{x - 1, y}, {x + 1, y}, {x, y - 1}, {x, y + 1}})
+          if (nx >= 0 && nx < w && ny >= 0 && ny < h && mark[ny * w + nx]) {
+            mark[ny * w + nx] = 0;
+            stack.push_back(ny * w + nx);
+          }
+      }
     }
-  }
-  CHECK(marks == 22);
+    return marks;
+  };
+  int back_off = 0;
+  for (int i = 0; i < w * h; ++i)
+    back_off += amber(off, i) != amber(plain, i);
+  CHECK(count_marks(marked) == 22);
   CHECK(back_off == 0);  // toggled off again: the picture without marks
+  // The saved view records the toggle, and loading it (toggled off before) brings the
+  // marks back.
+  const json saved = json::parse(read_text(dir / "corners.json"));
+  CHECK(saved["show"]["corners"] == true);
+  const auto restored = fetic::testing::read_png((dir / "restored.png").string());
+  REQUIRE(restored.width == w);
+  REQUIRE(restored.height == h);
+  CHECK(count_marks(restored) == 22);
 }

@@ -44,6 +44,7 @@ TEST_CASE("a saved view is read back as written") {
   view.forces = false;
   view.gaps = true;
   view.overlay = false;
+  view.corners = true;
   fetic::render::RunExtent scales;
   scales.largest_displacement = 0.002;
   scales.largest_force = 1.5e5;
@@ -65,6 +66,7 @@ TEST_CASE("a saved view is read back as written") {
   CHECK(back.forces == false);
   CHECK(back.gaps == true);
   CHECK(back.overlay == false);
+  CHECK(back.corners == true);
   REQUIRE(back.scales);
   CHECK(back.scales->largest_stress == 3e8);
   CHECK(back.scales->largest_iteration == 12);
@@ -77,6 +79,7 @@ TEST_CASE("a saved view is read back as written") {
   CHECK(applied.centered);
   CHECK(applied.center_x == 1.25);
   CHECK_FALSE(applied.show_forces);
+  CHECK(applied.show_corners);
 
   // A partial view changes only what it names.
   const fetic::app::SavedView partial = fetic::app::read_view_file(file_with(R"({"zoom": 2})"));
