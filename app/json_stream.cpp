@@ -2,6 +2,7 @@
 
 #include <cstdio>
 #include <string_view>
+#include <utility>
 
 #include "app/json_layout.hpp"
 
@@ -14,9 +15,23 @@ using Json = nlohmann::ordered_json;
 constexpr std::string_view kMark =
     "\x01"
     "deferred ";
+constexpr std::string_view kWrittenMark =
+    "\x01"
+    "written ";
+
+bool starts_with(const Json& value, std::string_view mark) {
+  return value.is_string() && value.get_ref<const std::string&>().rfind(mark, 0) == 0;
+}
 
 bool is_placeholder(const Json& value) {
-  return value.is_string() && value.get_ref<const std::string&>().rfind(kMark, 0) == 0;
+  return starts_with(value, kMark) || starts_with(value, kWrittenMark);
+}
+
+// The two numbers after a placeholder's mark.
+std::pair<int, int> placeholder_numbers(const Json& value, std::string_view mark) {
+  int first = 0, second = 0;
+  std::sscanf(value.get_ref<const std::string&>().c_str() + mark.size(), "%d %d", &first, &second);
+  return {first, second};
 }
 
 bool holds_placeholder(const Json& value) {
@@ -27,31 +42,32 @@ bool holds_placeholder(const Json& value) {
   return false;
 }
 
-void indent(std::ostream& out, int depth) {
-  for (int k = 0; k < depth; ++k)
-    out.put(' ');
-}
-
 // `text` (a dump(1) from depth 0) written at `depth`: every line after the first indented.
-void write_indented(std::ostream& out, const std::string& text, int depth) {
+void write_indented(JsonText& out, const std::string& text, int depth) {
   size_t from = 0;
   for (size_t at = text.find('\n'); at != std::string::npos; at = text.find('\n', from)) {
-    out.write(text.data() + from, static_cast<std::streamsize>(at + 1 - from));
-    indent(out, depth);
+    out.raw(std::string_view(text).substr(from, at - from));
+    out.newline(depth);
     from = at + 1;
   }
-  out.write(text.data() + from, static_cast<std::streamsize>(text.size() - from));
+  out.raw(std::string_view(text).substr(from));
 }
 
 class Writer {
  public:
-  Writer(std::ostream& out, const std::vector<ElementMaker>& makers) : out_(out), makers_(makers) {}
+  Writer(JsonText& out, const std::vector<ElementMaker>& makers,
+         const std::vector<ElementWriter>& writers)
+      : out_(out), makers_(makers), writers_(writers) {}
 
   void value(const Json& v, int depth) {
-    if (is_placeholder(v)) {
-      int maker = 0, index = 0;
-      std::sscanf(v.get_ref<const std::string&>().c_str() + kMark.size(), "%d %d", &maker, &index);
+    if (starts_with(v, kMark)) {
+      const auto [maker, index] = placeholder_numbers(v, kMark);
       value(makers_.at(static_cast<size_t>(maker))(index), depth);
+      return;
+    }
+    if (starts_with(v, kWrittenMark)) {
+      const auto [writer, index] = placeholder_numbers(v, kWrittenMark);
+      writers_.at(static_cast<size_t>(writer))(out_, index, depth);
       return;
     }
     if (!holds_placeholder(v)) {
@@ -59,39 +75,27 @@ class Writer {
       return;
     }
     if (v.is_array()) {
-      out_ << "[\n";
-      bool first = true;
-      for (const Json& item : v) {
-        if (!first) out_ << ",\n";
-        first = false;
-        indent(out_, depth + 1);
-        value(item, depth + 1);
-      }
-      out_ << "\n";
-      indent(out_, depth);
-      out_ << "]";
+      out_.array(v.size(), depth, [&](size_t k, int inner) { value(v[k], inner); });
       return;
     }
     // An object: its plain values first, then the structured ones (json_layout.hpp).
-    out_ << "{\n";
+    out_.raw("{");
     bool first = true;
     for (const bool structured : {false, true})
       for (const auto& [key, item] : v.items()) {
         if (item.is_structured() != structured) continue;
-        if (!first) out_ << ",\n";
+        out_.member(key, depth + 1, first);
         first = false;
-        indent(out_, depth + 1);
-        out_ << Json(key).dump() << ": ";
         value(item, depth + 1);
       }
-    out_ << "\n";
-    indent(out_, depth);
-    out_ << "}";
+    out_.newline(depth);
+    out_.raw("}");
   }
 
  private:
-  std::ostream& out_;
+  JsonText& out_;
   const std::vector<ElementMaker>& makers_;
+  const std::vector<ElementWriter>& writers_;
 };
 
 }  // namespace
@@ -100,9 +104,18 @@ Json deferred(int maker, int index) {
   return std::string(kMark) + std::to_string(maker) + " " + std::to_string(index);
 }
 
+Json written(int writer, int index) {
+  return std::string(kWrittenMark) + std::to_string(writer) + " " + std::to_string(index);
+}
+
+void write_streamed(std::ostream& out, const Json& document, const StreamedParts& parts) {
+  JsonText text(out);
+  Writer(text, parts.makers, parts.writers).value(document, 0);
+}
+
 void write_streamed(std::ostream& out, const Json& document,
                     const std::vector<ElementMaker>& makers) {
-  Writer(out, makers).value(document, 0);
+  write_streamed(out, document, StreamedParts{makers, {}});
 }
 
 }  // namespace fetic::app

@@ -15,33 +15,41 @@ namespace fetic::app {
 namespace {
 
 // Measured on generated scenes (fetic generate; peak resident memory of `fetic solve`,
-// /usr/bin/time -f %M; docs/RELIABILITY.md): bytes per item, least squares.
-constexpr double kBase = 18e6;  // the program itself (and its libraries: MPI, CHOLMOD, GL)
-// FETI and FETI-C: per subdomain a factor of K_j and one of its interior K_ii (the
-// Dirichlet preconditioner's), each freely ordered and kept as its nonzeros only
-// (solver/compact_factor.hpp), B's rows, the coarse problem, dual vectors. The factor's
-// cost per estimated entry was refitted for them (docs/BENCHMARKS.md, "Lean factors"):
-// 5.2 bytes on 20x24-element subdomains (the fill estimate is about twice the true fill).
-// Per unknown 200 bytes less since K_j's storage is really freed (solver/feti_system.cpp:
-// an Eigen matrix assigned an empty one kept its arrays; 1,014 -> 819 MB at 984,900).
-// Single precision factors (--single-factors) keep 6 of the 10 bytes an entry.
-constexpr double kFetiPerUnknown = 180, kFetiPerStrut = 4500, kFetiPerSubdomain = 5000,
-                 kFetiPerFactorEntry = 5.2, kFetiPerInterfaceRow = 2500, kSingleFactorShare = 0.6;
+// /usr/bin/time -f %M; docs/RELIABILITY.md, "Memory"): bytes per item, least squares
+// weighted by 1/peak (relative error) over bar, plane and frame scenes of 1e4 to 1e6
+// unknowns, then raised by 5% so that the estimate errs on the side of room.
+constexpr double kBase = 13.5e6;  // the program itself (and its libraries: MPI, CHOLMOD, GL)
+constexpr double kMargin = 1.05;
+// The dual methods: per subdomain a factor of K_j (FETI-DP: of its remainder K_rr) and,
+// with the Dirichlet preconditioner, one of its interior K_ii, each kept as its nonzeros
+// only (solver/compact_factor.hpp); B's rows and their index arrays; the coarse problem;
+// dual vectors. Per strut: its mesh, element data and results. The lumped preconditioner
+// keeps every K_j (about as many entries as unknowns times DOFs per node).
+struct DualCosts {
+  double per_unknown, per_strut, per_interface_row, per_factor_entry, per_single_factor_entry,
+      per_interior_factor_entry, per_kept_stiffness_entry;
+};
+// Fitted 5 December 2026 on 35-40 runs each (docs/RELIABILITY.md lists them). FETI-DP's
+// factor entries are those of K_j's estimate (K_rr has a few fewer); its interior factors
+// fold into them (the fit found no separate share); single precision keeps 83% of an
+// entry there against 60% for FETI-C's (its corner problem stays double).
+constexpr DualCosts kFetiCCosts{98, 49900, 1260, 7.2, 4.3, 3.5, 33};
+constexpr DualCosts kMprgpCosts{103, 45700, 1710, 6.7, 4.0, 3.8, 34};
+constexpr DualCosts kFetiDpCosts{156, 6500, 220, 14.7, 12.3, 0.0, 0.0};
+// FETI-C's and MPRGP's interior factors in single precision (--single-factors).
+constexpr double kSingleFactorShare = 0.6;
 // Active set: K factorized per strut, the contact rows solved against it (dense, per
 // strut), the working-set system (dense, up to every pair: twice, for the LU).
 constexpr double kActivePerUnknown = 320, kActivePerStrut = 3300, kActivePerFactorEntry = 5,
                  kActivePerContactColumn = 23, kActivePerPairSquared = 16;
-// MPRGP: FETI-C's, plus its face projector: a second sparse coarse factor (the dense
-// correction over the modes next to contacts it once held is gone: face_projector.hpp).
-constexpr double kModesPerSubdomain = 3, kFaceProjectorPerMode = 2000;
 // CG and SD: K and a few vectors.
 constexpr double kGradientPerUnknown = 600, kGradientPerStrut = 3300;
 // The result file is written streamed (app/json_stream.hpp) and the ParaView files are
 // made a strut at a time (app/vtu_export.hpp; one array's compressed blocks are held):
-// together they added 17 MB to the 984,900-unknown solve's peak and 43 MB to the
-// 2.9e6-unknown one's (about 30 bytes a node; docs/RELIABILITY.md, "Memory").
-constexpr double kResultFilePerNode = 20;
-constexpr double kParaViewPerNode = 10;
+// together they add about 18 bytes a node and 0.4 MB to a solve's peak (fitted with the
+// dual methods' costs; docs/RELIABILITY.md, "Memory").
+constexpr double kResultFilePerNode = 10, kResultFileFixed = 0.2e6;
+constexpr double kParaViewPerNode = 8, kParaViewFixed = 0.2e6;
 // A snapshot: the displacement pieces and the dual or primal iterate.
 constexpr double kIteratePerUnknown = 24, kIteratePerRow = 16;
 // toml++'s tree and the text, per byte of the file.
@@ -58,7 +66,7 @@ double fill_per_dof(double a, double b, double per_node) {
 }
 
 struct Counts {
-  double unknowns = 0, struts = 0, subdomains = 0, interface_rows = 0, pairs = 0;
+  double unknowns = 0, struts = 0, interface_rows = 0, pairs = 0;
   double subdomain_fill = 0, interior_fill = 0, strut_fill = 0, contact_columns = 0, nodes = 0;
 };
 
@@ -85,7 +93,6 @@ Counts count(const scenes::Scene& scene) {
     const double sy = across > 1 ? std::max(1, s.subdomains_across) : 1.0;
     const double dofs = along * across * per_node;
     c.struts += 1;
-    c.subdomains += sx * sy;
     const double box_along = std::ceil(s.elements / sx) + 1.0;
     const double box_across = across > 1 ? std::ceil(s.elements_across / sy) + 1.0 : 1.0;
     // K_j's factor and its interior's (the box less its outer ring of nodes).
@@ -104,20 +111,27 @@ Counts count(const scenes::Scene& scene) {
   return c;
 }
 
+double dual_bytes(const Counts& c, const DualCosts& k, const MemoryUse& use) {
+  const double per_entry = use.single_factors ? k.per_single_factor_entry : k.per_factor_entry;
+  const double interior =
+      use.dirichlet ? k.per_interior_factor_entry * (use.single_factors ? kSingleFactorShare : 1.0)
+                    : 0.0;
+  const double dofs_per_node = c.nodes > 0 ? c.unknowns / c.nodes : 1.0;
+  const double kept_stiffness = use.dirichlet ? 0.0 : c.unknowns * dofs_per_node;
+  return kMargin * (kBase + k.per_unknown * c.unknowns + k.per_strut * c.struts +
+                    k.per_interface_row * c.interface_rows + per_entry * c.subdomain_fill +
+                    interior * c.interior_fill + k.per_kept_stiffness_entry * kept_stiffness);
+}
+
 double method_bytes(const Counts& c, solver::MethodKind method, const MemoryUse& use) {
-  const double per_entry = kFetiPerFactorEntry * (use.single_factors ? kSingleFactorShare : 1.0);
-  // The interior factors are the Dirichlet preconditioner's only.
-  const double fill = c.subdomain_fill + (use.dirichlet ? c.interior_fill : 0.0);
   switch (method) {
     case solver::MethodKind::Feti:
     case solver::MethodKind::FetiC:
-      return kBase + kFetiPerUnknown * c.unknowns + kFetiPerStrut * c.struts +
-             kFetiPerSubdomain * c.subdomains + per_entry * fill +
-             kFetiPerInterfaceRow * c.interface_rows;
+      return dual_bytes(c, kFetiCCosts, use);
     case solver::MethodKind::Mprgp:
+      return dual_bytes(c, kMprgpCosts, use);
     case solver::MethodKind::FetiDp:
-      return method_bytes(c, solver::MethodKind::FetiC, use) +
-             kFaceProjectorPerMode * kModesPerSubdomain * c.subdomains;
+      return dual_bytes(c, kFetiDpCosts, use);
     case solver::MethodKind::ActiveSet:
       return kBase + kActivePerUnknown * c.unknowns + kActivePerStrut * c.struts +
              kActivePerFactorEntry * c.strut_fill + kActivePerContactColumn * c.contact_columns +
@@ -190,8 +204,8 @@ MemoryEstimate estimate_memory(const scenes::Scene& scene, const MemoryUse& use)
       estimate.largest = solver::to_string(method);
     }
   }
-  if (use.result_file) estimate.bytes += kResultFilePerNode * c.nodes;
-  if (use.paraview) estimate.bytes += kParaViewPerNode * c.nodes;
+  if (use.result_file) estimate.bytes += kResultFileFixed + kResultFilePerNode * c.nodes;
+  if (use.paraview) estimate.bytes += kParaViewFixed + kParaViewPerNode * c.nodes;
   estimate.bytes +=
       use.kept_iterates * (kIteratePerUnknown * c.unknowns + kIteratePerRow * c.interface_rows);
   return estimate;

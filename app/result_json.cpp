@@ -7,7 +7,7 @@ namespace fetic::app {
 
 nlohmann::ordered_json result_json(const solver::Model& model, const solver::Snapshot& final_state,
                                    const std::vector<solver::HistoryEntry>& history,
-                                   const RunInfo& info, std::vector<ElementMaker>* makers) {
+                                   const RunInfo& info, StreamedParts* streamed) {
   nlohmann::ordered_json result;
   result["fetic_version"] = fetic_version();
   result["scene"] = info.scene_path;
@@ -24,7 +24,7 @@ nlohmann::ordered_json result_json(const solver::Model& model, const solver::Sna
   result["ranks"] = info.ranks;
   if (!info.subdomains_per_rank.empty()) result["subdomains_per_rank"] = info.subdomains_per_rank;
   // load_factor, converged, iterations, struts, contacts, reactions, ...
-  add_state(result, model, final_state, makers);
+  add_state(result, model, final_state, streamed);
   result["history"] = history_json(history);
   return result;
 }

@@ -24,10 +24,9 @@ struct RunInfo {
 };
 
 // Keys in insertion order; app/json_layout.hpp puts the plain values first when written.
-// With `makers`, the struts are placeholders for write_streamed() (app/state_json.hpp).
+// With `streamed`, the struts are placeholders for write_streamed() (app/state_json.hpp).
 nlohmann::ordered_json result_json(const solver::Model& model, const solver::Snapshot& final_state,
                                    const std::vector<solver::HistoryEntry>& history,
-                                   const RunInfo& info,
-                                   std::vector<ElementMaker>* makers = nullptr);
+                                   const RunInfo& info, StreamedParts* streamed = nullptr);
 
 }  // namespace fetic::app

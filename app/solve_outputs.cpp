@@ -96,11 +96,11 @@ void SolveOutputs::finish(const std::vector<solver::SweepStep>& steps, const Run
   if (!args_.json.empty()) {
     // Streamed (app/json_stream.hpp): the final state's struts and every step are made
     // as they are written.
-    std::vector<ElementMaker> makers;
-    nlohmann::ordered_json result = result_json(model_, last.state, last.history, info, &makers);
+    StreamedParts parts;
+    nlohmann::ordered_json result = result_json(model_, last.state, last.history, info, &parts);
     if (sweeping) {
-      const int maker = static_cast<int>(makers.size());
-      makers.push_back([&](int k) {
+      const int maker = static_cast<int>(parts.makers.size());
+      parts.makers.push_back([&](int k) {
         const solver::SweepStep& step = steps[static_cast<size_t>(k)];
         nlohmann::ordered_json entry;
         add_state(entry, model_, step.state);
@@ -115,16 +115,24 @@ void SolveOutputs::finish(const std::vector<solver::SweepStep>& steps, const Run
     ProgressLine line(progress_);
     int made = 0;
     const int total = static_cast<int>(model_.struts.size() + (sweeping ? steps.size() : 0));
-    for (ElementMaker& maker : makers)
+    const auto count_part = [&] {
+      if (line.elapsed_seconds() > 1.0)
+        line.update("writing " + args_.json + ": " + std::to_string(made) + " of " +
+                    std::to_string(total) + " parts");
+      ++made;
+    };
+    for (ElementMaker& maker : parts.makers)
       maker = [&, make = std::move(maker)](int k) {
-        if (line.elapsed_seconds() > 1.0)
-          line.update("writing " + args_.json + ": " + std::to_string(made) + " of " +
-                      std::to_string(total) + " parts");
-        ++made;
+        count_part();
         return make(k);
       };
+    for (ElementWriter& writer : parts.writers)
+      writer = [&, write = std::move(writer)](JsonText& text, int k, int depth) {
+        count_part();
+        write(text, k, depth);
+      };
     write_output(args_.json, [&](std::ostream& out) {
-      write_streamed(out, result, makers);
+      write_streamed(out, result, parts);
       out << '\n';
     });
   }

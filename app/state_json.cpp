@@ -43,6 +43,60 @@ OrderedJson strut_json(const solver::Model& model, int s, const std::vector<solv
   return strut;
 }
 
+// What strut_json(...) (with a frame's rotations) writes through write_streamed, as text:
+// the same keys in the same order (the name, the only plain value, first), the same bytes.
+void write_strut(JsonText& text, const solver::Model& model, int s,
+                 const solver::StrutResults& results, int depth) {
+  const solver::StrutMesh& mesh = model.struts[static_cast<size_t>(s)];
+  const std::vector<solver::Vec2> u = results.displacements(s);
+  const solver::StrutElements elements = results.elements(s);
+  const auto points = [&](const std::vector<solver::Vec2>& list, int inner) {
+    text.array(mesh.nodes.size(), inner, [&](size_t n, int at) {
+      text.array(2, at, [&](size_t k, int) { text.number(list[n][static_cast<int>(k)]); });
+    });
+  };
+  const auto numbers = [&](const auto& list, int inner) {
+    text.array(list.size(), inner, [&](size_t k, int) { text.number(list[k]); });
+  };
+  const int inner = depth + 1;
+  text.raw("{");
+  text.member("name", inner, true);
+  text.string(model.strut_names[static_cast<size_t>(s)]);
+  text.member("nodes", inner, false);
+  points(mesh.nodes, inner);
+  text.member("displacements", inner, false);
+  points(u, inner);
+  text.member("elements", inner, false);
+  const auto per = static_cast<size_t>(elements.nodes_per_element);
+  text.array(static_cast<size_t>(elements.element_count()), inner, [&](size_t e, int at) {
+    text.array(per, at, [&](size_t a, int) { text.number(elements.connectivity[e * per + a]); });
+  });
+  text.member("element_subdomains", inner, false);
+  numbers(elements.subdomain, inner);
+  text.member("stress", inner, false);
+  if (elements.stress.empty())
+    text.raw("{}");
+  else {
+    text.raw("{");
+    for (size_t f = 0; f < elements.stress.size(); ++f) {
+      text.member(elements.stress[f].name, inner + 1, f == 0);
+      numbers(elements.stress[f].values, inner + 1);
+    }
+    text.newline(inner);
+    text.raw("}");
+  }
+  for (const solver::NamedValues& field : elements.resultants) {
+    text.member(field.name, inner, false);
+    numbers(field.values, inner);
+  }
+  if (model.frame()) {
+    text.member("rotations", inner, false);
+    numbers(results.rotations(s), inner);
+  }
+  text.newline(depth);
+  text.raw("}");
+}
+
 OrderedJson contact_json(const solver::Model& model, const solver::Snapshot& state, size_t c) {
   OrderedJson pairs = OrderedJson::array();
   double total = 0.0;
@@ -99,7 +153,7 @@ std::string end_label(const solver::Model& model, int strut, scenes::StrutEnd en
 }
 
 void add_state(OrderedJson& out, const solver::Model& model, const solver::Snapshot& state,
-               std::vector<ElementMaker>* makers) {
+               StreamedParts* streamed) {
   const bool interrupted = state.status == solver::Status::Running;
   out["load_factor"] = state.load_factor;
   out["converged"] = state.status == solver::Status::Converged;
@@ -110,18 +164,24 @@ void add_state(OrderedJson& out, const solver::Model& model, const solver::Snaps
   out["residual"] = state.residual;
   out["active_pairs"] = state.active_set_size();
 
-  // One strut's results at a time: the maker runs as the file is written (json_stream.hpp).
+  // One strut's results at a time: the writer runs as the file is written (json_stream.hpp).
   auto results = std::make_shared<solver::StrutResults>(model, state);
-  const auto make = [&model, results](int s) {
-    OrderedJson strut = strut_json(model, s, results->displacements(s), results->elements(s));
-    if (model.frame()) strut["rotations"] = results->rotations(s);
-    return strut;
-  };
   OrderedJson struts = OrderedJson::array();
-  const int maker = makers ? static_cast<int>(makers->size()) : -1;
-  if (makers) makers->push_back(make);
-  for (size_t s = 0; s < model.struts.size(); ++s)
-    struts.push_back(makers ? deferred(maker, static_cast<int>(s)) : make(static_cast<int>(s)));
+  if (streamed) {
+    const int writer = static_cast<int>(streamed->writers.size());
+    streamed->writers.push_back([&model, results](JsonText& text, int s, int depth) {
+      write_strut(text, model, s, *results, depth);
+    });
+    for (size_t s = 0; s < model.struts.size(); ++s)
+      struts.push_back(written(writer, static_cast<int>(s)));
+  } else {
+    for (size_t s = 0; s < model.struts.size(); ++s) {
+      const int k = static_cast<int>(s);
+      OrderedJson strut = strut_json(model, k, results->displacements(k), results->elements(k));
+      if (model.frame()) strut["rotations"] = results->rotations(k);
+      struts.push_back(std::move(strut));
+    }
+  }
   out["struts"] = std::move(struts);
 
   OrderedJson contacts = OrderedJson::array();

@@ -18,11 +18,11 @@ using OrderedJson = nlohmann::ordered_json;
 
 // Adds the state's keys to `out` (an object). A state still Running was interrupted:
 // it is written with "interrupted": true, "converged": false, "status": "interrupted".
-// With `makers`, every strut is a placeholder whose maker (added to the list) builds it
-// when write_streamed() writes it (app/json_stream.hpp); the struts' displacements and
-// element results are held as numbers until then, not as JSON.
+// With `streamed`, every strut is a placeholder whose writer (added to the list) writes it
+// as text when write_streamed() comes to it (app/json_stream.hpp); the struts'
+// displacements and element results are held as numbers until then, never as JSON.
 void add_state(OrderedJson& out, const solver::Model& model, const solver::Snapshot& state,
-               std::vector<ElementMaker>* makers = nullptr);
+               StreamedParts* streamed = nullptr);
 
 OrderedJson history_json(const std::vector<solver::HistoryEntry>& history);
 

@@ -9,6 +9,8 @@
 
 #include <zlib.h>
 
+#include "solver/threads.hpp"
+
 namespace fetic::app {
 namespace {
 
@@ -76,14 +78,18 @@ class Base64Writer {
 // Inline compressed: base64 of the header (blocks, block size, last block size, each
 // block's compressed size), then base64 of the compressed blocks - two streams, as VTK's
 // reader expects for inline data. The header needs every block's size, so the compressed
-// blocks of one array are held until its end (not the array itself).
+// blocks of one array are held until its end (not the array itself). Blocks are
+// compressed kBatch at a time on the process' threads, each alone (the bytes do not
+// depend on the threads), at zlib's fastest level: on a result's float arrays level 1
+// compressed 4.8 times faster than the default level 6 to files 1.4% larger (level 6 was
+// most of writing a 1e7-unknown result: 47 s of a 60 s target on a loaded machine).
 class ZlibBlocks {
  public:
   void write(const std::uint8_t* data, std::size_t size) {
-    append_in_chunks(block_, kBlockSize, data, size, [this] { compress_block(); });
+    append_in_chunks(pending_, kBatch * kBlockSize, data, size, [this] { compress_pending(); });
   }
   void finish(std::ostream& out) {
-    if (!block_.empty()) compress_block();
+    if (!pending_.empty()) compress_pending();
     std::vector<std::uint8_t> header;
     append_u64(header, sizes_.size());
     append_u64(header, kBlockSize);
@@ -97,19 +103,34 @@ class ZlibBlocks {
   }
 
  private:
-  void compress_block() {
-    uLongf length = compressBound(static_cast<uLong>(block_.size()));
-    const std::size_t at = compressed_.size();
-    compressed_.resize(at + length);
-    if (compress2(compressed_.data() + at, &length, block_.data(),
-                  static_cast<uLong>(block_.size()), Z_DEFAULT_COMPRESSION) != Z_OK)
-      throw std::runtime_error("zlib could not compress a data array");
-    compressed_.resize(at + length);
-    sizes_.push_back(length);
-    last_ = block_.size();
-    block_.clear();
+  static constexpr std::size_t kBatch = 64;  // 2 MB of values: enough for two threads
+
+  void compress_pending() {
+    const std::size_t blocks = (pending_.size() + kBlockSize - 1) / kBlockSize;
+    std::vector<std::vector<std::uint8_t>> out(blocks);
+    bool failed = false;
+    const int threads = solver::threads_for(static_cast<long long>(blocks) * kWorkPerBlock);
+#pragma omp parallel for num_threads(threads) schedule(dynamic) reduction(|| : failed)
+    for (std::size_t b = 0; b < blocks; ++b) {
+      const std::size_t from = b * kBlockSize;
+      const std::size_t size = std::min(kBlockSize, pending_.size() - from);
+      uLongf length = compressBound(static_cast<uLong>(size));
+      out[b].resize(length);
+      failed = failed || compress2(out[b].data(), &length, pending_.data() + from,
+                                   static_cast<uLong>(size), Z_BEST_SPEED) != Z_OK;
+      out[b].resize(length);
+    }
+    if (failed) throw std::runtime_error("zlib could not compress a data array");
+    for (const std::vector<std::uint8_t>& block : out) {
+      compressed_.insert(compressed_.end(), block.begin(), block.end());
+      sizes_.push_back(block.size());
+    }
+    last_ = pending_.size() - (blocks - 1) * kBlockSize;
+    pending_.clear();
   }
-  std::vector<std::uint8_t> block_, compressed_;
+  // A block takes about a millisecond to compress (threads.hpp counts microseconds).
+  static constexpr long long kWorkPerBlock = 1000;
+  std::vector<std::uint8_t> pending_, compressed_;
   std::vector<std::uint64_t> sizes_;
   std::uint64_t last_ = 0;
 };

@@ -58,7 +58,7 @@ cholmod_sparse view_of(const SparseMatrix& A) {
 
 }  // namespace
 
-CholmodFactor::Result CholmodFactor::factorize(const SparseMatrix& A) {
+CholmodFactor::Result CholmodFactor::factorize(const SparseMatrix& A, bool to_compact) {
   if (!A.isCompressed()) throw std::logic_error("CholmodFactor: matrix must be compressed");
   if (!impl_) impl_ = std::make_unique<Impl>();
   cholmod_free_factor(&impl_->factor, &impl_->common);
@@ -68,6 +68,10 @@ CholmodFactor::Result CholmodFactor::factorize(const SparseMatrix& A) {
   if (size_ == 0) return Result::Ok;
   cholmod_sparse view = view_of(A);
   cholmod_common& c = impl_->common;
+  if (to_compact && size_ <= kSimplicialUpTo) {
+    c.supernodal = CHOLMOD_SIMPLICIAL;
+    c.final_ll = 1;  // LL' as compact() keeps it, not LDL' converted afterwards
+  }
   impl_->factor = cholmod_analyze(&view, &c);
   // CHOLMOD running out of memory is std::bad_alloc like any other allocation: the
   // commands report it as such (status 7), not as a singular or failed factorization.

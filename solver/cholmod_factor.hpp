@@ -25,7 +25,13 @@ class CholmodFactor {
 
   // Factorizes the symmetric matrix A (only its lower triangle is read). Throws
   // std::bad_alloc when CHOLMOD runs out of memory (OutOfMemory is never returned).
-  Result factorize(const SparseMatrix& A);
+  // `to_compact`: the factor is only going to be compact()ed, so a small one (at most
+  // kSimplicialUpTo rows) is factorized simplicial, column by column, whatever CHOLMOD's
+  // own rule would choose: its supernodes' dense blocks only pay in BLAS solves, which the
+  // compact copy does not use, and at the ~1,100 rows of a FETI subdomain the simplicial
+  // factorization took 30% less time (docs/BENCHMARKS.md).
+  Result factorize(const SparseMatrix& A, bool to_compact = false);
+  static constexpr int kSimplicialUpTo = 5000;
   // The same for a matrix with the nonzero pattern of the last factorize(): the fill-
   // reducing ordering and symbolic analysis are kept, only the numbers are factorized
   // again (a working-set change in FETI-C changes values of G G', not its pattern).

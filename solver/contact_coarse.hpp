@@ -9,8 +9,9 @@
 // balancing coarse space of the contact rows: per contact and per pair of boxes the
 // face's rows cross (one segment of the face), a uniform and a linear column (the normal
 // translation and the rotation of that box, seen by the contact rows), U. With W = A U
-// and E = U'A U (A MPRGP's operator; |U| applications of A at set-up, each solving only
-// the clusters its column touches), MPRGP's preconditioner in the face of the free rows
+// and E = U'A U (A MPRGP's operator; at set-up the columns whose supports cannot meet
+// share one application of A, and E is block diagonal over the columns sharing a
+// cluster: contact_batches.hpp), MPRGP's preconditioner in the face of the free rows
 // R becomes Mandel's balancing form
 //
 //   z = R [ (I - U E^-1 W') M^-1 R (I - W E^-1 U') + U E^-1 U' ] g,
@@ -26,6 +27,7 @@
 
 #include <Eigen/Core>
 
+#include "solver/contact_batches.hpp"
 #include "solver/feti_system.hpp"
 
 namespace fetic::solver {
@@ -39,10 +41,14 @@ class ContactCoarseSpace {
       std::function<void(const Eigen::VectorXd&, const std::vector<char>&, Eigen::VectorXd&)>;
 
   ContactCoarseSpace() = default;
-  // The columns of `system`'s contact rows and W = A U (collective: |U| applications).
-  ContactCoarseSpace(const FetiSystem& system, const Operator& apply_A);
+  // The columns of `system`'s contact rows and W = A U (collective: applications() of A);
+  // with `clamped_only` only the segments between clusters without rigid-body modes
+  // (hybrid FETI-DP: a floating cluster's modes are in G already).
+  ContactCoarseSpace(const FetiSystem& system, const Operator& apply_A, bool clamped_only = false);
 
   int columns() const { return static_cast<int>(U_.size()); }
+  // Applications of A the set-up took (one per batch of columns, contact_batches.hpp).
+  int applications() const { return applications_; }
   // z for the free gradient g (zero off the face) with `inner` as M^-1 (collective).
   void apply(const Eigen::VectorXd& g, const std::vector<char>& free,
              const FacePreconditioner& inner, Eigen::VectorXd& z) const;
@@ -57,9 +63,22 @@ class ContactCoarseSpace {
   // v += C c.
   static void add(const std::vector<Column>& C, const Eigen::VectorXd& c, Eigen::VectorXd& v);
 
+  // One diagonal block of E: its columns (increasing) and its pseudo-inverse.
+  struct Block {
+    std::vector<int> columns;
+    Eigen::MatrixXd inverse;
+  };
+  void form_W(const Decomposition& d, const ContactBatches& plan, const Operator& apply_A);
+  void form_E_inverse(const std::vector<std::vector<int>>& components);
+  void invert_blocks(const std::vector<std::vector<int>>& components,
+                     std::vector<Eigen::MatrixXd>& E);
+  // E^+ y, block by block.
+  Eigen::VectorXd solve_E(const Eigen::VectorXd& y) const;
+
   const DualSpace* space_ = nullptr;
   std::vector<Column> U_, W_;
-  Eigen::MatrixXd E_inverse_;
+  std::vector<Block> blocks_;
+  int applications_ = 0;
 };
 
 }  // namespace fetic::solver

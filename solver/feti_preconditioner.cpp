@@ -143,7 +143,7 @@ bool FetiPreconditioner::set_up_local(const SubdomainOperator& op, Local& local,
     return true;
   }
   const SparseMatrix K_ii = extract(op.K, i_position, ni, i_position, ni);
-  if (local.K_ii.factorize(K_ii) != CholmodFactor::Result::Ok) return false;
+  if (local.K_ii.factorize(K_ii, true) != CholmodFactor::Result::Ok) return false;
   local.K_ii.compact();  // only solved with from here on
   return true;
 }

@@ -136,6 +136,7 @@ void FetiSystem::factorize_subdomains(bool interior_first, bool single_factors) 
     op.K.swap(K);
     op.R = subdomain_modes(model_, sub);
     op.K_plus.use_single_precision(single_factors);
+    op.K_plus.use_simplicial_when_small(true);
     // Not for FETI-DP's clusters: their boundary (every torn interface DOF of the
     // cluster's boxes, coupled through the corners) would be one dense trailing block.
     if (interior_first && sub.parts.empty()) {

@@ -57,7 +57,7 @@ CholmodFactor::Result GeneralizedInverse::factorize(const SparseMatrix& K,
   SparseMatrix K_ii(interior, interior);
   K_ii.setFromTriplets(entries.begin(), entries.end());
   // A singular K_ii leaves has_interior_solve() false: the preconditioner reports it.
-  if (interior_factor_.factorize(K_ii) == CholmodFactor::Result::Ok)
+  if (interior_factor_.factorize(K_ii, simplicial_) == CholmodFactor::Result::Ok)
     interior_factor_.compact(single_);
   else
     interior_factor_ = CholmodFactor();
@@ -75,7 +75,7 @@ CholmodFactor::Result GeneralizedInverse::factorize_kept(const SparseMatrix& K) 
     position[dof] = static_cast<int>(kept_.size());
     kept_.push_back(dof);
   }
-  if (fixed_.empty()) return compacted(factor_.factorize(K));
+  if (fixed_.empty()) return compacted(factor_.factorize(K, simplicial_));
   std::vector<Eigen::Triplet<double>> entries;
   entries.reserve(static_cast<size_t>(K.nonZeros()));
   for (int col = 0; col < K.outerSize(); ++col)
@@ -85,7 +85,7 @@ CholmodFactor::Result GeneralizedInverse::factorize_kept(const SparseMatrix& K) 
   const int n = static_cast<int>(kept_.size());
   SparseMatrix reduced(n, n);
   reduced.setFromTriplets(entries.begin(), entries.end());
-  return compacted(factor_.factorize(reduced));
+  return compacted(factor_.factorize(reduced, simplicial_));
 }
 
 CholmodFactor::Result GeneralizedInverse::compacted(CholmodFactor::Result result) {

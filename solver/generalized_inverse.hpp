@@ -26,6 +26,10 @@ class GeneralizedInverse {
   // Keep the factors' entries below the diagonal as floats (CompactFactor), for the
   // factorizations after this call.
   void use_single_precision(bool single) { single_ = single; }
+  // Factorize small factors simplicial (CholmodFactor::factorize's `to_compact`): FETI's
+  // thousands of subdomains. Off by default, so that the primal methods' strut blocks
+  // keep CHOLMOD's own choice and their answers' round-off.
+  void use_simplicial_when_small(bool simplicial) { simplicial_ = simplicial; }
   bool has_interior_solve() const { return interior_factor_.size() > 0; }
   // y = K_ii^-1 x over the interior DOFs (those not in the boundary, in increasing order).
   void interior_solve(const double* x, double* y) const;
@@ -56,6 +60,7 @@ class GeneralizedInverse {
   CholmodFactor factor_;
   CholmodFactor interior_factor_;  // K_ii's (empty unless asked for)
   bool single_ = false;
+  bool simplicial_ = false;
 };
 
 // DOFs (rows of `kernel`) whose rows form the best-conditioned square block of the

@@ -33,15 +33,22 @@ Mprgp::Mprgp(const Model& model, const SolveOptions& options, const Communicator
   estimate_operator_norm();
   inner_.set_norm(norm_A_);
   if (!groups_.empty()) outer_.emplace(inner_, parameters_, rho_);
-  // Plain FETI-DP (not the hybrid, whose floating clusters carry their modes in G, nor
-  // --clusters 1, which is FETI-1): the contact faces' coarse space (contact_coarse.hpp).
-  if (options.corner_clusters < 0 && options.preconditioner != Preconditioner::None &&
+  // FETI-DP (not --clusters 1, which is FETI-1): the contact faces' coarse space
+  // (contact_coarse.hpp). The hybrid only between clusters without modes: a floating
+  // cluster carries its modes in G, and columns there cost more F than they saved
+  // (docs/METHODS.md, "FETI-DP").
+  const int clusters = options.corner_clusters;
+  if ((clusters < 0 || clusters > 1) && options.preconditioner != Preconditioner::None &&
       system_.decomposition().contact_rows() > 0) {
     throw_if_stopped("setting up the contact faces' coarse space");
-    contact_coarse_.emplace(system_, [this](const Eigen::VectorXd& x, Eigen::VectorXd& out) {
-      Eigen::VectorXd ftx, qx;
-      apply_A(x, out, ftx, qx);
-    });
+    contact_coarse_.emplace(
+        system_,
+        [this](const Eigen::VectorXd& x, Eigen::VectorXd& out) {
+          Eigen::VectorXd ftx, qx;
+          apply_A(x, out, ftx, qx);
+        },
+        clusters > 1);
+    if (contact_coarse_->columns() == 0) contact_coarse_.reset();
   }
 }
 

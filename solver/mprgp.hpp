@@ -59,9 +59,11 @@ class Mprgp final : public FetiMethod, private MprgpProblem {
   std::vector<char> working_set() const override;
 
   // ||H|| as estimated at set-up, and the applications of F the set-up took (the power
-  // method's and, for FETI-DP, one per column of the contact faces' coarse space).
+  // method's and, for FETI-DP, one per batch of columns of the contact faces' coarse space).
   double operator_norm() const { return norm_H_; }
-  int setup_f_applications() const { return power_steps_ + contact_columns(); }
+  int setup_f_applications() const {
+    return power_steps_ + (contact_coarse_ ? contact_coarse_->applications() : 0);
+  }
   // Columns of FETI-DP's coarse space of the contact faces (0: none).
   int contact_columns() const { return contact_coarse_ ? contact_coarse_->columns() : 0; }
   // Steps of each kind in the current solve, and SMALBE outer iterations.
@@ -94,7 +96,8 @@ class Mprgp final : public FetiMethod, private MprgpProblem {
 
   MprgpParameters parameters_;
   std::optional<FaceProjector> face_;  // projector of the current face, for preconditioning
-  // Plain FETI-DP with contacts, preconditioned: the contact faces' modes, balanced.
+  // FETI-DP with contacts, preconditioned: the contact faces' modes, balanced (the hybrid:
+  // only between clusters without modes).
   std::optional<ContactCoarseSpace> contact_coarse_;
   double norm_H_ = 0.0, norm_A_ = 0.0, rho_ = 0.0;
   int power_steps_ = 0;

@@ -8,6 +8,9 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
 
 #include "tests/support/process.hpp"
 #include "tests/support/skip.hpp"
@@ -106,4 +109,50 @@ TEST_CASE("generate refuses a scene it could not check within the memory limit",
   CHECK(r.status == 7);
   CHECK_THAT(r.err, Catch::Contains("fetic generate: not enough memory: making and checking a "
                                     "scene of about"));
+}
+
+TEST_CASE("the memory estimate is within 25% of the measured peak on bar, plane and frame scenes",
+          "[memory]") {
+  // The memory check's model (app/memory_estimate.cpp) against the peak resident memory
+  // the run itself reports (--profile: getrusage's maximum resident set), one dual method
+  // per model and the output options, on scenes of about 1e5 unknowns. ASan's shadow
+  // memory would be counted in the peak.
+#ifdef __SANITIZE_ADDRESS__
+  FETIC_SKIP("the peak of a program built with ASan includes its shadow memory");
+#endif
+  struct Case {
+    std::vector<std::string> generate;
+    std::string method;
+    bool outputs;
+  };
+  const std::vector<Case> cases = {
+      {{"--model", "bar", "--pairs", "50", "--elements", "1000", "--subdomains", "10"},
+       "mprgp",
+       true},
+      {{"--model", "plane", "--pairs", "5", "--elements", "200,24", "--subdomains", "10,1"},
+       "feti-c",
+       false},
+      {{"--model", "frame", "--pairs", "5", "--elements", "1000", "--subdomains", "10"},
+       "feti-dp",
+       true}};
+  TempDir dir;
+  for (const Case& c : cases) {
+    const std::string scene = dir / "scene.toml", profile = dir / "profile.json";
+    std::vector<std::string> generate = {"generate", "-o", scene};
+    generate.insert(generate.end(), c.generate.begin(), c.generate.end());
+    REQUIRE(run_fetic(generate).status == 0);
+    std::vector<std::string> solve = {"solve",     scene,   "--method", c.method,
+                                      "--profile", profile, "--quiet"};
+    if (c.outputs) solve.insert(solve.end(), {"--json", dir / "r.json", "--vtu", dir / "vtu"});
+    const Result r = run_fetic(solve);
+    INFO(c.generate[1] << " " << c.method << "\n" << r.err);
+    REQUIRE(r.status == 0);
+    std::ifstream in(profile);
+    const nlohmann::json p = nlohmann::json::parse(in);
+    const double estimated = p.at("estimated_peak_bytes");
+    const double measured = p.at("processes").at(0).at("peak_resident_bytes");
+    INFO("estimated " << estimated / 1e6 << " MB, measured " << measured / 1e6 << " MB");
+    CHECK(estimated > 0.75 * measured);
+    CHECK(estimated < 1.25 * measured);
+  }
 }

@@ -267,7 +267,8 @@ TEST_CASE("solve --profile: per process counts, and MPRGP's iterations by step k
       CHECK(steps["conjugate_gradient"].get<int>() > 0);
       CHECK(steps["outer"].get<int>() == 0);  // plane struts are clamped: no SMALBE groups
       // FETI-DP: a uniform and a linear column per contact and pair of boxes its rows
-      // cross (2 boxes across each strut: 2 segments), one F each at set-up.
+      // cross (2 boxes across each strut: 2 segments), one F each at set-up (all on the same
+      // two clusters, so no two share an application: solver/contact_batches.hpp).
       const int columns = method == "feti-dp" ? 4 : 0;
       CHECK(profile.value("contact_coarse_columns", 0) == columns);
       CHECK(profile["setup_f_applications"].get<int>() > columns);

@@ -1,0 +1,57 @@
+#include "app/json_text.hpp"
+
+#include <charconv>
+#include <cmath>
+
+#include <nlohmann/json.hpp>
+
+namespace fetic::app {
+
+void JsonText::raw(std::string_view text) {
+  buffer_.append(text);
+  maybe_flush();
+}
+
+void JsonText::number(double value) {
+  if (!std::isfinite(value)) {
+    raw("null");  // what dump() writes for them
+    return;
+  }
+  // nlohmann's own shortest round-trip formatting (the one dump() calls), so that the
+  // bytes are those of dump(); 64 characters is its serializer's buffer.
+  char text[64];
+  const char* end = nlohmann::detail::to_chars(text, text + sizeof text, value);
+  buffer_.append(text, static_cast<std::size_t>(end - text));
+  maybe_flush();
+}
+
+void JsonText::number(long long value) {
+  char text[24];
+  const auto result = std::to_chars(text, text + sizeof text, value);
+  buffer_.append(text, static_cast<std::size_t>(result.ptr - text));
+  maybe_flush();
+}
+
+void JsonText::string(std::string_view text) {
+  raw(nlohmann::ordered_json(std::string(text)).dump());
+}
+
+void JsonText::newline(int depth) {
+  buffer_.push_back('\n');
+  buffer_.append(static_cast<std::size_t>(depth), ' ');
+}
+
+void JsonText::member(std::string_view key, int depth, bool first) {
+  if (!first) buffer_.push_back(',');
+  newline(depth);
+  string(key);
+  raw(": ");
+}
+
+void JsonText::flush() {
+  if (buffer_.empty()) return;
+  out_.write(buffer_.data(), static_cast<std::streamsize>(buffer_.size()));
+  buffer_.clear();
+}
+
+}  // namespace fetic::app
