@@ -266,9 +266,7 @@ void register_bench_render(CLI::App& app, int& exit_code) {
   command->add_option("--method", args->method, "Method")
       ->check(method_name())
       ->capture_default_str();
-  command->add_option("--size", args->size, "Image size in pixels")
-      ->check(image_size_check())
-      ->capture_default_str();
+  add_image_size_option(command, args->size);
   command->add_option("--frames", args->frames, "Frames per measurement")
       ->check(CLI::Range(1, 100000))
       ->capture_default_str();

@@ -117,9 +117,7 @@ void register_figures(CLI::App& app, int& exit_code) {
   command->add_option("--out", args->out, "Directory for the PNG files")
       ->required()
       ->check(output_name(OutputKind::Folder));
-  command->add_option("--size", args->size, "Image size in pixels")
-      ->check(image_size_check())
-      ->capture_default_str();
+  add_image_size_option(command, args->size);
   std::vector<std::string> ids;
   for (const render::FigureInfo& info : render::figure_catalogue())
     ids.push_back(info.id);

@@ -418,9 +418,7 @@ void register_render(CLI::App& app, int& exit_code) {
                    "Write PNG frames frame_0000.png, frame_0001.png, ... into this directory")
       ->check(output_name(OutputKind::Folder));
   add_method_options(command, args->method);
-  CLI::Option* size = command->add_option("--size", args->size, "Image size in pixels")
-                          ->check(image_size_check())
-                          ->capture_default_str();
+  CLI::Option* size = add_image_size_option(command, args->size);
   command->add_option("--view", args->view,
                       "Draw with a view saved in the window (size, centre, zoom, magnification, "
                       "colouring, toggles, scales; options given here win)");

@@ -15,7 +15,4 @@ void register_bench_render(CLI::App& app, int& exit_code);
 void register_gui(CLI::App& app, int& exit_code);
 void register_scenes(CLI::App& app, int& exit_code);
 
-// Parses the command line and runs the command; returns its exit status.
-int run_command_line(int argc, char** argv);
-
 }  // namespace fetic::app

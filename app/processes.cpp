@@ -34,6 +34,13 @@ bool start_processes(int* argc, char*** argv) {
     solver::set_thread_budget_for(1);
     return true;
   }
+  if (!solver::mpi_built_in()) {
+    std::fprintf(stderr,
+                 "fetic: started by an MPI launcher, but this fetic was built without MPI "
+                 "(each process would solve the whole scene alone); install Open MPI and "
+                 "build again: scripts/test.sh does both\n");
+    return false;
+  }
   if (!solver::mpi_start(argc, argv)) {
     std::fprintf(stderr, "fetic: started by an MPI launcher, but MPI_Init failed\n");
     return false;

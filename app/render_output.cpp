@@ -49,6 +49,12 @@ CLI::Validator image_size_check() {
       "WxH");
 }
 
+CLI::Option* add_image_size_option(CLI::App* command, std::string& size) {
+  return command->add_option("--size", size, "Image size in pixels")
+      ->check(image_size_check())
+      ->capture_default_str();
+}
+
 std::string frame_name(int index, int count) {
   int digits = 4;
   for (int limit = 10000; count > limit && digits < 9; limit *= 10)

@@ -26,6 +26,8 @@ struct ImageSize {
 // "WxH" with 16 <= W, H <= 8192.
 std::optional<ImageSize> parse_image_size(const std::string& text);
 CLI::Validator image_size_check();
+// The picture commands' --size option (WxH in pixels), its default shown in the help.
+CLI::Option* add_image_size_option(CLI::App* command, std::string& size);
 
 // frame_0000.png ... with at least 4 digits, more when `count` needs them.
 std::string frame_name(int index, int count);

@@ -308,17 +308,14 @@ std::optional<SavedView> read_view_or_report(const std::string& path, int& statu
 
 void apply_scales(const std::optional<render::RunExtent>& scales, render::RunExtent& extent) {
   if (!scales) return;
-  const render::RunExtent& s = *scales;
-  extent.largest_displacement = s.largest_displacement;
-  extent.largest_force = s.largest_force;
-  extent.largest_stress = s.largest_stress;
-  extent.largest_moment = s.largest_moment;
-  extent.largest_iteration = s.largest_iteration;
-  extent.largest_active_set = s.largest_active_set;
-  extent.smallest_residual = s.smallest_residual;
-  extent.largest_residual = s.largest_residual;
-  extent.largest_stretch = s.largest_stretch;
-  extent.strut_lateral = s.strut_lateral;
+  // The saved scales are all of a RunExtent but the run's own record, which stays.
+  render::RunExtent scaled = *scales;
+  scaled.frame_count = extent.frame_count;
+  scaled.zero_residual = extent.zero_residual;
+  scaled.steps = std::move(extent.steps);
+  scaled.final_status = extent.final_status;
+  scaled.final_message = std::move(extent.final_message);
+  extent = std::move(scaled);
 }
 
 }  // namespace fetic::app

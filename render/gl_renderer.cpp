@@ -102,18 +102,25 @@ out vec4 output_color;
 void main() { output_color = fragment_color; }
 )";
 
+// A shader or program that failed to build: deleted, and the driver's log thrown.
+void throw_unless_built(GLint built, GLuint object,
+                        void (*info_log)(GLuint, GLsizei, GLsizei*, GLchar*),
+                        void (*destroy)(GLuint), const char* what) {
+  if (built) return;
+  char log[1024] = {};
+  info_log(object, sizeof log, nullptr, log);
+  destroy(object);
+  throw RenderError(std::string("cannot ") + what + ": " + log);
+}
+
 GLuint compile(GLenum kind, const char* source) {
   const GLuint shader = glCreateShader(kind);
   glShaderSource(shader, 1, &source, nullptr);
   glCompileShader(shader);
   GLint ok = 0;
   glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
-  if (!ok) {
-    char log[1024] = {};
-    glGetShaderInfoLog(shader, sizeof log, nullptr, log);
-    glDeleteShader(shader);
-    throw RenderError(std::string("cannot compile the renderer's shader: ") + log);
-  }
+  throw_unless_built(ok, shader, glGetShaderInfoLog, glDeleteShader,
+                     "compile the renderer's shader");
   return shader;
 }
 
@@ -128,12 +135,8 @@ GLuint link(const char* vertex_source, const char* fragment_source) {
   glDeleteShader(fragment);
   GLint linked = 0;
   glGetProgramiv(program, GL_LINK_STATUS, &linked);
-  if (!linked) {
-    char log[1024] = {};
-    glGetProgramInfoLog(program, sizeof log, nullptr, log);
-    glDeleteProgram(program);
-    throw RenderError(std::string("cannot link the renderer's shader program: ") + log);
-  }
+  throw_unless_built(linked, program, glGetProgramInfoLog, glDeleteProgram,
+                     "link the renderer's shader program");
   return program;
 }
 
@@ -158,6 +161,21 @@ void upload(GLuint buffer, const std::vector<T>& data, GLenum usage) {
                     data.data());
 }
 
+// Vertex attribute `index` of the bound vertex array: `size` components of `type` at
+// `offset` in each `stride`-byte vertex, read as floats (normalized: bytes to 0..1).
+void float_attribute(GLuint index, GLint size, GLenum type, bool normalized, GLsizei stride,
+                     std::size_t offset) {
+  glEnableVertexAttribArray(index);
+  glVertexAttribPointer(index, size, type, normalized ? GL_TRUE : GL_FALSE, stride,
+                        reinterpret_cast<void*>(offset));
+}
+
+// The same for `size` ints, read as ints.
+void int_attribute(GLuint index, GLint size, GLsizei stride, std::size_t offset) {
+  glEnableVertexAttribArray(index);
+  glVertexAttribIPointer(index, size, GL_INT, stride, reinterpret_cast<void*>(offset));
+}
+
 void check(const char* what) {
   const GLenum error = glGetError();
   if (error != GL_NO_ERROR)
@@ -176,15 +194,9 @@ GlRenderer::GlRenderer(GlContext& context, const FontAtlas& font) : context_(con
   glBindVertexArray(vao_);
   glBindBuffer(GL_ARRAY_BUFFER, vbo_);
   const auto stride = static_cast<GLsizei>(sizeof(TexturedVertex));
-  glEnableVertexAttribArray(0);
-  glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, stride,
-                        reinterpret_cast<void*>(offsetof(TexturedVertex, x)));
-  glEnableVertexAttribArray(1);
-  glVertexAttribPointer(1, 2, GL_FLOAT, GL_FALSE, stride,
-                        reinterpret_cast<void*>(offsetof(TexturedVertex, u)));
-  glEnableVertexAttribArray(2);
-  glVertexAttribPointer(2, 4, GL_UNSIGNED_BYTE, GL_TRUE, stride,
-                        reinterpret_cast<void*>(offsetof(TexturedVertex, rgba)));
+  float_attribute(0, 2, GL_FLOAT, false, stride, offsetof(TexturedVertex, x));
+  float_attribute(1, 2, GL_FLOAT, false, stride, offsetof(TexturedVertex, u));
+  float_attribute(2, 4, GL_UNSIGNED_BYTE, true, stride, offsetof(TexturedVertex, rgba));
 
   glGenTextures(1, &texture_);
   glBindTexture(GL_TEXTURE_2D, texture_);
@@ -202,21 +214,11 @@ GlRenderer::GlRenderer(GlContext& context, const FontAtlas& font) : context_(con
   glBindVertexArray(mesh_vao_);
   glBindBuffer(GL_ARRAY_BUFFER, mesh_vbo_);
   const auto mesh_stride = static_cast<GLsizei>(sizeof(MeshVertex));
-  glEnableVertexAttribArray(0);
-  glVertexAttribIPointer(0, 2, GL_INT, mesh_stride,
-                         reinterpret_cast<void*>(offsetof(MeshVertex, node_a)));
-  glEnableVertexAttribArray(1);
-  glVertexAttribPointer(1, 1, GL_FLOAT, GL_FALSE, mesh_stride,
-                        reinterpret_cast<void*>(offsetof(MeshVertex, t)));
-  glEnableVertexAttribArray(2);
-  glVertexAttribPointer(2, 4, GL_FLOAT, GL_FALSE, mesh_stride,
-                        reinterpret_cast<void*>(offsetof(MeshVertex, offset)));
-  glEnableVertexAttribArray(3);
-  glVertexAttribIPointer(3, 1, GL_INT, mesh_stride,
-                         reinterpret_cast<void*>(offsetof(MeshVertex, element)));
-  glEnableVertexAttribArray(4);
-  glVertexAttribPointer(4, 4, GL_UNSIGNED_BYTE, GL_TRUE, mesh_stride,
-                        reinterpret_cast<void*>(offsetof(MeshVertex, color)));
+  int_attribute(0, 2, mesh_stride, offsetof(MeshVertex, node_a));
+  float_attribute(1, 1, GL_FLOAT, false, mesh_stride, offsetof(MeshVertex, t));
+  float_attribute(2, 4, GL_FLOAT, false, mesh_stride, offsetof(MeshVertex, offset));
+  int_attribute(3, 1, mesh_stride, offsetof(MeshVertex, element));
+  float_attribute(4, 4, GL_UNSIGNED_BYTE, true, mesh_stride, offsetof(MeshVertex, color));
   make_texture_buffer(reference_buffer_, reference_texture_, GL_RGBA32F);
   make_texture_buffer(values_buffer_, values_texture_, GL_RGBA32F);
   make_texture_buffer(elements_buffer_, elements_texture_, GL_RG32F);

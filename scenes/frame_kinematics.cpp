@@ -292,18 +292,14 @@ FrameKinematics frame_kinematics(const Scene& scene) {
   for (const Joint& joint : scene.joints)
     for (const EndRef& end : joint.ends)
       joined.join(joint.ends[0].strut, end.strut);
-  k.group_of_strut.assign(n, -1);
+  int group_count = 0;
+  k.group_of_strut = joined.set_numbers(group_count);
+  k.groups.resize(static_cast<size_t>(group_count));
   k.position_in_group.assign(n, -1);
-  std::vector<int> group_of_root(n, -1);
   for (int s = 0; s < n; ++s) {
-    int& group = group_of_root[joined.root(s)];
-    if (group < 0) {
-      group = static_cast<int>(k.groups.size());
-      k.groups.emplace_back();
-    }
-    k.group_of_strut[s] = group;
-    k.position_in_group[s] = static_cast<int>(k.groups[group].size());
-    k.groups[group].push_back(s);
+    std::vector<int>& group = k.groups[static_cast<size_t>(k.group_of_strut[s])];
+    k.position_in_group[s] = static_cast<int>(group.size());
+    group.push_back(s);
   }
   std::vector<std::vector<int>> joints_of(k.groups.size());
   for (size_t j = 0; j < scene.joints.size(); ++j)

@@ -18,4 +18,13 @@ Eigen::MatrixXd null_space(const Eigen::MatrixXd& C, int columns);
 // C is empty). For rows that carry a length scale, as rigid-mode rows do (solver/corners).
 Eigen::MatrixXd null_space_relative(const Eigen::MatrixXd& C, double relative);
 
+// C's right singular vectors split at `relative` sigma_max (C with rows and columns): those
+// above it, a basis of C's row space, and the rest, null_space_relative's basis. For the
+// active-set method's held and free rigid modes (solver/active_set.cpp).
+struct RightSingularSplit {
+  Eigen::MatrixXd row_space;
+  Eigen::MatrixXd null_space;
+};
+RightSingularSplit split_right_singular_vectors(const Eigen::MatrixXd& C, double relative);
+
 }  // namespace fetic::scenes

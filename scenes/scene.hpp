@@ -1,5 +1,5 @@
 #pragma once
-// The scene: struts, loads, joints and contacts exactly as ../spec/SCENES.md defines
+// The scene: struts, loads, joints and contacts exactly as docs/SCENES.md defines
 // them. Plain data, validated by load_scene(); the solver builds its model from it.
 
 #include <array>

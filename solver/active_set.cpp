@@ -4,10 +4,11 @@
 #include <cmath>
 #include <limits>
 #include <set>
+#include <utility>
 
 #include <Eigen/LU>
-#include <Eigen/SVD>
 
+#include "scenes/null_space.hpp"
 #include "scenes/union_find.hpp"
 
 namespace fetic::solver {
@@ -184,14 +185,10 @@ ActiveSet::ModeSplit ActiveSet::split_modes(const std::vector<Component>& parts)
     if (cw == 0) {
       free_basis = Eigen::MatrixXd::Identity(cm, cm);
     } else {
-      Eigen::JacobiSVD<Eigen::MatrixXd> svd(C, Eigen::ComputeFullV);
-      const Eigen::VectorXd& sigma = svd.singularValues();
-      const double threshold = 1e-10 * (sigma.size() ? sigma(0) : 0.0);
-      int rank = 0;
-      while (rank < sigma.size() && sigma(rank) > threshold)
-        ++rank;
-      free_basis = svd.matrixV().rightCols(cm - rank);
-      split.held[c] = svd.matrixV().leftCols(rank);
+      // The SVD is scenes/null_space.cpp's (Eigen's SVD compiles in one place only).
+      scenes::RightSingularSplit modes = scenes::split_right_singular_vectors(C, 1e-10);
+      free_basis = std::move(modes.null_space);
+      split.held[c] = std::move(modes.row_space);
     }
     if (free_basis.cols() == 0) continue;
     const Eigen::VectorXd h = free_basis.transpose() * split.rg[c];

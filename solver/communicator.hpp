@@ -17,15 +17,15 @@
 namespace fetic::solver {
 
 struct CommunicationStats {
-  std::int64_t exchanges = 0;           // neighbour exchanges (one per F or M^-1 application)
-  std::int64_t messages = 0;            // point-to-point messages sent
-  std::int64_t bytes = 0;               // point-to-point bytes sent
-  std::int64_t reductions = 0;          // collective reductions of scalars (dot products, flags)
-  std::int64_t gathers = 0;             // collective gathers of vectors (coarse problem)
-  std::int64_t gathered_bytes = 0;      // bytes this process contributed to gathers
-  double exchange_seconds = 0.0;        // time in neighbour exchanges (incl. waiting)
-  double reduction_seconds = 0.0;       // time in reductions (incl. waiting for the slowest)
-  double gather_seconds = 0.0;          // time in gathers
+  std::int64_t exchanges = 0;       // neighbour exchanges (one per F or M^-1 application)
+  std::int64_t messages = 0;        // point-to-point messages sent
+  std::int64_t bytes = 0;           // point-to-point bytes sent
+  std::int64_t reductions = 0;      // collective reductions of scalars (dot products, flags)
+  std::int64_t gathers = 0;         // collective gathers of vectors (coarse problem)
+  std::int64_t gathered_bytes = 0;  // bytes this process contributed to gathers
+  double exchange_seconds = 0.0;    // time in neighbour exchanges (incl. waiting)
+  double reduction_seconds = 0.0;   // time in reductions (incl. waiting for the slowest)
+  double gather_seconds = 0.0;      // time in gathers
 };
 
 // One neighbour of a point-to-point exchange: the process and how many doubles go each way.
@@ -92,7 +92,10 @@ class Communicator {
 
 // The app's side: MPI is initialized only when a launcher (mpirun) started this process,
 // so a plain run pays nothing for it. Returns true when MPI is now running.
-bool started_by_mpi_launcher();
+bool started_by_mpi_launcher();  // solver/mpi_launcher.cpp
+// False when fetic was built without MPI (CMake found none: scripts/setup.sh installs
+// only what the program needs; scripts/test.sh adds Open MPI): communicator_serial.cpp.
+bool mpi_built_in();
 bool mpi_start(int* argc, char*** argv);
 void mpi_finish();
 // Ends every process at once (a failure on one process that the others cannot learn of).

@@ -82,17 +82,21 @@ double DualSpace::max_abs(const Eigen::VectorXd& a) const {
   return max(a.size() > 0 ? a.lpNorm<Eigen::Infinity>() : 0.0);
 }
 
-void DualSpace::complete_rows(Eigen::VectorXd& partial) const {
-  if (peers_.empty()) return;
+void DualSpace::exchange_shared_rows(const Eigen::VectorXd& values) const {
   int offset = 0;
   for (const Peer& peer : peers_)
     for (int r : peer.rows)
-      send_[offset++] = partial(r);
+      send_[offset++] = values(r);
   communicator_->exchange(exchange_peers_, send_, receive_);
+}
+
+void DualSpace::complete_rows(Eigen::VectorXd& partial) const {
+  if (peers_.empty()) return;
+  exchange_shared_rows(partial);
   // Add the partials in rank order, so every process holding the row gets the same bits.
   // A row joins at most two subdomains, hence at most one peer per row: mine + theirs in
   // rank order (which for two terms is also the order-free IEEE sum).
-  offset = 0;
+  int offset = 0;
   const int me = communicator_->rank();
   for (const Peer& peer : peers_)
     for (int r : peer.rows) {
@@ -104,12 +108,8 @@ void DualSpace::complete_rows(Eigen::VectorXd& partial) const {
 Eigen::VectorXd DualSpace::other_side(const Eigen::VectorXd& mine) const {
   Eigen::VectorXd theirs = Eigen::VectorXd::Zero(rows());
   if (peers_.empty()) return theirs;
+  exchange_shared_rows(mine);
   int offset = 0;
-  for (const Peer& peer : peers_)
-    for (int r : peer.rows)
-      send_[offset++] = mine(r);
-  communicator_->exchange(exchange_peers_, send_, receive_);
-  offset = 0;
   for (const Peer& peer : peers_)
     for (int r : peer.rows)
       theirs(r) = receive_[offset++];

@@ -63,6 +63,8 @@ class DualSpace {
   Eigen::VectorXd other_side(const Eigen::VectorXd& mine) const;
 
  private:
+  // Sends this process' values of the shared rows to their peers, receives theirs (receive_).
+  void exchange_shared_rows(const Eigen::VectorXd& values) const;
   struct Peer {
     int rank = 0;
     std::vector<int> rows;  // local rows shared with it, increasing

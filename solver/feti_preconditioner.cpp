@@ -277,17 +277,9 @@ void FetiPreconditioner::apply(const Eigen::VectorXd& w, const std::vector<char>
   z.resize(rows);
 #pragma omp parallel for schedule(static) num_threads(threads_for(rows))
   for (int r = 0; r < rows; ++r) {
-    double total = 0.0, partial = 0.0;
-    if (!mask || (*mask)[r])
-      for (int t = row_first_[r]; t < row_first_[r + 1]; ++t) {
-        const Term& term = terms_[t];
-        if (term.new_subdomain) {
-          total += partial;
-          partial = 0.0;
-        }
-        partial += term.value * y_(term.y);
-      }
-    z(r) = total + partial;
+    z(r) = !mask || (*mask)[r]
+               ? sum_row_terms(terms_.data() + row_first_[r], terms_.data() + row_first_[r + 1], y_)
+               : 0.0;
   }
   system_.space().complete_rows(z);
 }

@@ -23,6 +23,7 @@
 
 #include "solver/cholmod_factor.hpp"
 #include "solver/feti_system.hpp"
+#include "solver/row_term_sum.hpp"
 
 namespace fetic::solver {
 
@@ -48,12 +49,8 @@ class FetiPreconditioner {
     const GeneralizedInverse* interior = nullptr;  // K_j's K^+, which also holds K_ii's factor
     int offset = 0;                                // into the workspaces
   };
-  // One term of a row's sum: y_(index) * value; `new_subdomain` starts the next partial.
-  struct Term {
-    int y = 0;
-    double value = 0.0;
-    bool new_subdomain = false;
-  };
+  // One term of a row's sum: y_(index) * value.
+  using Term = RowTerm;
 
   // The boundary, K_bb and (Dirichlet) K_ib and the factor of K_ii of one subdomain;
   // false when K_ii is singular. b_position: per DOF its place in the boundary or -1.

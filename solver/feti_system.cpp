@@ -266,17 +266,8 @@ void FetiSystem::sum_rows(const Eigen::VectorXd& values, Eigen::VectorXd& out) c
     Stopwatch watch(times_.local_solves);
 #pragma omp parallel for schedule(static) num_threads(threads_for(rows))
     for (int r = 0; r < rows; ++r) {
-      // The partial sums of the subdomains the row joins, added in subdomain order.
-      double total = 0.0, partial = 0.0;
-      for (int e = row_parts_[r].first; e < row_parts_[r].end; ++e) {
-        const PartEntry& entry = part_entries_[e];
-        if (entry.new_subdomain) {
-          total += partial;
-          partial = 0.0;
-        }
-        partial += entry.value * values(entry.y);
-      }
-      out(r) = total + partial;
+      const PartEntry* entries = part_entries_.data();
+      out(r) = sum_row_terms(entries + row_parts_[r].first, entries + row_parts_[r].end, values);
     }
   }
   space_.complete_rows(out);

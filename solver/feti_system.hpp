@@ -28,6 +28,7 @@
 #include "solver/local_memory.hpp"
 #include "solver/method.hpp"
 #include "solver/partition.hpp"
+#include "solver/row_term_sum.hpp"
 
 namespace fetic::solver {
 
@@ -162,11 +163,7 @@ class FetiSystem {
     int first = 0;  // into part_entries_
     int end = 0;
   };
-  struct PartEntry {
-    int y = 0;  // index into y_
-    double value = 0.0;
-    bool new_subdomain = false;  // starts the partial sum of the next subdomain
-  };
+  using PartEntry = RowTerm;  // y: index into y_
   // A redundant group as this process sees it.
   struct LocalGroup {
     int copies = 0;

@@ -124,15 +124,14 @@ void GroupBalance::factorize_blocks() {
   scenes::UnionFind sets(k);
   for (long long key : keys)
     sets.join(static_cast<int>(key / k), static_cast<int>(key % k));
-  std::vector<int> block_of_root(static_cast<size_t>(k), -1), position(static_cast<size_t>(k));
+  int block_count = 0;
+  const std::vector<int> block_of_group = sets.set_numbers(block_count);
+  blocks_.resize(static_cast<size_t>(block_count));
+  std::vector<int> position(static_cast<size_t>(k));
   for (int i = 0; i < k; ++i) {
-    int& block = block_of_root[static_cast<size_t>(sets.root(i))];
-    if (block < 0) {
-      block = static_cast<int>(blocks_.size());
-      blocks_.emplace_back();
-    }
-    position[static_cast<size_t>(i)] = static_cast<int>(blocks_[block].groups.size());
-    blocks_[block].groups.push_back(i);
+    std::vector<int>& block = blocks_[static_cast<size_t>(block_of_group[i])].groups;
+    position[static_cast<size_t>(i)] = static_cast<int>(block.size());
+    block.push_back(i);
   }
   std::vector<Eigen::MatrixXd> grams(blocks_.size());
   for (size_t b = 0; b < blocks_.size(); ++b) {
@@ -145,7 +144,7 @@ void GroupBalance::factorize_blocks() {
                         " it can balance together; use --method feti-c or active-set");
     grams[b].setZero(n, n);
   }
-  const auto block_of = [&](int i) { return block_of_root[static_cast<size_t>(sets.root(i))]; };
+  const auto block_of = [&](int i) { return block_of_group[static_cast<size_t>(i)]; };
   for (int i = 0; i < k; ++i)
     grams[static_cast<size_t>(block_of(i))](position[i], position[i]) = entries[i];
   for (size_t p = 0; p < keys.size(); ++p) {
