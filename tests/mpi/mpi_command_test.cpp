@@ -415,7 +415,10 @@ TEST_CASE("under mpirun a signal ends a run whose rank 0 waits for a FIFO's read
     CHECK(solve.status() != 0);
     if (c.target >= 0) {  // (mpirun may no longer pass the processes' output on)
       CHECK(solve.status() == 130);
-      CHECK(occurrences(output, "interrupted by SIG") == 1);
+      // One message per event: the FIFO's, and - when the signal came before the solve had
+      // ended (a busy machine) - rank 0's announcement that it now writes the outputs.
+      CHECK(occurrences(output, "interrupted by SIG") ==
+            1 + occurrences(output, "writing the outputs marked interrupted"));
       CHECK(occurrences(output, "a FIFO without a reader?") == 1);
     }
     CHECK_FALSE(solve.left_temporaries());
