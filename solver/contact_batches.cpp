@@ -1,34 +1,17 @@
 #include "solver/contact_batches.hpp"
 
 #include <algorithm>
-#include <numeric>
+
+#include "scenes/union_find.hpp"
 
 namespace fetic::solver {
 namespace {
-
-class UnionFind {
- public:
-  explicit UnionFind(int n) : parent_(n) { std::iota(parent_.begin(), parent_.end(), 0); }
-  int find(int i) {
-    while (parent_[i] != i)
-      i = parent_[i] = parent_[parent_[i]];
-    return i;
-  }
-  void join(int a, int b) {
-    a = find(a);
-    b = find(b);
-    if (a != b) parent_[std::max(a, b)] = std::min(a, b);
-  }
-
- private:
-  std::vector<int> parent_;
-};
 
 // Joins the subdomains of every equality row, and of every contact row between subdomains
 // that all have rigid-body modes (see the header); numbers the blocks 0, 1, ...
 std::vector<int> join_subdomains(const Decomposition& d, int& block_count) {
   const int n = static_cast<int>(d.subdomains.size());
-  UnionFind joined(n);
+  scenes::UnionFind joined(n);
   for (int r = 0; r < d.row_count(); ++r) {
     const std::vector<RowEntry>& entries = d.rows[r].entries;
     if (entries.size() < 2) continue;
@@ -42,14 +25,7 @@ std::vector<int> join_subdomains(const Decomposition& d, int& block_count) {
     for (const RowEntry& e : entries)
       joined.join(entries.front().subdomain, e.subdomain);
   }
-  std::vector<int> block(n), number(n, -1);
-  block_count = 0;
-  for (int s = 0; s < n; ++s) {
-    const int root = joined.find(s);
-    if (number[root] < 0) number[root] = block_count++;
-    block[s] = number[root];
-  }
-  return block;
+  return joined.set_numbers(block_count);
 }
 
 // Per block, the other blocks a row joins it to.
@@ -105,23 +81,18 @@ std::vector<std::vector<int>> colour(const std::vector<std::vector<int>>& column
 std::vector<std::vector<int>> components(const std::vector<std::vector<int>>& column_blocks,
                                          int block_count) {
   const int columns = static_cast<int>(column_blocks.size());
-  UnionFind linked(columns);
+  scenes::UnionFind linked(columns);
   std::vector<int> first_on(block_count, -1);
   for (int c = 0; c < columns; ++c)
     for (int b : column_blocks[c]) {
       if (first_on[b] < 0) first_on[b] = c;
       linked.join(first_on[b], c);
     }
-  std::vector<std::vector<int>> out;
-  std::vector<int> number(columns, -1);
-  for (int c = 0; c < columns; ++c) {
-    const int root = linked.find(c);
-    if (number[root] < 0) {
-      number[root] = static_cast<int>(out.size());
-      out.emplace_back();
-    }
-    out[number[root]].push_back(c);
-  }
+  int count = 0;
+  const std::vector<int> number = linked.set_numbers(count);
+  std::vector<std::vector<int>> out(count);
+  for (int c = 0; c < columns; ++c)
+    out[number[c]].push_back(c);
   return out;
 }
 

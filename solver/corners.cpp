@@ -1,31 +1,13 @@
 #include "solver/corners.hpp"
 
-#include <numeric>
 #include <unordered_set>
 
 #include "scenes/null_space.hpp"
+#include "scenes/union_find.hpp"
 #include "solver/rigid_modes.hpp"
 
 namespace fetic::solver {
 namespace {
-
-// Union-find over integers.
-class Classes {
- public:
-  explicit Classes(int n) : parent_(n) { std::iota(parent_.begin(), parent_.end(), 0); }
-  int root(int i) {
-    while (parent_[i] != i)
-      i = parent_[i] = parent_[parent_[i]];
-    return i;
-  }
-  void join(int a, int b) {
-    a = root(a), b = root(b);
-    if (a != b) parent_[std::max(a, b)] = std::min(a, b);
-  }
-
- private:
-  std::vector<int> parent_;
-};
 
 using Copies = std::vector<std::pair<int, int>>;  // (box, box-local node)
 
@@ -82,7 +64,8 @@ std::vector<int> box_groups(const Decomposition& boxes, int cluster_size) {
 
 // Joins the DOFs of a node's copies (components [0, components)) that may share a cluster.
 void join_copies(const Copies& c, int dofs_per_node, int components, const Decomposition& boxes,
-                 const std::vector<int>& group, Classes& dofs, Classes& clusters) {
+                 const std::vector<int>& group, scenes::UnionFind& dofs,
+                 scenes::UnionFind& clusters) {
   for (size_t a = 0; a < c.size(); ++a)
     for (size_t b = a + 1; b < c.size(); ++b) {
       if (group[c[a].first] != group[c[b].first]) continue;
@@ -188,7 +171,7 @@ struct Joined {
 Joined join(const Model& model, const Decomposition& boxes, int cluster_size, Decomposition& d) {
   const int dpn = model.dofs_per_node();
   const std::vector<int> group = box_groups(boxes, cluster_size);
-  Classes dofs(boxes.total_dofs), clusters(static_cast<int>(boxes.subdomains.size()));
+  scenes::UnionFind dofs(boxes.total_dofs), clusters(static_cast<int>(boxes.subdomains.size()));
   const auto copies = node_copies(model, boxes);
   for (size_t s = 0; s < model.struts.size(); ++s)
     for (int node = 0; node < model.struts[s].node_count(); ++node)
