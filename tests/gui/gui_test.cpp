@@ -492,7 +492,7 @@ TEST_CASE("the window writes the monitor stream of every solve while it runs", "
 }
 
 TEST_CASE("a load sweep is recorded as frames, a method that cannot solve is reported",
-          "[script]") {
+          "[script][recording]") {
   REQUIRE(have_display());
   const fs::path dir = fresh_directory("fetic_gui_record");
   const fs::path state = dir / "state.jsonl";
@@ -535,7 +535,7 @@ TEST_CASE("a load sweep is recorded as frames, a method that cannot solve is rep
 }
 
 TEST_CASE("the window's recorded load sweep makes the iterations fetic solve --load-steps makes",
-          "[script]") {
+          "[script][recording]") {
   // One sweep driver (solver/load_sweep.hpp) for the window and `fetic solve`: the same
   // warm starts (secant predictions included), so the same iterations at every step. The
   // counts come from `fetic solve`, whatever they are.
@@ -913,7 +913,8 @@ TEST_CASE("view files and script values are refused before the window opens", "[
 
 // Issue 26, item 3: --screenshot-dir is created when first needed, and a numbered name is
 // used up only by an output that was written.
-TEST_CASE("numbered outputs create their folder and are numbered from 0 by success", "[script]") {
+TEST_CASE("numbered outputs create their folder and are numbered from 0 by success",
+          "[script][recording]") {
   REQUIRE(have_display());
   const fs::path dir = fresh_directory("fetic_gui_numbered");
   const fs::path state = dir / "state.jsonl";
