@@ -175,15 +175,7 @@ int run_bench(const BenchArgs& args) {
     int status = kExitOk;
     const auto scene = load_scene_or_report(path, status);
     if (!scene) return status;
-    if (!memory_suffices(
-            *scene, path,
-            {{solver::MethodKind::ActiveSet, solver::MethodKind::FetiC, solver::MethodKind::Mprgp,
-              solver::MethodKind::FetiDp, solver::MethodKind::Feti,
-              solver::MethodKind::ConjugateGradient, solver::MethodKind::SteepestDescent},
-             false,
-             0},
-            status))
-      return status;
+    if (!memory_suffices(*scene, path, {solver::all_methods(), false, 0}, status)) return status;
     Activity measuring("measuring the methods");
     const solver::Model model = solver::build_model(*scene);
     if (!warmed_up) {

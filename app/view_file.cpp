@@ -11,6 +11,7 @@
 #include "app/interrupt.hpp"
 #include "app/json_input.hpp"
 #include "app/output_file.hpp"
+#include "scenes/enum_names.hpp"
 #include "scenes/scene_error.hpp"
 
 namespace fetic::app {
@@ -111,27 +112,20 @@ class Reader {
   const std::string& path_;
 };
 
+constexpr scenes::EnumName<render::ColorBy> kColorNames[] = {
+    {render::ColorBy::Subdomain, "subdomain"},
+    {render::ColorBy::Strut, "strut"},
+    {render::ColorBy::Stress, "stress"},
+    {render::ColorBy::Moment, "moment"}};
+
 }  // namespace
 
 const char* color_name(render::ColorBy color) {
-  switch (color) {
-    case render::ColorBy::Stress:
-      return "stress";
-    case render::ColorBy::Strut:
-      return "strut";
-    case render::ColorBy::Moment:
-      return "moment";
-    case render::ColorBy::Subdomain:
-      break;
-  }
-  return "subdomain";
+  return scenes::name_of(kColorNames, color);
 }
 
 std::optional<render::ColorBy> color_from_name(const std::string& name) {
-  for (const render::ColorBy color : {render::ColorBy::Subdomain, render::ColorBy::Stress,
-                                      render::ColorBy::Strut, render::ColorBy::Moment})
-    if (name == color_name(color)) return color;
-  return std::nullopt;
+  return scenes::value_named(kColorNames, name);
 }
 
 SavedView read_view_file(const std::string& path) {

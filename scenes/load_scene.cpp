@@ -12,6 +12,7 @@
 
 #include <toml++/toml.h>
 
+#include "scenes/enum_names.hpp"
 #include "scenes/frame_mechanisms.hpp"
 #include "scenes/message_text.hpp"
 #include "scenes/scene_text.hpp"
@@ -53,29 +54,16 @@ int line_of(const toml::key& key) {
   return static_cast<int>(key.source().begin.line);
 }
 
+// What a value is, in the words of a message ("must be a number, got a string").
+constexpr EnumName<toml::node_type> kTomlTypeNames[] = {
+    {toml::node_type::none, "nothing"},       {toml::node_type::table, "a table"},
+    {toml::node_type::array, "an array"},     {toml::node_type::string, "a string"},
+    {toml::node_type::integer, "an integer"}, {toml::node_type::floating_point, "a number"},
+    {toml::node_type::boolean, "a boolean"},  {toml::node_type::date, "a date"},
+    {toml::node_type::time, "a time"},        {toml::node_type::date_time, "a date-time"}};
+
 std::string type_name(const toml::node& node) {
-  switch (node.type()) {
-    case toml::node_type::table:
-      return "a table";
-    case toml::node_type::array:
-      return "an array";
-    case toml::node_type::string:
-      return "a string";
-    case toml::node_type::integer:
-      return "an integer";
-    case toml::node_type::floating_point:
-      return "a number";
-    case toml::node_type::boolean:
-      return "a boolean";
-    case toml::node_type::date:
-      return "a date";
-    case toml::node_type::time:
-      return "a time";
-    case toml::node_type::date_time:
-      return "a date-time";
-    default:
-      return "nothing";
-  }
+  return name_of(kTomlTypeNames, node.type());
 }
 
 // " (did you mean 'area'?)" when a known key is close to the unknown one.
@@ -226,12 +214,8 @@ class SceneParser {
       return;
     }
     if (auto text = read_.string(*model, "'model'")) {
-      if (*text == "bar") {
-        scene_.model = ModelKind::Bar;
-      } else if (*text == "plane") {
-        scene_.model = ModelKind::Plane;
-      } else if (*text == "frame") {
-        scene_.model = ModelKind::Frame;
+      if (const auto kind = parse_model(*text)) {
+        scene_.model = *kind;
       } else {
         read_.error(line_of(*model),
                     "'model' must be \"bar\", \"plane\" or \"frame\", got \"" + *text + "\"");

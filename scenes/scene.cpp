@@ -1,17 +1,22 @@
 #include "scenes/scene.hpp"
 
+#include "scenes/enum_names.hpp"
+
 namespace fetic::scenes {
 
+namespace {
+
+constexpr EnumName<ModelKind> kModelNames[] = {
+    {ModelKind::Bar, "bar"}, {ModelKind::Plane, "plane"}, {ModelKind::Frame, "frame"}};
+
+}  // namespace
+
 const char* to_string(ModelKind model) {
-  switch (model) {
-    case ModelKind::Bar:
-      return "bar";
-    case ModelKind::Plane:
-      return "plane";
-    case ModelKind::Frame:
-      return "frame";
-  }
-  return "?";
+  return name_of(kModelNames, model);
+}
+
+std::optional<ModelKind> parse_model(std::string_view name) {
+  return value_named(kModelNames, name);
 }
 
 const char* to_string(JointKind kind) {

@@ -3,9 +3,11 @@
 // them. Plain data, validated by load_scene(); the solver builds its model from it.
 
 #include <array>
-
+#include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
+
 #include "scenes/scene_error.hpp"
 #include "scenes/units.hpp"
 
@@ -84,13 +86,15 @@ struct Scene {
   std::vector<Load> loads;
   std::vector<Contact> contacts;
   std::vector<Joint> joints;  // frame model
-  Units units;  // [units]: what the numbers are in (default m and N)
+  Units units;                // [units]: what the numbers are in (default m and N)
   // Things that are valid but worth knowing (e.g. a gap at the resolution of the
   // coordinates); the commands print them as "file:line: warning: ...".
   std::vector<Problem> warnings;
 };
 
 const char* to_string(ModelKind model);
+// The model named "bar", "plane" or "frame".
+std::optional<ModelKind> parse_model(std::string_view name);
 const char* to_string(StrutEnd end);
 const char* to_string(JointKind kind);
 // "L01.to", or "beam@4" for a node given by its index

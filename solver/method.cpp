@@ -3,64 +3,55 @@
 #include <cmath>
 #include <cstdio>
 
+#include "scenes/enum_names.hpp"
+
 namespace fetic::solver {
 
+namespace {
+
+// The names on the command line and in result files; the methods for contact first (in
+// the order `fetic bench` measures them), then those for scenes without contacts.
+constexpr scenes::EnumName<MethodKind> kMethodNames[] = {{MethodKind::ActiveSet, "active-set"},
+                                                         {MethodKind::FetiC, "feti-c"},
+                                                         {MethodKind::Mprgp, "mprgp"},
+                                                         {MethodKind::FetiDp, "feti-dp"},
+                                                         {MethodKind::Feti, "feti"},
+                                                         {MethodKind::ConjugateGradient, "cg"},
+                                                         {MethodKind::SteepestDescent, "sd"}};
+constexpr scenes::EnumName<Preconditioner> kPreconditionerNames[] = {
+    {Preconditioner::None, "none"},
+    {Preconditioner::Lumped, "lumped"},
+    {Preconditioner::Dirichlet, "dirichlet"}};
+constexpr scenes::EnumName<Status> kStatusNames[] = {
+    {Status::Running, "running"}, {Status::Converged, "converged"}, {Status::Failed, "failed"}};
+
+}  // namespace
+
 const char* to_string(MethodKind method) {
-  switch (method) {
-    case MethodKind::SteepestDescent:
-      return "sd";
-    case MethodKind::ConjugateGradient:
-      return "cg";
-    case MethodKind::ActiveSet:
-      return "active-set";
-    case MethodKind::Feti:
-      return "feti";
-    case MethodKind::FetiC:
-      return "feti-c";
-    case MethodKind::Mprgp:
-      return "mprgp";
-    case MethodKind::FetiDp:
-      return "feti-dp";
-  }
-  return "?";
+  return scenes::name_of(kMethodNames, method);
 }
 
 const char* to_string(Preconditioner preconditioner) {
-  switch (preconditioner) {
-    case Preconditioner::None:
-      return "none";
-    case Preconditioner::Lumped:
-      return "lumped";
-    case Preconditioner::Dirichlet:
-      return "dirichlet";
-  }
-  return "?";
+  return scenes::name_of(kPreconditionerNames, preconditioner);
 }
 
 const char* to_string(Status status) {
-  switch (status) {
-    case Status::Running:
-      return "running";
-    case Status::Converged:
-      return "converged";
-    case Status::Failed:
-      return "failed";
-  }
-  return "?";
+  return scenes::name_of(kStatusNames, status);
+}
+
+std::vector<MethodKind> all_methods() {
+  std::vector<MethodKind> methods;
+  for (const auto& entry : kMethodNames)
+    methods.push_back(entry.value);
+  return methods;
 }
 
 std::optional<MethodKind> parse_method(const std::string& name) {
-  for (MethodKind kind :
-       {MethodKind::SteepestDescent, MethodKind::ConjugateGradient, MethodKind::ActiveSet,
-        MethodKind::Feti, MethodKind::FetiC, MethodKind::Mprgp, MethodKind::FetiDp})
-    if (name == to_string(kind)) return kind;
-  return std::nullopt;
+  return scenes::value_named(kMethodNames, name);
 }
 
 std::optional<Preconditioner> parse_preconditioner(const std::string& name) {
-  for (Preconditioner p : {Preconditioner::None, Preconditioner::Lumped, Preconditioner::Dirichlet})
-    if (name == to_string(p)) return p;
-  return std::nullopt;
+  return scenes::value_named(kPreconditionerNames, name);
 }
 
 bool distributable(MethodKind method) {

@@ -32,6 +32,8 @@ const char* to_string(MethodKind method);
 const char* to_string(Preconditioner preconditioner);
 const char* to_string(Status status);
 std::optional<MethodKind> parse_method(const std::string& name);
+// Every method: those for contact first (active-set, feti-c, mprgp, feti-dp), then feti, cg, sd.
+std::vector<MethodKind> all_methods();
 std::optional<Preconditioner> parse_preconditioner(const std::string& name);
 bool handles_contact(MethodKind method);
 // The dual (FETI) methods, which take a preconditioner and count applications of F.
