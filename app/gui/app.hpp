@@ -125,7 +125,21 @@ class App {
   // draw_picture's steps: the framing (fitted once per scene, survey and size, then zoomed
   // and panned), the struts' mesh and its values, the overlay panel.
   render::SceneFraming frame_picture(const render::View& v, int width, int height);
-  void update_mesh(const render::View& v, const render::SceneFraming& framing, int index);
+  // The struts' mesh and its per-frame values. Two are kept: one at the picture's level of
+  // detail and, on a large scene, one a level coarser for the drafts drawn while the view
+  // moves (a quarter of the cells), so that neither is built again when the view rests.
+  struct MeshSlot {
+    std::shared_ptr<const render::SceneMesh> mesh;
+    std::shared_ptr<const solver::Model> model;
+    render::MeshValues values;
+    std::shared_ptr<const solver::Snapshot> values_iterate;  // what values are of
+    std::array<double, 3> values_key{0, 0, 0};               // mesh id and colour scales
+  };
+  const MeshSlot& update_mesh(const render::View& v, const render::SceneFraming& framing,
+                              int index);
+  void update_slot(MeshSlot& slot, const render::View& v, const render::SceneFraming& framing,
+                   const render::MeshDetail& detail, int index);
+  const render::DrawList& contact_chart(const render::View& v, int index);
   render::DrawList picture_overlay(const render::OverlayInfo& info,
                                    const solver::Snapshot& snapshot,
                                    const std::vector<solver::HistoryEntry>& history,
@@ -256,11 +270,17 @@ class App {
   };
   PictureKey framing_key_;
   render::SceneFraming framing_;
-  std::shared_ptr<const render::SceneMesh> mesh_;
-  std::shared_ptr<const solver::Model> mesh_model_;
-  render::MeshValues mesh_values_;
-  std::shared_ptr<const solver::Snapshot> values_iterate_;  // what mesh_values_ are of
-  std::array<double, 3> values_key_{0, 0, 0};               // mesh id and colour scales
+  // The struts' meshes (MeshSlot above).
+  MeshSlot fine_mesh_, draft_mesh_;
+  struct ChartKey {  // what the contact chart is drawn from (null iterate: no chart)
+    std::shared_ptr<const solver::Snapshot> iterate;
+    std::shared_ptr<const solver::Model> model;
+    int width = 0, height = 0;
+    float text_size = 0.0f;
+    bool operator==(const ChartKey&) const = default;
+  };
+  ChartKey chart_key_;
+  render::DrawList chart_list_;
 
   // View settings.
   double magnification_ = 0.0;  // 0: automatic

@@ -40,6 +40,9 @@ struct ViewBench {
   int frames[2] = {0, 0}, pictures[2] = {0, 0};
   std::vector<double> frame_ms[2];
   int mesh_builds = 0;  // during the measurement
+  // Per picture drawn while moving: the struts' mesh (built again or not) and its values,
+  // the draw lists (glyphs, panel, chart), the whole picture until the GL work finished.
+  std::vector<double> mesh_ms, lists_ms, picture_ms;
 };
 
 }  // namespace fetic::app::gui

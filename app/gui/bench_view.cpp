@@ -5,10 +5,12 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <string>
 #include <vector>
 
 #include "app/gui/app.hpp"
 #include "render/glfw_window.hpp"
+#include "render/scene_mesh.hpp"
 
 namespace fetic::app::gui {
 namespace {
@@ -88,8 +90,19 @@ void App::print_view_bench(const render::GlfwWindow& window) const {
         b.frame_ms[p].empty() ? 0.0
                               : *std::max_element(b.frame_ms[p].begin(), b.frame_ms[p].end()));
   }
-  std::printf("mesh           built %d times while panning and zooming (levels of detail)\n",
-              b.mesh_builds);
+  const auto spread = [](const std::vector<double>& ms) {
+    char text[64];
+    std::snprintf(text, sizeof text, "%.2f ms (max %.2f)", median(ms),
+                  ms.empty() ? 0.0 : *std::max_element(ms.begin(), ms.end()));
+    return std::string(text);
+  };
+  std::printf("per picture    median %s: mesh and its values %s, draw lists %s, the rest GL\n",
+              spread(b.picture_ms).c_str(), spread(b.mesh_ms).c_str(), spread(b.lists_ms).c_str());
+  std::printf(
+      "mesh           built %d times while panning and zooming (levels of detail); the last: %zu "
+      "vertices, %d cells\n",
+      b.mesh_builds, fine_mesh_.mesh ? fine_mesh_.mesh->vertices.size() : std::size_t{0},
+      fine_mesh_.mesh ? fine_mesh_.mesh->element_count : 0);
 }
 
 }  // namespace fetic::app::gui

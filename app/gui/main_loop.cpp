@@ -188,7 +188,10 @@ void App::draw_picture_when_due() {
   }
   redraw_ = false;
   if (args_.bench > 0 && bench_.phase == 3 && bench_.pan_solving) ++bench_.pan_pictures;
-  if (view_bench_.phase == 0 || view_bench_.phase == 1) ++view_bench_.pictures[view_bench_.phase];
+  if (view_bench_.phase == 0 || view_bench_.phase == 1) {
+    ++view_bench_.pictures[view_bench_.phase];
+    view_bench_.picture_ms.push_back(last_picture_ms_);
+  }
 }
 
 // The ImGui pass over the picture, the capture of the whole window when asked, the swap.

@@ -224,11 +224,15 @@ void App::picking(float view_x, float view_width, float view_height) {
   const bool over_picture =
       !io.WantCaptureMouse && at.x >= 0 && at.y >= 0 && at.x < view_width && at.y < view_height;
   hovered_.reset();
-  // Two methods side by side: the pick index knows the single picture only (its framing),
-  // so the comparison has no hover; pinned items stay listed.
-  if ((over_picture && !ImGui::IsMouseDragging(ImGuiMouseButton_Left)) || !pinned_.empty())
-    refresh_pick_index();
-  if (over_picture && shown_ && !comparing() && !ImGui::IsMouseDragging(ImGuiMouseButton_Left)) {
+  // No hover while the view moves (dragged, or zoomed by the wheel until it rests): every
+  // picture would build the index again, a pass over all nodes that on millions of them
+  // costs more than the picture. Two methods side by side: the pick index knows the
+  // single picture only (its framing), so the comparison has no hover; pinned items stay
+  // listed.
+  const bool still =
+      !ImGui::IsMouseDragging(ImGuiMouseButton_Left) && Clock::now() - view_moved_ >= kViewRest;
+  if ((over_picture || !pinned_.empty()) && still) refresh_pick_index();
+  if (over_picture && shown_ && !comparing() && still) {
     const auto start = Clock::now();
     hovered_ = picks_.nearest(at, kPickRadius);
     pick_query_ms_ = std::chrono::duration<double, std::milli>(Clock::now() - start).count();

@@ -68,7 +68,7 @@ void App::draw_picture(int width, int height) {
     draw_comparison(width, height);
     return;
   }
-  const auto lists_start = Clock::now();
+  const auto mesh_start = Clock::now();
   const int index = shown_index();
   const solver::Snapshot& snapshot = *shown_->iterates[static_cast<std::size_t>(index)];
   const std::vector<solver::HistoryEntry> history(
@@ -77,7 +77,8 @@ void App::draw_picture(int width, int height) {
           std::min<std::ptrdiff_t>(index + 1, static_cast<std::ptrdiff_t>(shown_->history.size())));
   const render::View v = view(width, height);
   const render::SceneFraming framing = frame_picture(v, width, height);
-  update_mesh(v, framing, index);
+  const MeshSlot& mesh = update_mesh(v, framing, index);
+  const auto lists_start = Clock::now();
   // The pick index (hover, pins, locate) is built when it is next asked for, not with
   // every picture: for millions of nodes it costs more than the picture (panning).
   pick_state_ = shown_;
@@ -95,16 +96,37 @@ void App::draw_picture(int width, int height) {
   if (args_.bench > 0 && bench_.phase == 0)
     bench_.lists_ms.push_back(
         std::chrono::duration<double, std::milli>(Clock::now() - lists_start).count());
-  const render::DrawList chart =
-      v.show_chart ? render::draw_contact_chart(*shown_->model, snapshot, render::chart_region(v),
-                                                render::text_size(v))
-                   : render::DrawList{};
+  const render::DrawList& chart = contact_chart(v, index);
   const render::Rect region = render::scene_region(v);
   std::vector<render::Layer> layers{
-      render::Layer(mesh_.get(), &mesh_values_, render::mesh_uniforms(*mesh_, framing), region),
+      render::Layer(mesh.mesh.get(), &mesh.values, render::mesh_uniforms(*mesh.mesh, framing),
+                    region),
       render::Layer(&glyphs, region), render::Layer(&overlay)};
   if (!chart.empty()) layers.emplace_back(&chart);
+  const auto gl_start = Clock::now();
   renderer_->draw(width, height, layers, render::palette::background);
+  if (view_bench_.phase == 0 || view_bench_.phase == 1) {  // the GL part: the rest of the picture
+    const auto ms = [](Clock::time_point a, Clock::time_point b) {
+      return std::chrono::duration<double, std::milli>(b - a).count();
+    };
+    view_bench_.mesh_ms.push_back(ms(mesh_start, lists_start));
+    view_bench_.lists_ms.push_back(ms(lists_start, gl_start));
+  }
+}
+
+// The per-contact chart depends on the iterate and the picture's size, not on pan and
+// zoom: it is kept between pictures (on ten million unknowns it takes a pass over every
+// node's displacement).
+const render::DrawList& App::contact_chart(const render::View& v, int index) {
+  const ChartKey key{v.show_chart ? shown_->iterates[static_cast<std::size_t>(index)] : nullptr,
+                     shown_->model, v.width, v.height, render::text_size(v)};
+  if (!(key == chart_key_)) {
+    chart_list_ = key.iterate ? render::draw_contact_chart(*shown_->model, *key.iterate,
+                                                           render::chart_region(v), key.text_size)
+                              : render::DrawList{};
+    chart_key_ = key;
+  }
+  return chart_list_;
 }
 
 render::SceneFraming App::frame_picture(const render::View& v, int width, int height) {
@@ -127,27 +149,50 @@ render::SceneFraming App::frame_picture(const render::View& v, int width, int he
   return framing;
 }
 
-void App::update_mesh(const render::View& v, const render::SceneFraming& framing, int index) {
+// A draft (drawn while the view moves) of a scene whose mesh at the picture's level has
+// more cells than this is drawn with the mesh a level coarser.
+constexpr int kDraftMeshCells = 100000;
+
+const App::MeshSlot& App::update_mesh(const render::View& v, const render::SceneFraming& framing,
+                                      int index) {
+  const render::MeshDetail detail = render::mesh_detail(*shown_->model, framing_, framing);
+  const bool moving = draft_ && Clock::now() - view_moved_ < kViewRest;
+  // While the view moves the fine mesh is not built again (zooming past its level): the
+  // draft stands in for it until the view rests.
+  if (!moving || !fine_mesh_.mesh || fine_mesh_.mesh->element_count <= kDraftMeshCells) {
+    update_slot(fine_mesh_, v, framing, detail, index);
+    if (!moving || fine_mesh_.mesh->element_count <= kDraftMeshCells) return fine_mesh_;
+  }
+  // Half the scale: cells of 2 to 4 pixels each way instead of 1 to 2.
+  render::SceneFraming coarser = framing;
+  coarser.pixels_per_unit *= 0.5;
+  const render::MeshDetail draft = render::mesh_detail(*shown_->model, framing_, coarser);
+  update_slot(draft_mesh_, v, framing, draft, index);
+  return draft_mesh_;
+}
+
+void App::update_slot(MeshSlot& slot, const render::View& v, const render::SceneFraming& framing,
+                      const render::MeshDetail& detail, int index) {
   const solver::Snapshot& snapshot = *shown_->iterates[static_cast<std::size_t>(index)];
   // The struts: a mesh on the GPU, built when the scene, its pieces or the colouring change,
   // or the zoom leaves its level of detail (a power of two; render/mesh_detail.hpp).
-  const render::MeshDetail detail = render::mesh_detail(*shown_->model, framing_, framing);
-  if (!mesh_ || mesh_model_ != shown_->model || mesh_->color_by != v.color_by ||
-      !mesh_->fits(snapshot) || !render::detail_serves(mesh_->detail, detail, framing)) {
-    mesh_ = std::make_shared<const render::SceneMesh>(
+  if (!slot.mesh || slot.model != shown_->model || slot.mesh->color_by != v.color_by ||
+      !slot.mesh->fits(snapshot) || !render::detail_serves(slot.mesh->detail, detail, framing)) {
+    slot.mesh.reset();  // the old one freed before the new one is built
+    slot.mesh = std::make_shared<const render::SceneMesh>(
         render::build_scene_mesh(*shown_->model, snapshot, framing_, v.color_by, detail));
-    mesh_model_ = shown_->model;
+    slot.model = shown_->model;
     ++mesh_builds_;
   }
   // The values change with the iterate, the mesh and the colour scales, not with pan and
   // zoom: on a scene of millions of elements they are not filled again for every picture.
   const auto& iterate = shown_->iterates[static_cast<std::size_t>(index)];
-  const std::array<double, 3> values_key{static_cast<double>(mesh_->id), framing.stress_scale,
+  const std::array<double, 3> values_key{static_cast<double>(slot.mesh->id), framing.stress_scale,
                                          framing.moment_scale};
-  if (iterate != values_iterate_ || values_key != values_key_) {
-    render::fill_mesh_values(*mesh_, *shown_->model, snapshot, framing, mesh_values_);
-    values_iterate_ = iterate;
-    values_key_ = values_key;
+  if (iterate != slot.values_iterate || values_key != slot.values_key) {
+    render::fill_mesh_values(*slot.mesh, *shown_->model, snapshot, framing, slot.values);
+    slot.values_iterate = iterate;
+    slot.values_key = values_key;
   }
 }
 

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 
+#include "app/gui/iterate_store.hpp"
 #include "app/render_output.hpp"
 #include "solver/interruption.hpp"
 #include "solver/load_sweep.hpp"
@@ -301,18 +302,22 @@ void SolverWorker::solve(Setup& setup, SolverTarget target) {
   }
   const auto begin = Clock::now();
   bool abandoned = false;
+  std::size_t keep = 0;  // distinct iterates kept (iterate_store.hpp)
   solver::SweepHooks hooks;
   hooks.keep_going = [&] {
     abandoned = !wait_for_allowance(setup.method->iteration()) || superseded();
     return !abandoned;
   };
   hooks.on_iteration = [&](double t, const solver::Method& method) {
-    state->iterates.push_back(std::make_shared<const solver::Snapshot>(method.snapshot()));
+    auto snapshot = std::make_shared<const solver::Snapshot>(method.snapshot());
+    if (keep == 0) keep = iterates_within(*snapshot, kIterateBudget);
+    append_iterate(state->iterates, std::move(snapshot), keep);
     state->history = method.history();
     state->status = method.status();
     state->message = method.message();
     state->solve_seconds = std::chrono::duration<double>(Clock::now() - begin).count();
     state->finished = method.status() != solver::Status::Running;
+    if (state->finished) state->finished_at = Clock::now();
     WorkerProgress progress;
     progress.iteration = method.iteration();
     if (!state->history.empty()) {
@@ -328,6 +333,7 @@ void SolverWorker::solve(Setup& setup, SolverTarget target) {
     mark_idle();  // the last publication was finished
   } else if (cancel_requested() && !superseded()) {
     state->finished = true;
+    state->finished_at = Clock::now();
     state->cancelled = true;
     state->message = "cancelled at iteration " + std::to_string(setup.method->iteration());
     publish(std::make_shared<const SolveState>(*state));

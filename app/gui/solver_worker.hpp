@@ -38,6 +38,7 @@ struct SolveState {
   solver::Status status = solver::Status::Running;
   std::string message;
   double solve_seconds = 0.0;
+  std::chrono::steady_clock::time_point finished_at{};  // when the solve ended
   // Scales for the whole slider range: a survey of the solve at the largest load factor.
   std::shared_ptr<const render::RunExtent> extent;
   double max_load = 2.0;  // top of the load slider (the target's, or chosen from the scene)

@@ -93,6 +93,9 @@ void App::report_frame() {
        {"active_contacts", active},
        {"solve_ms", shown_->solve_seconds * 1e3},
        {"latency_ms", latency},
+       // From the solve's end to the frame that shows it (the picture of a huge scene).
+       {"shown_after_solve_ms",
+        std::chrono::duration<double, std::milli>(now - shown_->finished_at).count()},
        {"compare", second}});
 }
 
