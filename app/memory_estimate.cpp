@@ -36,7 +36,8 @@ struct DualCosts {
 constexpr DualCosts kFetiCCosts{98, 49900, 1260, 7.2, 4.3, 3.5, 33};
 constexpr DualCosts kMprgpCosts{103, 45700, 1710, 6.7, 4.0, 3.8, 34};
 constexpr DualCosts kFetiDpCosts{156, 6500, 220, 14.7, 12.3, 0.0, 0.0};
-// FETI-C's and MPRGP's interior factors in single precision (--single-factors).
+// FETI-C's and MPRGP's interior factors in single precision: always since 5 December
+// (SolveOptions::single_interior_factors; the costs above were fitted with them double).
 constexpr double kSingleFactorShare = 0.6;
 // Active set: K factorized per strut, the contact rows solved against it (dense, per
 // strut), the working-set system (dense, up to every pair: twice, for the LU).
@@ -113,9 +114,7 @@ Counts count(const scenes::Scene& scene) {
 
 double dual_bytes(const Counts& c, const DualCosts& k, const MemoryUse& use) {
   const double per_entry = use.single_factors ? k.per_single_factor_entry : k.per_factor_entry;
-  const double interior =
-      use.dirichlet ? k.per_interior_factor_entry * (use.single_factors ? kSingleFactorShare : 1.0)
-                    : 0.0;
+  const double interior = use.dirichlet ? k.per_interior_factor_entry * kSingleFactorShare : 0.0;
   const double dofs_per_node = c.nodes > 0 ? c.unknowns / c.nodes : 1.0;
   const double kept_stiffness = use.dirichlet ? 0.0 : c.unknowns * dofs_per_node;
   return kMargin * (kBase + k.per_unknown * c.unknowns + k.per_strut * c.struts +

@@ -31,6 +31,7 @@
 
 #include "app/exit_codes.hpp"
 #include "app/output_file.hpp"
+#include "bench/floor_pair.hpp"
 #include "bench/ipopt_qp.hpp"
 #include "bench/local_bytes.hpp"
 #include "scenes/generate_scene.hpp"
@@ -221,8 +222,12 @@ struct Args {
   std::string csv_dir;
   bool skip_active_set_above_limit = true;
   std::vector<std::string> only;  // parts to run; empty: all
-  bool runs(const std::string& part) const {
-    return only.empty() || std::find(only.begin(), only.end(), part) != only.end();
+  std::string method = "mprgp";   // --only method
+  std::string working_set;        // --only method writes it, --only floor reads it
+  bool runs(const std::string& part) const { return only.empty() || asked(part); }
+  // method and floor run only when asked for, each alone (floor_pair.hpp).
+  bool asked(const std::string& part) const {
+    return std::find(only.begin(), only.end(), part) != only.end();
   }
 };
 
@@ -398,6 +403,9 @@ int run(const Args& args) {
   // long to be useful.
   if (full) sizes.push_back(plane(10, 100, 24, 5, 1));
   if (full) sizes.push_back(plane(25, 200, 48, 10, 2));
+  // The paired floor ratio: the largest comparison scene, one part per process.
+  if (args.asked("method")) return run_method_part(sizes.back(), args.method, args.working_set);
+  if (args.asked("floor")) return run_floor_part(sizes.back(), args.working_set);
   if (args.runs("comparison"))
     comparison_table(sizes, 120'000, 200'000).write_csv(args.csv_dir, "comparison.csv");
 
@@ -499,10 +507,25 @@ int main(int argc, char** argv) {
   app.add_option("--only", args.only,
                  "Run only these parts: comparison (against the direct floor), bytes (memory by "
                  "kind, set-up by part, F against the bandwidth), subdomains, pressed (2c: the "
-                 "subdomain scenes pressed flat), refinement, memory, frames")
-      ->check(CLI::IsMember(
-          {"comparison", "bytes", "subdomains", "pressed", "refinement", "memory", "frames"}));
+                 "subdomain scenes pressed flat), refinement, memory, frames; or alone, one "
+                 "process each for a paired ratio: method (--method on the largest comparison "
+                 "scene), floor (the direct floor with --working-set)")
+      ->check(CLI::IsMember({"comparison", "bytes", "subdomains", "pressed", "refinement", "memory",
+                             "frames", "method", "floor"}));
+  app.add_option("--method", args.method, "--only method: mprgp or feti-c (Dirichlet)")
+      ->check(CLI::IsMember({"mprgp", "feti-c"}))
+      ->capture_default_str();
+  app.add_option("--working-set", args.working_set,
+                 "--only method: write the final working set here; --only floor: read it");
   CLI11_PARSE(app, argc, argv);
+  if (args.asked("floor") && args.working_set.empty()) {
+    std::cerr << "--only floor needs --working-set FILE (written by --only method)\n";
+    return fetic::app::kExitUsage;
+  }
+  if (args.asked("method") + args.asked("floor") > 0 && args.only.size() > 1) {
+    std::cerr << "--only method and --only floor each run alone\n";
+    return fetic::app::kExitUsage;
+  }
   try {
     return fetic::bench::run(args);
   } catch (const fetic::app::OutputError& error) {

@@ -57,7 +57,7 @@ auto timed(double& seconds, Build build) {
 }  // namespace
 
 FetiSystem::FetiSystem(const Model& model, const Communicator& communicator, bool interior_first,
-                       int corner_clusters, bool single_factors)
+                       int corner_clusters, bool single_factors, bool single_interior)
     : model_(model),
       decomposition_(timed(setup_times_.decomposition,
                            [&] { return decomposition_for(model, corner_clusters); })),
@@ -66,7 +66,7 @@ FetiSystem::FetiSystem(const Model& model, const Communicator& communicator, boo
   build_incidence();
   {
     Stopwatch watch(setup_times_.factorization);
-    factorize_subdomains(interior_first, single_factors);
+    factorize_subdomains(interior_first, single_factors, single_interior);
   }
   Stopwatch watch(setup_times_.coarse_space);
   c_ = Eigen::VectorXd::Zero(space_.rows());
@@ -117,7 +117,8 @@ void FetiSystem::build_incidence() {
   y_.resize(dofs);
 }
 
-void FetiSystem::factorize_subdomains(bool interior_first, bool single_factors) {
+void FetiSystem::factorize_subdomains(bool interior_first, bool single_factors,
+                                      bool single_interior) {
   const Decomposition& d = decomposition_;
   const int count = static_cast<int>(subdomains_.size());
   std::vector<CholmodFactor::Result> results(count, CholmodFactor::Result::Ok);
@@ -136,6 +137,7 @@ void FetiSystem::factorize_subdomains(bool interior_first, bool single_factors) 
     op.K.swap(K);
     op.R = subdomain_modes(model_, sub);
     op.K_plus.use_single_precision(single_factors);
+    op.K_plus.use_single_precision_interior(single_interior);
     op.K_plus.use_simplicial_when_small(true);
     // Not for FETI-DP's clusters: their boundary (every torn interface DOF of the
     // cluster's boxes, coupled through the corners) would be one dense trailing block.

@@ -70,10 +70,11 @@ class FetiSystem {
   // corner_clusters: 0 FETI-1 (every box a subdomain); otherwise FETI-DP, the boxes joined
   // by their corners (corners.hpp): -1 into clusters as large as the corners make them,
   // N > 0 into clusters of about N boxes.
-  // `single_factors`: the subdomain factors' entries kept as floats (SolveOptions).
+  // `single_factors`: the subdomain factors' entries kept as floats (SolveOptions);
+  // `single_interior`: K_ii's factors (interior_first) kept as floats.
   explicit FetiSystem(const Model& model, const Communicator& communicator = Communicator::self(),
                       bool interior_first = false, int corner_clusters = 0,
-                      bool single_factors = false);
+                      bool single_factors = false, bool single_interior = true);
   FetiSystem(const FetiSystem&) = delete;
   FetiSystem& operator=(const FetiSystem&) = delete;
 
@@ -149,7 +150,7 @@ class FetiSystem {
   // out_r = sum over B's entries of row r of value * y_(subdomain, dof), all processes.
   void gather_rows(Eigen::VectorXd& out) const;
   void build_incidence();
-  void factorize_subdomains(bool interior_first, bool single_factors);
+  void factorize_subdomains(bool interior_first, bool single_factors, bool single_interior);
   // M v over the own subdomains' modes (M: modes x local rows, like G), replicated.
   Eigen::VectorXd own_modes_product(const SparseMatrix& M, const Eigen::VectorXd& v,
                                     const std::vector<char>* mask) const;

@@ -58,7 +58,7 @@ CholmodFactor::Result GeneralizedInverse::factorize(const SparseMatrix& K,
   K_ii.setFromTriplets(entries.begin(), entries.end());
   // A singular K_ii leaves has_interior_solve() false: the preconditioner reports it.
   if (interior_factor_.factorize(K_ii, simplicial_) == CholmodFactor::Result::Ok)
-    interior_factor_.compact(single_);
+    interior_factor_.compact(single_ || single_interior_);
   else
     interior_factor_ = CholmodFactor();
   return result;

@@ -26,6 +26,12 @@ class GeneralizedInverse {
   // Keep the factors' entries below the diagonal as floats (CompactFactor), for the
   // factorizations after this call.
   void use_single_precision(bool single) { single_ = single; }
+  // The same for K_ii's factor alone (on by default). Only the Dirichlet preconditioner
+  // solves with it, so its rounding changes the preconditioner M^-1 - still a fixed
+  // symmetric positive definite operator - and not the problem solved: the iterations
+  // converge to the same answer at the same tolerance (tests/solver/local_factor_test.cpp)
+  // while K_ii's entries take 6 bytes instead of 10 (docs/BENCHMARKS.md, issue 25).
+  void use_single_precision_interior(bool single) { single_interior_ = single; }
   // Factorize small factors simplicial (CholmodFactor::factorize's `to_compact`): FETI's
   // thousands of subdomains. Off by default, so that the primal methods' strut blocks
   // keep CHOLMOD's own choice and their answers' round-off.
@@ -60,6 +66,7 @@ class GeneralizedInverse {
   CholmodFactor factor_;
   CholmodFactor interior_factor_;  // K_ii's (empty unless asked for)
   bool single_ = false;
+  bool single_interior_ = true;
   bool simplicial_ = false;
 };
 

@@ -56,6 +56,11 @@ struct SolveOptions {
   // are then exact for K_j + E_j, |E_j| about 6e-8 |L_j||L_j'|: an option, since it moves
   // the answer by about that much times K_j's condition number (docs/BENCHMARKS.md).
   bool single_factors = false;
+  // The Dirichlet preconditioner's interior factors (K_ii) kept as floats the same way.
+  // On by default: only the preconditioner solves with them, so the answer is that of
+  // the problem itself (GeneralizedInverse::use_single_precision_interior); off only to
+  // measure the difference (fetic-bench-scale --only bytes, tests).
+  bool single_interior_factors = true;
 };
 
 // A problem found while setting a method up (singular strut, unsupported scene, ...).
