@@ -71,9 +71,10 @@ class FetiSystem {
   // by their corners (corners.hpp): -1 into clusters as large as the corners make them,
   // N > 0 into clusters of about N boxes.
   // `single_factors`: the subdomain factors' entries kept as floats (SolveOptions).
+  // `edge_averages`: FETI-DP with the plane model's edge averages primal (edge_averages.hpp).
   explicit FetiSystem(const Model& model, const Communicator& communicator = Communicator::self(),
                       bool interior_first = false, int corner_clusters = 0,
-                      bool single_factors = false);
+                      bool single_factors = false, bool edge_averages = false);
   FetiSystem(const FetiSystem&) = delete;
   FetiSystem& operator=(const FetiSystem&) = delete;
 
