@@ -19,6 +19,7 @@ solver::SolveOptions MethodArgs::options() const {
   options.scaling = !no_scaling;
   options.single_factors = single_factors;
   options.corner_clusters = clusters;
+  options.edge_averages = primal == "corners+edges";
   return options;
 }
 
@@ -123,8 +124,15 @@ void add_method_options(CLI::App* command, MethodArgs& args) {
                        "feti-dp: join the subdomains by their corners into clusters of about N "
                        "(hybrid FETI-DP; 1 is FETI-1); default: as large as the corners join them")
           ->check(integer_in(1, 1'000'000'000));
+  CLI::Option* primal =
+      command
+          ->add_option("--primal", args.primal,
+                       "feti-dp: the primal constraints, corners or corners+edges (plane "
+                       "model: the average over every interface edge too)")
+          ->check(CLI::IsMember({"corners", "corners+edges"}))
+          ->capture_default_str();
   // A preconditioner asked for a method that has none would be silently ignored.
-  command->parse_complete_callback([&args, preconditioner, clusters] {
+  command->parse_complete_callback([&args, preconditioner, clusters, primal] {
     const auto kind = solver::parse_method(args.method);
     if (preconditioner->count() > 0 && kind && !solver::is_dual(*kind))
       throw CLI::ValidationError("--preconditioner",
@@ -133,6 +141,9 @@ void add_method_options(CLI::App* command, MethodArgs& args) {
     if (clusters->count() > 0 && args.method != "feti-dp")
       throw CLI::ValidationError("--clusters", "only feti-dp joins subdomains into clusters; " +
                                                    args.method + " does not");
+    if (primal->count() > 0 && args.method != "feti-dp")
+      throw CLI::ValidationError(
+          "--primal", "only feti-dp has primal constraints; " + args.method + " does not");
   });
   command->add_flag("--no-scaling", args.no_scaling,
                     "FETI preconditioners without stiffness scaling");

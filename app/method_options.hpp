@@ -19,6 +19,7 @@ struct MethodArgs {
   bool no_scaling = false;
   bool single_factors = false;  // --single-factors
   int clusters = 0;  // feti-dp: clusters of about N subdomains (0: as large as corners join)
+  std::string primal = "corners";  // feti-dp: corners | corners+edges (--primal)
   double tolerance = 1e-10;
   int max_iterations = 0;
   double load_factor = 1.0;

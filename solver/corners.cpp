@@ -4,6 +4,7 @@
 
 #include "scenes/null_space.hpp"
 #include "scenes/union_find.hpp"
+#include "solver/edge_averages.hpp"
 #include "solver/rigid_modes.hpp"
 
 namespace fetic::solver {
@@ -347,10 +348,12 @@ void hold_fixed(const Model& model, Subdomain& cluster) {
 
 }  // namespace
 
-Decomposition join_corners(const Model& model, const Decomposition& boxes, int cluster_size) {
+Decomposition join_corners(const Model& model, const Decomposition& boxes, int cluster_size,
+                           bool edge_averages) {
   Decomposition d;
   const Joined joined = join(model, boxes, cluster_size, d);
   move_rows(boxes, joined, d);
+  if (edge_averages) tie_edge_averages(model, d);
   d.total_pieces = boxes.total_pieces;
   for (Subdomain& cluster : d.subdomains) {
     cluster.part_modes = cluster_kernel(model, cluster);
@@ -362,18 +365,42 @@ Decomposition join_corners(const Model& model, const Decomposition& boxes, int c
   return d;
 }
 
+namespace {
+
+// Adds K(a, b) = v, a tied DOF's couplings moved onto its terms (T'KT, edge_averages.hpp);
+// the tied DOF keeps its own diagonal, so that K stays regular there.
+void add_entry(const Subdomain& sub, const std::vector<int>& tie_of, int a, int b, double v,
+               std::vector<Eigen::Triplet<double>>& entries) {
+  if (tie_of[a] < 0 && tie_of[b] < 0) {
+    entries.emplace_back(a, b, v);
+    return;
+  }
+  if (a == b) entries.emplace_back(a, a, v);
+  const std::vector<std::pair<int, double>> self_a{{a, 1.0}}, self_b{{b, 1.0}};
+  const auto& terms_a = tie_of[a] < 0 ? self_a : sub.ties[tie_of[a]].terms;
+  const auto& terms_b = tie_of[b] < 0 ? self_b : sub.ties[tie_of[b]].terms;
+  for (const auto& [i, ci] : terms_a)
+    for (const auto& [k, ck] : terms_b)
+      entries.emplace_back(i, k, v * ci * ck);
+}
+
+}  // namespace
+
 SparseMatrix subdomain_stiffness(const Model& model, const Subdomain& sub) {
   if (sub.parts.empty()) return assemble_stiffness(model.struts[sub.strut], sub.box);
   std::vector<char> fixed(sub.dof_count, 0);
   for (int dof : sub.fixed)
     fixed[dof] = 1;
+  std::vector<int> tie_of(sub.dof_count, -1);
+  for (size_t t = 0; t < sub.ties.size(); ++t)
+    tie_of[sub.ties[t].dof] = static_cast<int>(t);
   std::vector<Eigen::Triplet<double>> entries;
   for (const SubdomainPart& part : sub.parts) {
     const SparseMatrix K = assemble_stiffness(model.struts[part.strut], part.box);
     for (int col = 0; col < K.outerSize(); ++col)
       for (SparseMatrix::InnerIterator it(K, col); it; ++it) {
         const int a = part.dofs[it.row()], b = part.dofs[col];
-        if (a == b || !(fixed[a] || fixed[b])) entries.emplace_back(a, b, it.value());
+        if (a == b || !(fixed[a] || fixed[b])) add_entry(sub, tie_of, a, b, it.value(), entries);
       }
   }
   SparseMatrix K(sub.dof_count, sub.dof_count);
@@ -392,6 +419,8 @@ Eigen::MatrixXd subdomain_modes(const Model& model, const Subdomain& sub) {
     for (size_t l = 0; l < part.dofs.size(); ++l)
       R.row(part.dofs[l]) = motion.row(static_cast<int>(l));
   }
+  for (const Subdomain::TiedDof& tie : sub.ties)  // held in K: no motion there
+    R.row(tie.dof).setZero();
   return R;
 }
 

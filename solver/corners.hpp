@@ -22,7 +22,10 @@
 namespace fetic::solver {
 
 // cluster_size: 0 joins every corner (plain FETI-DP), N > 0 clusters of about N boxes.
-Decomposition join_corners(const Model& model, const Decomposition& boxes, int cluster_size = 0);
+// edge_averages: the plane model's edge averages inside a cluster primal too
+// (edge_averages.hpp).
+Decomposition join_corners(const Model& model, const Decomposition& boxes, int cluster_size = 0,
+                           bool edge_averages = false);
 
 // Per strut, the nodes join_corners() makes primal (for drawing them), in increasing order.
 std::vector<std::vector<int>> corner_nodes(const Model& model, const Decomposition& boxes);

@@ -16,6 +16,7 @@
 // row (u_a - u_b) . n <= gap per contact pair. A pair whose two nodes are
 // both clamped can never move and gets no row (its force is zero).
 
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -50,6 +51,15 @@ struct Subdomain {
   // Clusters of several boxes: clamped DOFs made primal (corners.hpp) - held at zero in
   // K (row and column cleared, diagonal kept), with no row of B and no load.
   std::vector<int> fixed;
+  // Clusters with edge averages primal (edge_averages.hpp): DOFs eliminated by the
+  // constraint that two boxes' averages over their interface edge agree. Such a DOF is
+  // held like a fixed one in K (its couplings moved onto its terms), has no row of B, no
+  // load and no modes; its value is the sum of value x DOF over its terms.
+  struct TiedDof {
+    int dof = 0;
+    std::vector<std::pair<int, double>> terms;  // (subdomain DOF, coefficient)
+  };
+  std::vector<TiedDof> ties;
 };
 
 // The boxes of a subdomain: its parts, or the subdomain's own box as the only one.

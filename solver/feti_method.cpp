@@ -13,7 +13,8 @@ FetiMethod::FetiMethod(const Model& model, const SolveOptions& options, int defa
     : Method(model, options, default_max_iterations),
       system_(model, communicator,
               options.preconditioner == Preconditioner::Dirichlet && options.shared_interior_factor,
-              options.corner_clusters, options.single_factors, options.single_interior_factors),
+              options.corner_clusters, options.single_factors, options.single_interior_factors,
+              options.edge_averages),
       preconditioner_(system_, options.preconditioner, options.scaling),
       coarse_(system_),
       Gt_(system_.G().transpose()) {

@@ -17,10 +17,10 @@ namespace {
 
 constexpr double kSingularRcond = 1e-15;
 
-Decomposition decomposition_for(const Model& model, int corner_clusters) {
+Decomposition decomposition_for(const Model& model, int corner_clusters, bool edge_averages) {
   Decomposition boxes = decompose(model);
   if (corner_clusters == 0) return boxes;
-  return join_corners(model, boxes, std::max(corner_clusters, 0));
+  return join_corners(model, boxes, std::max(corner_clusters, 0), edge_averages);
 }
 
 // K's columns in `boundary` (sorted), the others emptied; same order as K.
@@ -57,10 +57,12 @@ auto timed(double& seconds, Build build) {
 }  // namespace
 
 FetiSystem::FetiSystem(const Model& model, const Communicator& communicator, bool interior_first,
-                       int corner_clusters, bool single_factors, bool single_interior)
+                       int corner_clusters, bool single_factors, bool single_interior,
+                       bool edge_averages)
     : model_(model),
-      decomposition_(timed(setup_times_.decomposition,
-                           [&] { return decomposition_for(model, corner_clusters); })),
+      decomposition_(
+          timed(setup_times_.decomposition,
+                [&] { return decomposition_for(model, corner_clusters, edge_averages); })),
       partition_(partition_subdomains(decomposition_, communicator.size())),
       space_(decomposition_, partition_, communicator) {
   build_incidence();
@@ -359,6 +361,12 @@ Eigen::VectorXd FetiSystem::subdomain_displacements(const Eigen::VectorXd& lambd
     const Subdomain& sub = decomposition_.subdomains[subdomains_[i].index];
     u.segment(dof_offsets_[i], sub.dof_count) +=
         subdomains_[i].R * alpha.segment(sub.mode_offset, sub.mode_count);
+    for (const Subdomain::TiedDof& tie : sub.ties) {  // edge averages (edge_averages.hpp)
+      double value = 0.0;
+      for (const auto& [dof, coefficient] : tie.terms)
+        value += coefficient * u(dof_offsets_[i] + dof);
+      u(dof_offsets_[i] + tie.dof) = value;
+    }
   }
   return u;
 }

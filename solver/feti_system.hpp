@@ -72,9 +72,11 @@ class FetiSystem {
   // N > 0 into clusters of about N boxes.
   // `single_factors`: the subdomain factors' entries kept as floats (SolveOptions);
   // `single_interior`: K_ii's factors (interior_first) kept as floats.
+  // `edge_averages`: FETI-DP with the plane model's edge averages primal (edge_averages.hpp).
   explicit FetiSystem(const Model& model, const Communicator& communicator = Communicator::self(),
                       bool interior_first = false, int corner_clusters = 0,
-                      bool single_factors = false, bool single_interior = true);
+                      bool single_factors = false, bool single_interior = true,
+                      bool edge_averages = false);
   FetiSystem(const FetiSystem&) = delete;
   FetiSystem& operator=(const FetiSystem&) = delete;
 

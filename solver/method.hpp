@@ -47,6 +47,9 @@ struct SolveOptions {
   // The dual methods' subdomains (FetiSystem): 0 FETI-1's boxes; -1 FETI-DP's clusters of
   // boxes joined by their corners; N > 0 hybrid clusters of about N boxes (corners.hpp).
   int corner_clusters = 0;
+  // FETI-DP: besides the corners, the average of each component over every interface
+  // edge inside a cluster primal (plane model; edge_averages.hpp).
+  bool edge_averages = false;
   // Dirichlet: factorize K_ii beside K_j (GeneralizedInverse), so that K_j can be cut
   // to its boundary columns at once; off: the preconditioner factorizes K_ii from the
   // whole K_j, kept until then (only to measure the difference: fetic-bench-scale).
