@@ -227,9 +227,9 @@ int run_bench(const BenchArgs& args) {
 }  // namespace
 
 void register_bench(CLI::App& app, int& exit_code) {
-  auto args = std::make_shared<BenchArgs>();
-  CLI::App* command =
-      app.add_subcommand("bench", "Benchmark every method on scenes (default: the bundled ones)");
+  const auto [command, args] =
+      add_command(app, "bench", "Benchmark every method on scenes (default: the bundled ones)",
+                  exit_code, run_bench);
   look_up_bundled_scenes(command->add_option(
       "scenes", args->scenes, "Scene files (paths, or names of bundled scenes: fetic scenes)"));
   command->add_option("--repeat", args->repeat, "Solves per measurement (median)")
@@ -237,7 +237,6 @@ void register_bench(CLI::App& app, int& exit_code) {
       ->capture_default_str();
   command->add_option("--csv", args->csv, "Also write the table as CSV (- for stdout)")
       ->check(output_name());
-  command->callback([args, &exit_code] { exit_code = run_bench(*args); });
 }
 
 }  // namespace fetic::app

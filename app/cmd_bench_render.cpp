@@ -257,9 +257,9 @@ int run_bench(const BenchArgs& args) {
 }  // namespace
 
 void register_bench_render(CLI::App& app, int& exit_code) {
-  auto args = std::make_shared<BenchArgs>();
-  CLI::App* command = app.add_subcommand(
-      "bench-render", "Measure frames per second of an iteration movie, including PNG writing");
+  const auto [command, args] = add_command(
+      app, "bench-render", "Measure frames per second of an iteration movie, including PNG writing",
+      exit_code, run_bench);
   look_up_bundled_scenes(
       command->add_option("scene", args->scene, "Scene file or bundled scene name"))
       ->capture_default_str();
@@ -279,7 +279,6 @@ void register_bench_render(CLI::App& app, int& exit_code) {
       ->add_option("--out", args->out,
                    "Keep the frames here (default: a temporary directory, removed after)")
       ->check(output_name(OutputKind::Folder));
-  command->callback([args, &exit_code] { exit_code = run_bench(*args); });
 }
 
 }  // namespace fetic::app

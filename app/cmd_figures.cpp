@@ -109,11 +109,11 @@ int run_figures(const FiguresArgs& args) {
 }  // namespace
 
 void register_figures(CLI::App& app, int& exit_code) {
-  auto args = std::make_shared<FiguresArgs>();
-  CLI::App* command = app.add_subcommand(
-      "figures",
-      "Draw the thesis' figures (2.1, 3.2, 4.3, 9.2, 9.3, 9.4) and S.1 (iterations against "
-      "subdomains: active set, FETI-C, MPRGP) as PNG");
+  const auto [command, args] =
+      add_command(app, "figures",
+                  "Draw the thesis' figures (2.1, 3.2, 4.3, 9.2, 9.3, 9.4) and S.1 (iterations "
+                  "against subdomains: active set, FETI-C, MPRGP) as PNG",
+                  exit_code, run_figures);
   command->add_option("--out", args->out, "Directory for the PNG files")
       ->required()
       ->check(output_name(OutputKind::Folder));
@@ -126,7 +126,6 @@ void register_figures(CLI::App& app, int& exit_code) {
   look_up_bundled_scenes(
       command->add_option("--scene", args->scene, "The thesis scene, for figures 9.x"))
       ->capture_default_str();
-  command->callback([args, &exit_code] { exit_code = run_figures(*args); });
 }
 
 }  // namespace fetic::app

@@ -165,9 +165,9 @@ int run_generate(const GenerateArgs& args) {
 }  // namespace
 
 void register_generate(CLI::App& app, int& exit_code) {
-  auto args = std::make_shared<GenerateArgs>();
-  CLI::App* command = app.add_subcommand(
-      "generate", "Write a generated scene of opposing strut pairs (TOML) to stdout or a file");
+  const auto [command, args] = add_command(
+      app, "generate", "Write a generated scene of opposing strut pairs (TOML) to stdout or a file",
+      exit_code, run_generate);
   command
       ->add_option("--model", args->model,
                    "bar, plane or frame (frame: pairs of facing portal frames)")
@@ -183,7 +183,6 @@ void register_generate(CLI::App& app, int& exit_code) {
   command->add_option("--seed", args->seed, "Seed of the variations")->capture_default_str();
   command->add_option("-o,--out", args->out, "Write to this file instead of stdout (- for stdout)")
       ->check(output_name());
-  command->callback([args, &exit_code] { exit_code = run_generate(*args); });
 }
 
 }  // namespace fetic::app

@@ -102,10 +102,13 @@ out vec4 output_color;
 void main() { output_color = fragment_color; }
 )";
 
-// A shader or program that failed to build: deleted, and the driver's log thrown.
-void throw_unless_built(GLint built, GLuint object,
+// Asks the driver whether a shader compiled (GL_COMPILE_STATUS) or a program linked
+// (GL_LINK_STATUS); one that did not is deleted and the driver's log thrown.
+void throw_unless_built(GLuint object, GLenum status, void (*get_status)(GLuint, GLenum, GLint*),
                         void (*info_log)(GLuint, GLsizei, GLsizei*, GLchar*),
                         void (*destroy)(GLuint), const char* what) {
+  GLint built = 0;
+  get_status(object, status, &built);
   if (built) return;
   char log[1024] = {};
   info_log(object, sizeof log, nullptr, log);
@@ -117,9 +120,7 @@ GLuint compile(GLenum kind, const char* source) {
   const GLuint shader = glCreateShader(kind);
   glShaderSource(shader, 1, &source, nullptr);
   glCompileShader(shader);
-  GLint ok = 0;
-  glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
-  throw_unless_built(ok, shader, glGetShaderInfoLog, glDeleteShader,
+  throw_unless_built(shader, GL_COMPILE_STATUS, glGetShaderiv, glGetShaderInfoLog, glDeleteShader,
                      "compile the renderer's shader");
   return shader;
 }
@@ -133,9 +134,7 @@ GLuint link(const char* vertex_source, const char* fragment_source) {
   glLinkProgram(program);
   glDeleteShader(vertex);
   glDeleteShader(fragment);
-  GLint linked = 0;
-  glGetProgramiv(program, GL_LINK_STATUS, &linked);
-  throw_unless_built(linked, program, glGetProgramInfoLog, glDeleteProgram,
+  throw_unless_built(program, GL_LINK_STATUS, glGetProgramiv, glGetProgramInfoLog, glDeleteProgram,
                      "link the renderer's shader program");
   return program;
 }

@@ -153,16 +153,12 @@ void add_contact_rows(const Model& model, const std::vector<StrutCopies>& copies
     row.kind = RowKind::Contact;
     row.pair = static_cast<int>(k);
     row.rhs = pair.gap;
-    for (int side = 0; side < 2; ++side) {
-      const int strut = side == 0 ? pair.strut_a : pair.strut_b;
-      const int node = side == 0 ? pair.node_a : pair.node_b;
-      const StrutMesh& mesh = model.struts[strut];
-      const Eigen::VectorXd coefficients =
-          component_coefficients(mesh, side == 0 ? pair.normal : Vec2(-pair.normal));
-      const auto [sub, local] = copies[strut].of_node[node].front();
+    for (const ContactSide& side : contact_sides(model, pair)) {
+      const StrutMesh& mesh = model.struts[side.strut];
+      const auto [sub, local] = copies[side.strut].of_node[side.node].front();
       for (int comp = 0; comp < mesh.dofs_per_node; ++comp)
-        if (coefficients(comp) != 0.0)
-          row.entries.push_back({sub, local * mesh.dofs_per_node + comp, coefficients(comp)});
+        if (side.coefficients(comp) != 0.0)
+          row.entries.push_back({sub, local * mesh.dofs_per_node + comp, side.coefficients(comp)});
     }
     d.pair_row[k] = static_cast<int>(d.rows.size());
     d.rows.push_back(std::move(row));

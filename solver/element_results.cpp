@@ -305,14 +305,12 @@ std::vector<Eigen::VectorXd> contact_nodal_forces(const Model& model, const Snap
     const ContactPair& pair = model.pairs[p];
     const double lambda = snapshot.force[p];
     if (lambda == 0.0) continue;
-    const StrutMesh& a = model.struts[static_cast<size_t>(pair.strut_a)];
-    const StrutMesh& b = model.struts[static_cast<size_t>(pair.strut_b)];
-    forces[static_cast<size_t>(pair.strut_a)].segment(pair.node_a * a.dofs_per_node,
-                                                      a.dofs_per_node) -=
-        lambda * component_coefficients(a, pair.normal);
-    forces[static_cast<size_t>(pair.strut_b)].segment(pair.node_b * b.dofs_per_node,
-                                                      b.dofs_per_node) +=
-        lambda * component_coefficients(b, pair.normal);
+    // The force lambda pushes the two sides apart: minus lambda times the row on each.
+    for (const ContactSide& side : contact_sides(model, pair)) {
+      const StrutMesh& mesh = model.struts[static_cast<size_t>(side.strut)];
+      forces[static_cast<size_t>(side.strut)].segment(
+          side.node * mesh.dofs_per_node, mesh.dofs_per_node) -= lambda * side.coefficients;
+    }
   }
   return forces;
 }

@@ -110,12 +110,7 @@ void FetiC::compute_search_residual() {
 
 void FetiC::record_state() {
   compute_search_residual();
-  const double norm = space().norm(w_hat_);
-  const double residual = relative(norm);
-  if (residual <= options_.tolerance || norm == 0.0)
-    converge();
-  else
-    watch_stagnation(residual);
+  const double residual = stopping_test(space().norm(w_hat_));
   long long working = 0;
   for (int k = space().first_contact(); k < system_.rows(); ++k)
     working += active_[k] && space().owned(k) ? 1 : 0;

@@ -156,6 +156,15 @@ void FetiMethod::watch_stagnation(double residual, int window) {
   }
 }
 
+double FetiMethod::stopping_test(double norm) {
+  const double residual = relative(norm);
+  if (residual <= options_.tolerance || norm == 0.0)
+    converge();
+  else
+    watch_stagnation(residual);
+  return residual;
+}
+
 void FetiMethod::fail_breakdown(double yw, double pq) {
   fail(std::string(to_string(kind())) + " broke down at iteration " + std::to_string(iteration_) +
        ": the search direction has no curvature (y'w = " + format_number(yw) +

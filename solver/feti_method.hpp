@@ -87,6 +87,10 @@ class FetiMethod : public Method {
   // Call before recording a residual: fails the solve when it has not reached a new low
   // for `window` iterations (the tolerance is below what rounding allows).
   void watch_stagnation(double residual, int window = kStagnationWindow);
+  // The stopping test of PCPG and FETI-C (docs/METHODS.md 4.3, 4.5) on the norm of the
+  // projected residual: converges when it is within the tolerance relative to the scale
+  // (or exactly zero), else watches for stagnation. Returns the relative residual.
+  double stopping_test(double norm);
   // Fails for a vanishing or negative curvature p'F p, explaining the likely cause.
   void fail_breakdown(double yw, double pq);
   // One PCPG step's direction and length (PCPG and FETI-C): y = P M^-1 w preconditioned on

@@ -168,6 +168,17 @@ std::vector<T> strut_average(const Model& model, const Snapshot& snapshot, int s
   return sum;
 }
 
+// of_strut(s, the pieces of strut s) for every strut s.
+template <typename T, typename OfStrut>
+std::vector<T> per_strut(const Model& model, const Snapshot& snapshot, OfStrut of_strut) {
+  const auto pieces = pieces_by_strut(model, snapshot);
+  std::vector<T> values;
+  values.reserve(model.struts.size());
+  for (size_t s = 0; s < model.struts.size(); ++s)
+    values.push_back(of_strut(static_cast<int>(s), pieces[s]));
+  return values;
+}
+
 }  // namespace
 
 std::vector<Vec2> strut_displacements(const Model& model, const Snapshot& snapshot, int strut,
@@ -190,21 +201,16 @@ std::vector<double> strut_rotations(const Model& model, const Snapshot& snapshot
 }
 
 std::vector<std::vector<Vec2>> strut_displacements(const Model& model, const Snapshot& snapshot) {
-  const auto pieces = pieces_by_strut(model, snapshot);
-  std::vector<std::vector<Vec2>> u;
-  u.reserve(model.struts.size());
-  for (size_t s = 0; s < model.struts.size(); ++s)
-    u.push_back(strut_displacements(model, snapshot, static_cast<int>(s), pieces[s]));
-  return u;
+  return per_strut<std::vector<Vec2>>(model, snapshot, [&](int s, const std::vector<int>& pieces) {
+    return strut_displacements(model, snapshot, s, pieces);
+  });
 }
 
 std::vector<std::vector<double>> strut_rotations(const Model& model, const Snapshot& snapshot) {
-  const auto pieces = pieces_by_strut(model, snapshot);
-  std::vector<std::vector<double>> rotations;
-  rotations.reserve(model.struts.size());
-  for (size_t s = 0; s < model.struts.size(); ++s)
-    rotations.push_back(strut_rotations(model, snapshot, static_cast<int>(s), pieces[s]));
-  return rotations;
+  return per_strut<std::vector<double>>(model, snapshot,
+                                        [&](int s, const std::vector<int>& pieces) {
+                                          return strut_rotations(model, snapshot, s, pieces);
+                                        });
 }
 
 double relative_error(const std::vector<std::vector<Vec2>>& u,

@@ -126,6 +126,13 @@ bool Model::translation_held(int strut, int node) const {
   return (held(strut, node) & translation) == translation;
 }
 
+std::array<ContactSide, 2> contact_sides(const Model& model, const ContactPair& pair) {
+  const StrutMesh& a = model.struts[static_cast<size_t>(pair.strut_a)];
+  const StrutMesh& b = model.struts[static_cast<size_t>(pair.strut_b)];
+  return {ContactSide{pair.strut_a, pair.node_a, component_coefficients(a, pair.normal)},
+          ContactSide{pair.strut_b, pair.node_b, component_coefficients(b, Vec2(-pair.normal))}};
+}
+
 Eigen::VectorXd strut_load(const scenes::Scene& scene, const StrutMesh& mesh) {
   Eigen::VectorXd load = Eigen::VectorXd::Zero(mesh.dof_count());
   if (mesh.dofs_per_node == 3) {

@@ -82,6 +82,16 @@ struct Model {
 
 Model build_model(const scenes::Scene& scene);
 
+// One side of a contact pair's row: its strut and node, and the row's coefficients on the
+// node's DOFs - the normal on side a, its negative on side b, so that the row reads
+// (u_a - u_b) . normal. The assembled problem, the FETI rows and the contact forces
+// all take the pair apart this one way.
+struct ContactSide {
+  int strut = 0, node = 0;
+  Eigen::VectorXd coefficients;
+};
+std::array<ContactSide, 2> contact_sides(const Model& model, const ContactPair& pair);
+
 // Consistent nodal forces of one strut at load factor 1 (SCENES.md).
 Eigen::VectorXd strut_load(const scenes::Scene& scene, const StrutMesh& mesh);
 

@@ -40,13 +40,7 @@ void Pcpg::record_residual() {
   w_ = r_;
   coarse_.project(w_);
   system_.project_onto_range_of_B(w_);
-  const double norm = space().norm(w_);
-  const double residual = relative(norm);
-  if (residual <= options_.tolerance || norm == 0.0)
-    converge();
-  else
-    watch_stagnation(residual);
-  record(residual, 0);
+  record(stopping_test(space().norm(w_)), 0);
 }
 
 void Pcpg::advance() {

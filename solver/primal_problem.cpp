@@ -184,16 +184,12 @@ void PrimalProblem::build_contact_rows() {
   for (int k = 0; k < m; ++k) {
     const ContactPair& pair = model.pairs[k];
     c_(k) = pair.gap;
-    for (int side = 0; side < 2; ++side) {
-      const int s = side == 0 ? pair.strut_a : pair.strut_b;
-      const int node = side == 0 ? pair.node_a : pair.node_b;
-      const StrutMesh& mesh = model.struts[s];
-      const Eigen::VectorXd coefficients =
-          component_coefficients(mesh, side == 0 ? pair.normal : Vec2(-pair.normal));
+    for (const ContactSide& side : contact_sides(model, pair)) {
+      const StrutMesh& mesh = model.struts[side.strut];
       for (int c = 0; c < mesh.dofs_per_node; ++c) {
-        const int global = global_of_[s][node * mesh.dofs_per_node + c];
-        if (global >= 0 && coefficients(c) != 0.0)
-          a_entries.emplace_back(k, global, coefficients(c));
+        const int global = global_of_[side.strut][side.node * mesh.dofs_per_node + c];
+        if (global >= 0 && side.coefficients(c) != 0.0)
+          a_entries.emplace_back(k, global, side.coefficients(c));
       }
     }
   }

@@ -320,15 +320,12 @@ void App::apply_output_request(const Request& r) {
     case RequestKind::ExportParaView:
       export_paraview(r);
       break;
-    case RequestKind::SaveView:
-      after_picture_.push_back(r);
-      redraw_ = true;
-      break;
     case RequestKind::ScreenshotWindow:
       window_shot_requested_ = true;
       pending_window_shot_ = r.text;
       break;
-    case RequestKind::Locate:
+    case RequestKind::SaveView:
+    case RequestKind::Locate:  // both need the picture drawn first
       after_picture_.push_back(r);
       redraw_ = true;
       break;
