@@ -419,6 +419,9 @@ Eigen::MatrixXd subdomain_modes(const Model& model, const Subdomain& sub) {
     for (size_t l = 0; l < part.dofs.size(); ++l)
       R.row(part.dofs[l]) = motion.row(static_cast<int>(l));
   }
+  for (const Subdomain::SumDof& sum : sub.sums)
+    for (const auto& [dof, coefficient] : sum.of)
+      R.row(sum.dof) += coefficient * R.row(dof);
   for (const Subdomain::TiedDof& tie : sub.ties)  // held in K: no motion there
     R.row(tie.dof).setZero();
   return R;

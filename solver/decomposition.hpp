@@ -60,6 +60,13 @@ struct Subdomain {
     std::vector<std::pair<int, double>> terms;  // (subdomain DOF, coefficient)
   };
   std::vector<TiedDof> ties;
+  // A DOF of no box (edge_averages.hpp: the sum shared by the two boxes of an edge): its
+  // value in a rigid-body motion is the sum of coefficient x DOF over `of`.
+  struct SumDof {
+    int dof = 0;
+    std::vector<std::pair<int, double>> of;
+  };
+  std::vector<SumDof> sums;
 };
 
 // The boxes of a subdomain: its parts, or the subdomain's own box as the only one.

@@ -90,26 +90,45 @@ void drop_rows(Decomposition& d, const std::vector<char>& drop) {
       r = index[r];
 }
 
+// One edge and component: the sum s of the first box's copies becomes a DOF of its own,
+// shared by both boxes, and each box's copy of the edge's last node is tied to it,
+// u_m = s - sum_{i != m} u_i; the gluing row of that node is dropped.
+void tie_edge(const std::vector<EdgeRow>& rows, Subdomain& cluster, std::vector<char>& drop) {
+  const EdgeRow& last = rows.back();
+  const int s = cluster.dof_count++;
+  cluster.load.conservativeResize(cluster.dof_count);
+  cluster.load(s) = 0.0;
+  Subdomain::TiedDof tp{last.dof_p, {{s, 1.0}}}, tq{last.dof_q, {{s, 1.0}}};
+  Subdomain::SumDof sum{s, {}};
+  for (const EdgeRow& r : rows) {
+    sum.of.emplace_back(r.dof_p, 1.0);
+    if (r.row == last.row) continue;
+    tp.terms.emplace_back(r.dof_p, -1.0);
+    tq.terms.emplace_back(r.dof_q, -1.0);
+  }
+  for (Subdomain::TiedDof* tie : {&tp, &tq}) {  // T'f: the tied DOF's load onto its terms
+    for (const auto& [dof, coefficient] : tie->terms)
+      cluster.load(dof) += coefficient * cluster.load(tie->dof);
+    cluster.load(tie->dof) = 0.0;
+    cluster.ties.push_back(std::move(*tie));
+  }
+  cluster.sums.push_back(std::move(sum));
+  drop[last.row] = 1;
+}
+
 }  // namespace
 
 void tie_edge_averages(const Model& model, Decomposition& d) {
   if (model.kind != scenes::ModelKind::Plane) return;
   std::vector<char> drop(d.rows.size(), 0);
-  for (const auto& [key, rows] : edge_rows(model, d)) {
-    Subdomain& cluster = d.subdomains[std::get<0>(key)];
-    const EdgeRow& last = rows.back();
-    Subdomain::TiedDof tie{last.dof_q, {}};
-    for (const EdgeRow& e : rows) {
-      tie.terms.emplace_back(e.dof_p, 1.0);
-      if (e.row != last.row) tie.terms.emplace_back(e.dof_q, -1.0);
-    }
-    for (const auto& [dof, coefficient] : tie.terms)
-      cluster.load(dof) += coefficient * cluster.load(tie.dof);
-    cluster.load(tie.dof) = 0.0;
-    drop[last.row] = 1;
-    cluster.ties.push_back(std::move(tie));
-  }
+  for (const auto& [key, rows] : edge_rows(model, d))
+    tie_edge(rows, d.subdomains[std::get<0>(key)], drop);
   drop_rows(d, drop);
+  d.total_dofs = 0;  // the clusters grew by their edges' sums
+  for (Subdomain& sub : d.subdomains) {
+    sub.dof_offset = d.total_dofs;
+    d.total_dofs += sub.dof_count;
+  }
 }
 
 }  // namespace fetic::solver
