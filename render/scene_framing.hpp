@@ -9,6 +9,7 @@
 // between make room for it by being drawn a little shorter or longer, never their
 // supports: clamped ends stay on their walls.
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -19,13 +20,34 @@
 
 namespace fetic::render {
 
+// The gap widening per strut and node, shared by the copies of a framing: a zoomed or
+// panned framing is copied for every picture, and on ten million unknowns the field is
+// 77 MB.
+class Widening {
+ public:
+  using Field = std::vector<std::vector<solver::Vec2>>;
+  Widening() = default;
+  Widening(Field field) : field_(std::make_shared<const Field>(std::move(field))) {}  // NOLINT
+  operator const Field&() const { return field_ ? *field_ : empty_field(); }          // NOLINT
+  bool empty() const { return !field_ || field_->empty(); }
+  std::size_t size() const { return field_ ? field_->size() : 0; }
+  const std::vector<solver::Vec2>& operator[](std::size_t s) const { return (*field_)[s]; }
+
+ private:
+  static const Field& empty_field() {
+    static const Field none;
+    return none;
+  }
+  std::shared_ptr<const Field> field_;
+};
+
 struct SceneFraming {
   double magnification = 1.0;
   bool gaps_magnified = false;
   // Why the automatic magnification is not larger: "" (the 8% rule), or what a larger one
   // would break ("gaps", "elements", "crossing").
   std::string limited_by;
-  std::vector<std::vector<solver::Vec2>> widening;  // per strut and node, per unit of m - 1
+  Widening widening;              // per strut and node, per unit of m - 1
   std::vector<double> clearance;  // per strut: free distance to the nearest strut beside it
   Rect region;                    // pixels the scene may use
   double pixels_per_unit = 1.0;   // world length unit to pixels

@@ -210,6 +210,7 @@ class App {
   // picking.cpp
   void index_picture(const solver::Snapshot& snapshot, const render::SceneFraming& framing);
   void refresh_pick_index();  // index_picture for the last picture, when it is stale
+  void hover(render::Point at);
   nlohmann::json pick_values(const Pickable& item) const;
   std::string pick_text(const Pickable& item) const;
   void picking(float view_x, float view_width, float view_height);  // tooltip, pins
@@ -357,6 +358,9 @@ class App {
   int pick_iterate_ = 0;
   bool pick_stale_ = false;  // picks_ is not yet of the last picture
   std::optional<Pickable> hovered_;
+  render::Point last_pointer_{-1.0f, -1.0f};  // where the pointer was the frame before
+  // An index build slower than this is not repeated under a resting pointer.
+  static constexpr double kSlowIndexMs = 50.0;
   std::vector<Pickable> pinned_;
   double pick_query_ms_ = 0.0;
   bool window_shot_requested_ = false;

@@ -218,11 +218,34 @@ void App::refresh_pick_index() {
   pick_stale_ = false;
 }
 
+// The item under the pointer, and every 200 frames over the picture a "hover" event.
+void App::hover(render::Point at) {
+  const auto start = Clock::now();
+  hovered_ = picks_.nearest(at, kPickRadius);
+  pick_query_ms_ = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+  if (hover_stats.frames++ == 0) hover_stats.first = start;
+  hover_stats.query_ms.push_back(pick_query_ms_);
+  if (hover_stats.frames == 201) {
+    const double seconds = std::chrono::duration<double>(start - hover_stats.first).count();
+    log_.write({{"event", "hover"},
+                {"frames", 200},
+                {"seconds", seconds},
+                {"frames_per_second", seconds > 0.0 ? 200.0 / seconds : 0.0},
+                {"query_ms_median", median(hover_stats.query_ms)},
+                {"query_ms_max",
+                 *std::max_element(hover_stats.query_ms.begin(), hover_stats.query_ms.end())},
+                {"index_items", hover_stats.items},
+                {"index_build_ms", hover_stats.build_ms}});
+    hover_stats = HoverStats{0, {}, {}, hover_stats.build_ms, hover_stats.items};
+  }
+}
+
 void App::picking(float view_x, float view_width, float view_height) {
   const ImGuiIO& io = ImGui::GetIO();
   const render::Point at{io.MousePos.x - view_x, io.MousePos.y};
   const bool over_picture =
       !io.WantCaptureMouse && at.x >= 0 && at.y >= 0 && at.x < view_width && at.y < view_height;
+  const std::optional<Pickable> hovered_before = hovered_;
   hovered_.reset();
   // No hover while the view moves (dragged, or zoomed by the wheel until it rests): every
   // picture would build the index again, a pass over all nodes that on millions of them
@@ -231,26 +254,16 @@ void App::picking(float view_x, float view_width, float view_height) {
   // listed.
   const bool still =
       !ImGui::IsMouseDragging(ImGuiMouseButton_Left) && Clock::now() - view_moved_ >= kViewRest;
-  if ((over_picture || !pinned_.empty()) && still) refresh_pick_index();
-  if (over_picture && shown_ && !comparing() && still) {
-    const auto start = Clock::now();
-    hovered_ = picks_.nearest(at, kPickRadius);
-    pick_query_ms_ = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-    if (hover_stats.frames++ == 0) hover_stats.first = start;
-    hover_stats.query_ms.push_back(pick_query_ms_);
-    if (hover_stats.frames == 201) {
-      const double seconds = std::chrono::duration<double>(start - hover_stats.first).count();
-      log_.write({{"event", "hover"},
-                  {"frames", 200},
-                  {"seconds", seconds},
-                  {"frames_per_second", seconds > 0.0 ? 200.0 / seconds : 0.0},
-                  {"query_ms_median", median(hover_stats.query_ms)},
-                  {"query_ms_max",
-                   *std::max_element(hover_stats.query_ms.begin(), hover_stats.query_ms.end())},
-                  {"index_items", hover_stats.items},
-                  {"index_build_ms", hover_stats.build_ms}});
-      hover_stats = HoverStats{0, {}, {}, hover_stats.build_ms, hover_stats.items};
-    }
+  // An index that took more than a few frames to build (millions of nodes) is built again
+  // only when the pointer moves, not for every new picture under a resting pointer (a
+  // solve shows one per iteration): the item hovered before stays.
+  const bool moved = at.x != last_pointer_.x || at.y != last_pointer_.y;
+  last_pointer_ = at;
+  if (pick_stale_ && !moved && hover_stats.build_ms > kSlowIndexMs) {
+    hovered_ = over_picture && still && !comparing() ? hovered_before : std::nullopt;
+  } else {
+    if ((over_picture || !pinned_.empty()) && still) refresh_pick_index();
+    if (over_picture && shown_ && !comparing() && still) hover(at);
   }
   if (hovered_) {
     ImGui::BeginTooltip();

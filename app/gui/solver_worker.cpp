@@ -12,6 +12,16 @@
 
 namespace fetic::app::gui {
 
+namespace {
+
+// From this many unknowns a solve takes long enough that the window's first solve at load
+// 1 (which chooses the slider's top) is kept as the warm start of the next one. Smaller
+// scenes solve cold after the survey, whatever the first load (the tests count those
+// iterations).
+constexpr long long kLargeScene = 500000;
+
+}  // namespace
+
 double automatic_max_load(const solver::Model& model, const solver::Snapshot& at_one) {
   if (at_one.status != solver::Status::Converged || at_one.active_set_size() > 0) return 2.0;
   const auto u = solver::strut_displacements(model, at_one);
@@ -261,8 +271,16 @@ bool SolverWorker::survey_scales(Setup& setup, const SolverTarget& target) {
     return true;
   };
   if (method && target.max_load <= 0.0) {
-    method->start(1.0);
-    solver::run_to_end(*method, keep_surveying);
+    if (target.model->dof_count() >= kLargeScene) {
+      // Through the driver, so that the solve at load 1 that follows the survey starts
+      // from this one (converged at once) instead of solving it a third time.
+      solver::SweepHooks hooks;
+      hooks.keep_going = keep_surveying;
+      setup.driver->solve(1.0, hooks);
+    } else {
+      method->start(1.0);
+      solver::run_to_end(*method, keep_surveying);
+    }
     if (stopped()) return false;
     setup.slider_max = automatic_max_load(*target.model, method->snapshot());
   }
