@@ -205,8 +205,11 @@ MemoryEstimate estimate_memory(const scenes::Scene& scene, const MemoryUse& use)
   }
   if (use.result_file) estimate.bytes += kResultFileFixed + kResultFilePerNode * c.nodes;
   if (use.paraview) estimate.bytes += kParaViewFixed + kParaViewPerNode * c.nodes;
-  estimate.bytes +=
-      use.kept_iterates * (kIteratePerUnknown * c.unknowns + kIteratePerRow * c.interface_rows);
+  const double iterate = kIteratePerUnknown * c.unknowns + kIteratePerRow * c.interface_rows;
+  double kept = use.kept_iterates * iterate;
+  if (use.kept_iterate_budget > 0.0)  // the window's store thins to its budget, keeping 3
+    kept = std::min(kept, std::max(use.kept_iterate_budget, 3.0 * iterate));
+  estimate.bytes += kept;
   return estimate;
 }
 

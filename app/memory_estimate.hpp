@@ -26,6 +26,7 @@ struct MemoryUse {
   bool paraview = false;                    // --vtu: ParaView files of every node
   bool single_factors = false;              // --single-factors: 6 bytes a factor entry, not 10
   bool dirichlet = true;                    // the Dirichlet preconditioner's K_ii factors
+  double kept_iterate_budget = 0.0;         // > 0: those snapshots' bytes at most this (but 3)
 };
 
 struct MemoryEstimate {

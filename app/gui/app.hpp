@@ -77,6 +77,12 @@ class App {
 
   int run(render::GlfwWindow& window, std::vector<ScriptAction> script);
 
+  // Methods that would not fit in memory on this scene, each with the reason: picking one
+  // (the method or the compared method) is refused with that reason instead of solving.
+  void refuse_methods(std::map<solver::MethodKind, std::string> reasons) {
+    memory_refusals_ = std::move(reasons);
+  }
+
  private:
   // The panel's width: kPanelWidth times the scale of text and controls (--ui-scale).
   float panel_width() const { return kPanelWidth * ui_scale_; }
@@ -107,7 +113,8 @@ class App {
   void open_monitor();
   std::string close_monitor();  // "" when every line arrived
   void apply(const Request& request);
-  void apply_solver_request(const Request& request);   // load, method, preconditioner, compare
+  void apply_solver_request(const Request& request);  // load, method, preconditioner, compare
+  bool refused_for_memory(const Request& request, solver::MethodKind kind);
   void apply_history_request(const Request& request);  // play, step, scrub, live, cancel
   void apply_display_request(const Request& request);  // magnification, colours, toggles, views
   void apply_output_request(const Request& request);   // screenshots, recordings, exports, quit
@@ -232,6 +239,7 @@ class App {
 
   const Options& args_;
   std::string title_;
+  std::map<solver::MethodKind, std::string> memory_refusals_;  // refuse_methods
   // --monitor, written by the worker's thread: declared before the worker, so that it
   // outlives the worker's thread.
   std::unique_ptr<SolveMonitor> monitor_;

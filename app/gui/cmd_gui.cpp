@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <map>
 #include <memory>
 #include <sstream>
 #include <string>
@@ -13,6 +14,7 @@
 #include "app/commands.hpp"
 #include "app/exit_codes.hpp"
 #include "app/gui/app.hpp"
+#include "app/gui/iterate_store.hpp"
 #include "app/gui/options.hpp"
 #include "app/gui/script.hpp"
 #include "app/interrupt.hpp"
@@ -92,14 +94,21 @@ int run_gui(const gui::Options& args) {
                   << '\n';
         return kExitUsage;
       }
-  // The window may switch to any method and keeps the iterates of a solve for scrubbing.
-  if (!memory_suffices(
-          *scene, args.scene,
-          {{solver::MethodKind::FetiC, solver::MethodKind::Mprgp, solver::MethodKind::ActiveSet},
-           false,
-           100},
-          status))
-    return status;
+  // Memory: the methods the window starts with must fit, with the iterates it keeps (a
+  // solve's, thinned to kIterateBudget); a method the user may pick later that would not
+  // fit is refused when picked (App::refuse_methods), not at the start.
+  MemoryUse use;
+  use.methods = {*solver::parse_method(args.method)};
+  if (!args.compare.empty()) use.methods.push_back(*solver::parse_method(args.compare));
+  use.kept_iterates = 100;
+  use.kept_iterate_budget = static_cast<double>(gui::kIterateBudget);
+  if (!memory_suffices(*scene, args.scene, use, status)) return status;
+  std::map<solver::MethodKind, std::string> refusals;
+  for (const solver::MethodKind kind : solver::all_methods()) {
+    use.methods = {kind};
+    if (std::string problem = memory_problem(*scene, use); !problem.empty())
+      refusals.emplace(kind, std::move(problem));
+  }
   Activity running("running the window");
   auto model = std::make_shared<const solver::Model>(solver::build_model(*scene));
   const std::string title =
@@ -119,6 +128,7 @@ int run_gui(const gui::Options& args) {
     return kExitNoDisplay;
   }
   gui::App app(args, std::move(model), title);
+  app.refuse_methods(std::move(refusals));
   return app.run(*window, std::move(script));
 }
 

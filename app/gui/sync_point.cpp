@@ -126,6 +126,19 @@ void App::apply(const Request& r) {
   }
 }
 
+// A method that would not fit in memory (refuse_methods) is not switched to: a script's
+// line ends the run with status 7, as `fetic solve` refuses it; a click says why.
+bool App::refused_for_memory(const Request& r, solver::MethodKind kind) {
+  const auto refusal = memory_refusals_.find(kind);
+  if (refusal == memory_refusals_.end()) return false;
+  const std::string message = "not switched to " + r.text + ": " + refusal->second;
+  if (r.script_line > 0)
+    fail(r, message, kExitOutOfMemory);
+  else
+    say(message, true);
+  return true;
+}
+
 // What is solved: the load, the method, its preconditioner, the second method.
 void App::apply_solver_request(const Request& r) {
   switch (r.kind) {
@@ -147,6 +160,7 @@ void App::apply_solver_request(const Request& r) {
     }
     case RequestKind::SetMethod:
       if (const auto kind = solver::parse_method(r.text)) {
+        if (refused_for_memory(r, *kind)) break;
         target_.method = *kind;
         follow_ = true;
         send_to_worker();
@@ -170,6 +184,7 @@ void App::apply_solver_request(const Request& r) {
         say("unknown method " + r.text, true);
         break;
       }
+      if (kind && refused_for_memory(r, *kind)) break;
       compare_ = kind;
       compare_shown_.reset();
       // Both methods solve the shown load from the start (a method set up afresh starts

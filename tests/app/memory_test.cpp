@@ -12,6 +12,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "app/memory_estimate.hpp"
+#include "scenes/load_scene.hpp"
 #include "tests/support/process.hpp"
 #include "tests/support/skip.hpp"
 
@@ -155,4 +157,24 @@ TEST_CASE("the memory estimate is within 25% of the measured peak on bar, plane 
     CHECK(estimated > 0.75 * measured);
     CHECK(estimated < 1.25 * measured);
   }
+}
+
+// The window keeps a solve's iterates thinned to a byte budget (app/gui/iterate_store.hpp):
+// its memory check counts at most that budget, but never fewer than the three iterates the
+// store always keeps, so that a large scene is not refused for 100 iterates it never holds.
+TEST_CASE("the window's kept iterates count at most their budget, and at least three", "[memory]") {
+  const fetic::scenes::Scene scene =
+      fetic::scenes::load_scene_file(std::string(FETIC_BUNDLED_SCENES_DIR) + "/plane_pair.toml");
+  fetic::app::MemoryUse use;
+  use.methods = {fetic::solver::MethodKind::Mprgp};
+  const double solve = fetic::app::estimate_memory(scene, use).bytes;
+  use.kept_iterates = 1;
+  const double iterate = fetic::app::estimate_memory(scene, use).bytes - solve;
+  REQUIRE(iterate > 0.0);
+  use.kept_iterates = 100;
+  CHECK(fetic::app::estimate_memory(scene, use).bytes == Approx(solve + 100 * iterate));
+  use.kept_iterate_budget = 10.5 * iterate;
+  CHECK(fetic::app::estimate_memory(scene, use).bytes == Approx(solve + 10.5 * iterate));
+  use.kept_iterate_budget = 0.5 * iterate;  // below three iterates: three count
+  CHECK(fetic::app::estimate_memory(scene, use).bytes == Approx(solve + 3 * iterate));
 }
