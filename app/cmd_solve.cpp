@@ -30,6 +30,7 @@
 #include "solver/interruption.hpp"
 #include "solver/load_sweep.hpp"
 #include "solver/method.hpp"
+#include "solver/stopwatch.hpp"
 
 namespace fetic::app {
 namespace {
@@ -46,9 +47,7 @@ struct SolveArgs {
   bool progress = false;
 };
 
-double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
+using solver::seconds_since;
 
 std::string format(const char* pattern, double value) {
   char buffer[64];

@@ -11,15 +11,14 @@
 #include "solver/direct_floor.hpp"
 #include "solver/method.hpp"
 #include "solver/model.hpp"
+#include "solver/stopwatch.hpp"
 
 namespace fetic::bench {
 namespace {
 
 using Clock = std::chrono::steady_clock;
 
-double seconds_since(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
+using solver::seconds_since;
 
 // The model both parts start from, and the seconds it took (the same in both processes).
 solver::Model timed_model(const scenes::GenerateOptions& options) {

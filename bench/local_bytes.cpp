@@ -12,6 +12,7 @@
 
 #include "solver/feti_method.hpp"
 #include "solver/method.hpp"
+#include "solver/stopwatch.hpp"
 #include "solver/threads.hpp"
 
 namespace fetic::bench {
@@ -19,9 +20,7 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-double seconds_since(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
+using solver::seconds_since;
 
 std::string fixed(double value, int digits) {
   char buffer[48];

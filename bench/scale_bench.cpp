@@ -40,15 +40,14 @@
 #include "solver/method.hpp"
 #include "solver/mprgp.hpp"
 #include "solver/primal_problem.hpp"
+#include "solver/stopwatch.hpp"
 
 namespace fetic::bench {
 namespace {
 
 using Clock = std::chrono::steady_clock;
 
-double seconds_since(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
+using solver::seconds_since;
 
 std::string fixed(double value, int digits = 2) {
   char buffer[48];

@@ -5,15 +5,9 @@
 
 #include "solver/cholmod_factor.hpp"
 #include "solver/primal_problem.hpp"
+#include "solver/stopwatch.hpp"
 
 namespace fetic::solver {
-namespace {
-
-double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
-}  // namespace
 
 FloorSolution solve_with_working_set(const Model& model, double load_factor,
                                      const std::vector<char>& in_working_set) {

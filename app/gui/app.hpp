@@ -50,6 +50,7 @@
 #include "render/scene_mesh.hpp"
 #include "render/view.hpp"
 #include "solver/model.hpp"
+#include "solver/stopwatch.hpp"
 
 struct GLFWwindow;
 
@@ -67,9 +68,7 @@ constexpr float kPanelWidth =
 // The smallest text of the picture (plot ticks, 0.68 of the base text size) at scale 1.
 constexpr float kSmallestText = 11.0f;
 
-inline double seconds_since(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
+using solver::seconds_since;
 
 class App {
  public:
