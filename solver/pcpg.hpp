@@ -13,9 +13,6 @@ class Pcpg final : public FetiMethod {
  public:
   Pcpg(const Model& model, const SolveOptions& options,
        const Communicator& communicator = Communicator::self());
-  MethodKind kind() const override {
-    return options_.corner_clusters != 0 ? MethodKind::FetiDp : MethodKind::Feti;
-  }
 
  private:
   void begin(const Snapshot* warm) override;
