@@ -11,8 +11,8 @@ namespace fetic::solver {
 
 class Pcpg final : public FetiMethod {
  public:
-  Pcpg(const Model& model, const SolveOptions& options,
-       const Communicator& communicator = Communicator::self());
+  // Made by make_method, for feti and for feti-dp without contacts.
+  Pcpg(const Model& model, const SolveOptions& options, const Communicator& communicator);
 
  private:
   void begin(const Snapshot* warm) override;
