@@ -263,9 +263,7 @@ void register_bench_render(CLI::App& app, int& exit_code) {
   look_up_bundled_scenes(
       command->add_option("scene", args->scene, "Scene file or bundled scene name"))
       ->capture_default_str();
-  command->add_option("--method", args->method, "Method")
-      ->check(method_name())
-      ->capture_default_str();
+  add_method_option(command, args->method, "Method");
   add_image_size_option(command, args->size);
   command->add_option("--frames", args->frames, "Frames per measurement")
       ->check(CLI::Range(1, 100000))

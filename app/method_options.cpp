@@ -105,19 +105,23 @@ CLI::Validator preconditioner_name() {
   return CLI::IsMember({"none", "lumped", "dirichlet"});
 }
 
-void add_method_options(CLI::App* command, MethodArgs& args) {
-  command
-      ->add_option("--method", args.method,
-                   "Method: sd, cg, active-set, feti, feti-c, mprgp, feti-dp")
-      ->check(method_name())
+CLI::Option* add_method_option(CLI::App* command, std::string& method, const std::string& help) {
+  return command->add_option("--method", method, help)->check(method_name())->capture_default_str();
+}
+
+CLI::Option* add_preconditioner_option(CLI::App* command, std::string& preconditioner,
+                                       const std::string& help) {
+  return command->add_option("--preconditioner", preconditioner, help)
+      ->check(preconditioner_name())
       ->capture_default_str();
-  CLI::Option* preconditioner =
-      command
-          ->add_option(
-              "--preconditioner", args.preconditioner,
-              "FETI preconditioner (feti, feti-c, mprgp, feti-dp): none, lumped, dirichlet")
-          ->check(preconditioner_name())
-          ->capture_default_str();
+}
+
+void add_method_options(CLI::App* command, MethodArgs& args) {
+  add_method_option(command, args.method,
+                    "Method: sd, cg, active-set, feti, feti-c, mprgp, feti-dp");
+  CLI::Option* preconditioner = add_preconditioner_option(
+      command, args.preconditioner,
+      "FETI preconditioner (feti, feti-c, mprgp, feti-dp): none, lumped, dirichlet");
   CLI::Option* clusters =
       command
           ->add_option("--clusters", args.clusters,

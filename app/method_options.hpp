@@ -54,4 +54,10 @@ CLI::Validator integer_in(long long low, long long high);
 CLI::Validator method_name();
 CLI::Validator preconditioner_name();
 
+// --method and --preconditioner, so checked and with the default shown in --help, for the
+// commands that take them with help of their own (add_method_options adds both too).
+CLI::Option* add_method_option(CLI::App* command, std::string& method, const std::string& help);
+CLI::Option* add_preconditioner_option(CLI::App* command, std::string& preconditioner,
+                                       const std::string& help);
+
 }  // namespace fetic::app

@@ -86,6 +86,15 @@ bool valid_name(std::string_view name) {
   });
 }
 
+// Puts a value read (below) into its field; false when there was none to read, the reader
+// having said why. `ok = assign(...) && ok` reads every key even after a problem, so that
+// one pass reports them all.
+template <class T, class Field>
+bool assign(const std::optional<T>& value, Field& field) {
+  if (value) field = *value;
+  return value.has_value();
+}
+
 // Reads typed values out of TOML tables and records every problem it meets.
 class Reader {
  public:
@@ -278,6 +287,24 @@ class SceneParser {
     return array;
   }
 
+  // Every table of an array [[key]], in order: its keys checked against `known`, then read
+  // by `parse_one` into an entry that keeps the table's line; the entry joins `out` when
+  // parse_one found it whole. The label names the entry in messages ("load #2").
+  template <class Entry>
+  void parse_each(const toml::array& tables, const std::string& key,
+                  const std::vector<std::string>& known,
+                  bool (SceneParser::*parse_one)(const toml::table&, const std::string&, Entry&),
+                  std::vector<Entry>& out) {
+    for (size_t i = 0; i < tables.size(); ++i) {
+      const toml::table& table = *tables.get(i)->as_table();
+      read_.check_keys(table, known, "[[" + key + "]]");
+      Entry entry;
+      entry.line = line_of(table);
+      if ((this->*parse_one)(table, key + " #" + std::to_string(i + 1), entry))
+        out.push_back(std::move(entry));
+    }
+  }
+
   void parse_struts(const toml::table& root, const toml::table* defaults) {
     const toml::array* struts = table_array(root, "strut");
     if (!struts) {
@@ -331,18 +358,8 @@ class SceneParser {
       if (auto p = read_.point(*node, what("to"))) strut.to = *p;
     if (auto node = required("E"))
       if (auto v = read_.positive(*node, what("E"))) strut.E = *v;
-    if (auto node = required("elements"))
-      if (auto v = read_.integer(*node, what("elements"), 1, kMaxElements))
-        strut.elements = static_cast<int>(*v);
-    if (auto node = keys.find("subdomains")) {
-      if (auto v = read_.integer(*node, what("subdomains"), 1, kMaxSubdomains)) {
-        strut.subdomains = static_cast<int>(*v);
-        if (strut.elements > 0 && strut.subdomains > strut.elements)
-          read_.error(line_of(*node), what("subdomains") + " must be between 1 and elements (" +
-                                          std::to_string(strut.elements) + "), got " +
-                                          std::to_string(strut.subdomains));
-      }
-    }
+    parse_division(keys, required, what, "elements", "subdomains", strut.elements,
+                   strut.subdomains);
     if (auto node = keys.find("fixed")) parse_fixed(*node, what("fixed"), strut);
 
     if (scene_.model == ModelKind::Plane) {
@@ -380,19 +397,28 @@ class SceneParser {
                                           number_text(*v));
       }
     }
-    if (auto node = required("elements_across"))
-      if (auto v = read_.integer(*node, what("elements_across"), 1, kMaxElements))
-        strut.elements_across = static_cast<int>(*v);
-    if (auto node = keys.find("subdomains_across")) {
-      if (auto v = read_.integer(*node, what("subdomains_across"), 1, kMaxSubdomains)) {
-        strut.subdomains_across = static_cast<int>(*v);
-        if (strut.elements_across > 0 && strut.subdomains_across > strut.elements_across)
-          read_.error(line_of(*node), what("subdomains_across") +
-                                          " must be between 1 and elements_across (" +
-                                          std::to_string(strut.elements_across) + "), got " +
-                                          std::to_string(strut.subdomains_across));
-      }
-    }
+    parse_division(keys, required, what, "elements_across", "subdomains_across",
+                   strut.elements_across, strut.subdomains_across);
+  }
+
+  // A count of elements (required) and of the subdomains they are cut into (optional), at
+  // most one subdomain per element: along a strut, or across a plane strut.
+  template <class Required, class What>
+  void parse_division(const StrutKeys& keys, Required required, What what,
+                      const std::string& elements_key, const std::string& subdomains_key,
+                      int& elements, int& subdomains) {
+    if (auto node = required(elements_key))
+      if (auto v = read_.integer(*node, what(elements_key), 1, kMaxElements))
+        elements = static_cast<int>(*v);
+    const toml::node* node = keys.find(subdomains_key);
+    if (!node) return;
+    const auto v = read_.integer(*node, what(subdomains_key), 1, kMaxSubdomains);
+    if (!v) return;
+    subdomains = static_cast<int>(*v);
+    if (elements > 0 && subdomains > elements)
+      read_.error(line_of(*node), what(subdomains_key) + " must be between 1 and " + elements_key +
+                                      " (" + std::to_string(elements) + "), got " +
+                                      std::to_string(subdomains));
   }
 
   void parse_fixed(const toml::node& node, const std::string& what, Strut& strut) {
@@ -437,68 +463,51 @@ class SceneParser {
   }
 
   void parse_loads(const toml::table& root) {
-    const toml::array* loads = table_array(root, "load");
-    if (!loads) return;
-    for (size_t i = 0; i < loads->size(); ++i) {
-      const toml::table& table = *loads->get(i)->as_table();
-      read_.check_keys(table, kLoadKeys, "[[load]]");
-      Load load;
-      load.line = line_of(table);
-      const std::string label = "load #" + std::to_string(i + 1);
-      bool ok = true;
-      if (const toml::node* node = table.get("strut")) {
-        auto index = strut_reference(*node, label + ": 'strut'");
-        ok = ok && index.has_value();
-        if (index) load.strut = *index;
-      } else {
-        read_.error(load.line, label + ": missing key 'strut'");
-        ok = false;
-      }
-      const toml::node* at = table.get("at");
-      const toml::node* force = table.get("force");
-      const toml::node* per_length = table.get("per_length");
-      if (scene_.model == ModelKind::Frame) {
-        const bool parsed = parse_frame_load(table, label, load);
-        if (ok && parsed) scene_.loads.push_back(load);
-        continue;
-      }
-      if (const toml::node* moment = table.get("moment")) {
-        read_.error(line_of(*moment),
-                    label + ": 'moment' needs the frame model (model = \"frame\")");
-        ok = false;
-      }
-      if (per_length && (at || force)) {
-        read_.error(load.line, label +
-                                   ": give either 'at' and 'force' (a force at a strut end) "
-                                   "or 'per_length' (a force per unit length), not both");
-        ok = false;
-      } else if (per_length) {
-        load.per_length = true;
-        auto p = read_.point(*per_length, label + ": 'per_length'");
-        ok = ok && p.has_value();
-        if (p) load.force = *p;
-      } else if (at || force) {
-        if (!at) read_.error(load.line, label + ": missing key 'at' (\"from\" or \"to\")");
-        if (!force) read_.error(load.line, label + ": missing key 'force' ([fx, fy] in N)");
-        ok = ok && at && force;
-        if (at) {
-          auto end = read_.end(*at, label + ": 'at'");
-          ok = ok && end.has_value();
-          if (end) load.at = *end;
-        }
-        if (force) {
-          auto p = read_.point(*force, label + ": 'force'");
-          ok = ok && p.has_value();
-          if (p) load.force = *p;
-        }
-      } else {
-        read_.error(load.line, label +
-                                   ": missing the force: give 'at' and 'force', or "
-                                   "'per_length'");
-        ok = false;
-      }
-      if (ok) scene_.loads.push_back(load);
+    if (const toml::array* loads = table_array(root, "load"))
+      parse_each(*loads, "load", kLoadKeys, &SceneParser::parse_load, scene_.loads);
+  }
+
+  // One [[load]]: the strut, then the force by model (frame loads below).
+  bool parse_load(const toml::table& table, const std::string& label, Load& load) {
+    bool ok = true;
+    if (const toml::node* node = table.get("strut")) {
+      ok = assign(strut_reference(*node, label + ": 'strut'"), load.strut) && ok;
+    } else {
+      read_.error(load.line, label + ": missing key 'strut'");
+      ok = false;
     }
+    const toml::node* at = table.get("at");
+    const toml::node* force = table.get("force");
+    const toml::node* per_length = table.get("per_length");
+    if (scene_.model == ModelKind::Frame) {
+      const bool parsed = parse_frame_load(table, label, load);
+      return ok && parsed;
+    }
+    if (const toml::node* moment = table.get("moment")) {
+      read_.error(line_of(*moment), label + ": 'moment' needs the frame model (model = \"frame\")");
+      ok = false;
+    }
+    if (per_length && (at || force)) {
+      read_.error(load.line, label +
+                                 ": give either 'at' and 'force' (a force at a strut end) "
+                                 "or 'per_length' (a force per unit length), not both");
+      ok = false;
+    } else if (per_length) {
+      load.per_length = true;
+      ok = assign(read_.point(*per_length, label + ": 'per_length'"), load.force) && ok;
+    } else if (at || force) {
+      if (!at) read_.error(load.line, label + ": missing key 'at' (\"from\" or \"to\")");
+      if (!force) read_.error(load.line, label + ": missing key 'force' ([fx, fy] in N)");
+      ok = ok && at && force;
+      if (at) ok = assign(read_.end(*at, label + ": 'at'"), load.at) && ok;
+      if (force) ok = assign(read_.point(*force, label + ": 'force'"), load.force) && ok;
+    } else {
+      read_.error(load.line, label +
+                                 ": missing the force: give 'at' and 'force', or "
+                                 "'per_length'");
+      ok = false;
+    }
+    return ok;
   }
 
   std::optional<EndRef> end_reference(const toml::node& node, const std::string& what) {
@@ -524,37 +533,34 @@ class SceneParser {
   }
 
   void parse_contacts(const toml::table& root) {
-    const toml::array* contacts = table_array(root, "contact");
-    if (!contacts) return;
-    for (size_t i = 0; i < contacts->size(); ++i) {
-      const toml::table& table = *contacts->get(i)->as_table();
-      read_.check_keys(table, kContactKeys, "[[contact]]");
-      Contact contact;
-      contact.line = line_of(table);
-      const std::string label = "contact #" + std::to_string(i + 1);
-      std::optional<EndRef> a, b;
-      if (const toml::node* node = table.get("a"))
-        a = end_reference(*node, label + ": 'a'");
-      else
-        read_.error(contact.line, label + ": missing key 'a'");
-      if (const toml::node* node = table.get("b"))
-        b = end_reference(*node, label + ": 'b'");
-      else
-        read_.error(contact.line, label + ": missing key 'b'");
-      if (const toml::node* normal = table.get("normal")) {
-        if (scene_.model != ModelKind::Frame) {
-          read_.error(line_of(*normal), label +
-                                            ": 'normal' needs the frame model (model = "
-                                            "\"frame\"); here the normal follows a's axis");
-          continue;
-        }
-        if (!parse_contact_normal(*normal, label, contact)) continue;
+    if (const toml::array* contacts = table_array(root, "contact"))
+      parse_each(*contacts, "contact", kContactKeys, &SceneParser::parse_contact, scene_.contacts);
+  }
+
+  // One [[contact]]: the two strut ends (nodes in the frame model) and a given normal.
+  bool parse_contact(const toml::table& table, const std::string& label, Contact& contact) {
+    std::optional<EndRef> a, b;
+    if (const toml::node* node = table.get("a"))
+      a = end_reference(*node, label + ": 'a'");
+    else
+      read_.error(contact.line, label + ": missing key 'a'");
+    if (const toml::node* node = table.get("b"))
+      b = end_reference(*node, label + ": 'b'");
+    else
+      read_.error(contact.line, label + ": missing key 'b'");
+    if (const toml::node* normal = table.get("normal")) {
+      if (scene_.model != ModelKind::Frame) {
+        read_.error(line_of(*normal), label +
+                                          ": 'normal' needs the frame model (model = "
+                                          "\"frame\"); here the normal follows a's axis");
+        return false;
       }
-      if (!a || !b) continue;
-      contact.a = *a;
-      contact.b = *b;
-      scene_.contacts.push_back(contact);
+      if (!parse_contact_normal(*normal, label, contact)) return false;
     }
+    if (!a || !b) return false;
+    contact.a = *a;
+    contact.b = *b;
+    return true;
   }
 
   // ---- Frame model (SCENES.md "Frame model"): its keys, kept apart from the others ----
@@ -620,9 +626,7 @@ class SceneParser {
     }
     if (per_length) {
       load.per_length = true;
-      auto p = read_.point(*per_length, label + ": 'per_length'");
-      if (p) load.force = *p;
-      return p.has_value();
+      return assign(read_.point(*per_length, label + ": 'per_length'"), load.force);
     }
     if (!at && !force && !moment) {
       read_.error(load.line, label +
@@ -653,16 +657,8 @@ class SceneParser {
         }
       }
     }
-    if (force) {
-      auto p = read_.point(*force, label + ": 'force'");
-      ok = ok && p.has_value();
-      if (p) load.force = *p;
-    }
-    if (moment) {
-      auto m = read_.number(*moment, label + ": 'moment'");
-      ok = ok && m.has_value();
-      if (m) load.moment = *m;
-    }
+    if (force) ok = assign(read_.point(*force, label + ": 'force'"), load.force) && ok;
+    if (moment) ok = assign(read_.number(*moment, label + ": 'moment'"), load.moment) && ok;
     return ok;
   }
 
@@ -735,61 +731,59 @@ class SceneParser {
                   "[[joint]] needs the frame model (model = \"frame\")");
       return;
     }
-    for (size_t i = 0; i < joints->size(); ++i) {
-      const toml::table& table = *joints->get(i)->as_table();
-      read_.check_keys(table, kJointKeys, "[[joint]]");
-      Joint joint;
-      joint.line = line_of(table);
-      const std::string label = "joint #" + std::to_string(i + 1);
-      bool ok = true;
-      if (const toml::node* kind = table.get("kind")) {
-        auto text = read_.string(*kind, label + ": 'kind'");
-        if (text && *text == "rigid") {
-          joint.kind = JointKind::Rigid;
-        } else if (text && *text == "pinned") {
-          joint.kind = JointKind::Pinned;
-        } else {
-          if (text)
-            read_.error(line_of(*kind),
-                        label + ": 'kind' must be \"rigid\" or \"pinned\", got \"" + *text + "\"");
-          ok = false;
-        }
+    parse_each(*joints, "joint", kJointKeys, &SceneParser::parse_joint, scene_.joints);
+  }
+
+  // One [[joint]]: its kind and the strut ends it connects.
+  bool parse_joint(const toml::table& table, const std::string& label, Joint& joint) {
+    bool ok = true;
+    if (const toml::node* kind = table.get("kind")) {
+      auto text = read_.string(*kind, label + ": 'kind'");
+      if (text && *text == "rigid") {
+        joint.kind = JointKind::Rigid;
+      } else if (text && *text == "pinned") {
+        joint.kind = JointKind::Pinned;
+      } else {
+        if (text)
+          read_.error(line_of(*kind),
+                      label + ": 'kind' must be \"rigid\" or \"pinned\", got \"" + *text + "\"");
+        ok = false;
       }
-      const toml::node* ends = table.get("ends");
-      if (!ends) {
-        read_.error(joint.line, label + ": missing key 'ends' (two or more strut ends)");
-        continue;
-      }
-      const toml::array* array = ends->as_array();
-      if (!array || array->size() < 2) {
-        read_.error(line_of(*ends), label + ": 'ends' must be an array of two or more strut ends " +
-                                        "[\"A.to\", \"B.from\", ...], got " +
-                                        (array ? "an array of " + std::to_string(array->size()) +
-                                                     " value" + (array->size() == 1 ? "" : "s")
-                                               : type_name(*ends)));
-        continue;
-      }
-      for (const toml::node& item : *array) {
-        auto text = read_.string(item, label + ": 'ends' entry");
-        if (!text) {
-          ok = false;
-          continue;
-        }
-        auto ref = frame_node_reference(item, *text, label + ": 'ends' entry");
-        if (!ref) {
-          ok = false;
-        } else if (ref->node >= 0) {
-          read_.error(line_of(item), label +
-                                         ": a joint connects strut ends (\"NAME.from\" or "
-                                         "\"NAME.to\"), got \"" +
-                                         *text + "\"");
-          ok = false;
-        } else {
-          joint.ends.push_back(*ref);
-        }
-      }
-      if (ok) scene_.joints.push_back(std::move(joint));
     }
+    const toml::node* ends = table.get("ends");
+    if (!ends) {
+      read_.error(joint.line, label + ": missing key 'ends' (two or more strut ends)");
+      return false;
+    }
+    const toml::array* array = ends->as_array();
+    if (!array || array->size() < 2) {
+      read_.error(line_of(*ends), label + ": 'ends' must be an array of two or more strut ends " +
+                                      "[\"A.to\", \"B.from\", ...], got " +
+                                      (array ? "an array of " + std::to_string(array->size()) +
+                                                   " value" + (array->size() == 1 ? "" : "s")
+                                             : type_name(*ends)));
+      return false;
+    }
+    for (const toml::node& item : *array) {
+      auto text = read_.string(item, label + ": 'ends' entry");
+      if (!text) {
+        ok = false;
+        continue;
+      }
+      auto ref = frame_node_reference(item, *text, label + ": 'ends' entry");
+      if (!ref) {
+        ok = false;
+      } else if (ref->node >= 0) {
+        read_.error(line_of(item), label +
+                                       ": a joint connects strut ends (\"NAME.from\" or "
+                                       "\"NAME.to\"), got \"" +
+                                       *text + "\"");
+        ok = false;
+      } else {
+        joint.ends.push_back(*ref);
+      }
+    }
+    return ok;
   }
 
   // Accepted deviation of a given contact normal from unit length.

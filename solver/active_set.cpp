@@ -67,7 +67,7 @@ double step_rounding_floor(const PrimalProblem& problem, const Eigen::VectorXd& 
 }  // namespace
 
 ActiveSet::ActiveSet(const Model& model, const SolveOptions& options)
-    : Method(model, options, 0), problem_(model) {
+    : Method(MethodKind::ActiveSet, model, options, 0), problem_(model) {
   if (options.max_iterations <= 0)
     max_iterations_ = 20 * static_cast<int>(model.pairs.size()) + 100;
   S_ = schur_complement(problem_);

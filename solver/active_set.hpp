@@ -25,7 +25,6 @@ namespace fetic::solver {
 class ActiveSet final : public Method {
  public:
   ActiveSet(const Model& model, const SolveOptions& options);
-  MethodKind kind() const override { return MethodKind::ActiveSet; }
   void begin(const Snapshot* warm) override;
   void advance() override;
   Snapshot snapshot() const override;

@@ -8,7 +8,7 @@
 namespace fetic::solver {
 
 FetiC::FetiC(const Model& model, const SolveOptions& options, const Communicator& communicator)
-    : FetiMethod(model, options, 0, communicator) {
+    : FetiMethod(MethodKind::FetiC, model, options, 0, communicator) {
   if (options.max_iterations <= 0) max_iterations_ = 10 * system_.space().global_rows() + 1000;
 }
 

@@ -36,7 +36,6 @@ class FetiC final : public FetiMethod {
  public:
   FetiC(const Model& model, const SolveOptions& options,
         const Communicator& communicator = Communicator::self());
-  MethodKind kind() const override { return MethodKind::FetiC; }
 
  private:
   void begin(const Snapshot* warm) override;

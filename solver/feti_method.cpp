@@ -8,9 +8,9 @@
 
 namespace fetic::solver {
 
-FetiMethod::FetiMethod(const Model& model, const SolveOptions& options, int default_max_iterations,
-                       const Communicator& communicator)
-    : Method(model, options, default_max_iterations),
+FetiMethod::FetiMethod(MethodKind kind, const Model& model, const SolveOptions& options,
+                       int default_max_iterations, const Communicator& communicator)
+    : Method(kind, model, options, default_max_iterations),
       system_(model, communicator,
               options.preconditioner == Preconditioner::Dirichlet && options.shared_interior_factor,
               options.corner_clusters, options.single_factors, options.single_interior_factors,

@@ -61,8 +61,13 @@ class FetiMethod : public Method {
   }
 
  protected:
-  FetiMethod(const Model& model, const SolveOptions& options, int default_max_iterations,
-             const Communicator& communicator);
+  FetiMethod(MethodKind kind, const Model& model, const SolveOptions& options,
+             int default_max_iterations, const Communicator& communicator);
+  // The kind a core with FETI-1's subdomains reports: feti-dp once they are joined by
+  // their corners (make_method runs FETI-DP as PCPG without contacts, MPRGP with them).
+  static MethodKind kind_of(MethodKind core, const SolveOptions& options) {
+    return options.corner_clusters != 0 ? MethodKind::FetiDp : core;
+  }
   double reference_error() const override;
   long long f_applications() const override { return system_.f_applications(); }
 

@@ -18,7 +18,7 @@ void refuse_contacts(const Model& model, MethodKind kind) {
 
 GradientMethod::GradientMethod(const Model& model, const SolveOptions& options,
                                int default_max_iterations, MethodKind kind)
-    : Method(model, options, default_max_iterations),
+    : Method(kind, model, options, default_max_iterations),
       problem_((refuse_contacts(model, kind), model)) {}
 
 void GradientMethod::begin(const Snapshot* warm) {

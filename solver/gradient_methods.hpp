@@ -29,14 +29,12 @@ class GradientMethod : public Method {
 class SteepestDescent final : public GradientMethod {
  public:
   SteepestDescent(const Model& model, const SolveOptions& options);
-  MethodKind kind() const override { return MethodKind::SteepestDescent; }
   void advance() override;
 };
 
 class ConjugateGradient final : public GradientMethod {
  public:
   ConjugateGradient(const Model& model, const SolveOptions& options);
-  MethodKind kind() const override { return MethodKind::ConjugateGradient; }
   void begin(const Snapshot* warm) override;
   void advance() override;
 

@@ -75,8 +75,9 @@ int Snapshot::active_set_size() const {
   return count;
 }
 
-Method::Method(const Model& model, const SolveOptions& options, int default_max_iterations)
-    : model_(model), options_(options) {
+Method::Method(MethodKind kind, const Model& model, const SolveOptions& options,
+               int default_max_iterations)
+    : model_(model), options_(options), kind_(kind) {
   max_iterations_ = options.max_iterations > 0 ? options.max_iterations : default_max_iterations;
 }
 

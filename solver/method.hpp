@@ -115,7 +115,8 @@ struct Snapshot {
 class Method {
  public:
   virtual ~Method() = default;
-  virtual MethodKind kind() const = 0;
+  // Fixed when the method is made (a FETI-DP solve says feti-dp whichever core runs it).
+  MethodKind kind() const { return kind_; }
   // Starts a solve at `load_factor`, warm from `warm` (a snapshot of the same method on
   // the same model) when given.
   void start(double load_factor, const Snapshot* warm = nullptr);
@@ -140,7 +141,8 @@ class Method {
   }
 
  protected:
-  Method(const Model& model, const SolveOptions& options, int default_max_iterations);
+  Method(MethodKind kind, const Model& model, const SolveOptions& options,
+         int default_max_iterations);
   // Sets up the initial iterate and records it (history entry 0).
   virtual void begin(const Snapshot* warm) = 0;
   // Performs one iteration and records it.
@@ -165,6 +167,7 @@ class Method {
   int max_iterations_ = 0;
 
  private:
+  MethodKind kind_;
   Status status_ = Status::Running;
   std::string message_;
   std::vector<HistoryEntry> history_;

@@ -22,7 +22,8 @@ constexpr int kMprgpStagnationWindow = 200;
 
 Mprgp::Mprgp(const Model& model, const SolveOptions& options, const Communicator& communicator,
              MprgpParameters parameters)
-    : FetiMethod(model, options, 0, communicator), parameters_(parameters) {
+    : FetiMethod(kind_of(MethodKind::Mprgp, options), model, options, 0, communicator),
+      parameters_(parameters) {
   if (options.max_iterations <= 0) max_iterations_ = 10 * space().global_rows() + 1000;
   std::vector<char> equality_rows(space().rows(), 0);
   for (int k = 0; k < space().rows(); ++k)

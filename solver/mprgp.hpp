@@ -51,9 +51,6 @@ class Mprgp final : public FetiMethod, private MprgpProblem {
  public:
   Mprgp(const Model& model, const SolveOptions& options,
         const Communicator& communicator = Communicator::self(), MprgpParameters parameters = {});
-  MethodKind kind() const override {
-    return options_.corner_clusters != 0 ? MethodKind::FetiDp : MethodKind::Mprgp;
-  }
   Snapshot snapshot() const override;
   // The contact rows off their bound (collective: gathers the flags of all processes).
   std::vector<char> working_set() const override;

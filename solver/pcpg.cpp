@@ -14,7 +14,8 @@ const Model& refuse_contacts(const Model& model) {
 }  // namespace
 
 Pcpg::Pcpg(const Model& model, const SolveOptions& options, const Communicator& communicator)
-    : FetiMethod(refuse_contacts(model), options, 0, communicator) {
+    : FetiMethod(kind_of(MethodKind::Feti, options), refuse_contacts(model), options, 0,
+                 communicator) {
   if (options.max_iterations <= 0) max_iterations_ = 10 * system_.space().global_rows() + 100;
   coarse_.set_active_rows(std::vector<char>(system_.rows(), 1));
 }

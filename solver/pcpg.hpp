@@ -11,11 +11,8 @@ namespace fetic::solver {
 
 class Pcpg final : public FetiMethod {
  public:
-  Pcpg(const Model& model, const SolveOptions& options,
-       const Communicator& communicator = Communicator::self());
-  MethodKind kind() const override {
-    return options_.corner_clusters != 0 ? MethodKind::FetiDp : MethodKind::Feti;
-  }
+  // Made by make_method, for feti and for feti-dp without contacts.
+  Pcpg(const Model& model, const SolveOptions& options, const Communicator& communicator);
 
  private:
   void begin(const Snapshot* warm) override;

@@ -4,39 +4,35 @@
 #include <GLFW/glfw3.h>
 
 namespace fetic::app::gui {
+namespace {
+
+// What a key asks for: a request without a value (the help keys name the panel they toggle).
+Request key_asks(RequestKind kind, const char* text = "") {
+  return {kind, 0.0, text};
+}
+
+}  // namespace
 
 const std::vector<KeyBinding>& key_bindings() {
   static const std::vector<KeyBinding> table{
-      {GLFW_KEY_SPACE,
-       "Space",
-       {RequestKind::TogglePlay, 0.0, {}},
-       false,
+      {GLFW_KEY_SPACE, "Space", key_asks(RequestKind::TogglePlay), false,
        "play / pause the iterations"},
-      {GLFW_KEY_RIGHT, "Right", {RequestKind::Step, 0.0, {}}, true, "one iteration forward"},
-      {GLFW_KEY_LEFT, "Left", {RequestKind::StepBack, 0.0, {}}, true, "one iteration back"},
-      {GLFW_KEY_R, "R", {RequestKind::Reset, 0.0, {}}, false, "reset to iteration 0"},
-      {GLFW_KEY_C, "C", {RequestKind::Cancel, 0.0, {}}, false, "cancel the running solve"},
-      {GLFW_KEY_S,
-       "S",
-       {RequestKind::Screenshot, 0.0, {}},
-       false,
+      {GLFW_KEY_RIGHT, "Right", key_asks(RequestKind::Step), true, "one iteration forward"},
+      {GLFW_KEY_LEFT, "Left", key_asks(RequestKind::StepBack), true, "one iteration back"},
+      {GLFW_KEY_R, "R", key_asks(RequestKind::Reset), false, "reset to iteration 0"},
+      {GLFW_KEY_C, "C", key_asks(RequestKind::Cancel), false, "cancel the running solve"},
+      {GLFW_KEY_S, "S", key_asks(RequestKind::Screenshot), false,
        "screenshot of the picture (PNG in --screenshot-dir)"},
-      {GLFW_KEY_W,
-       "W",
-       {RequestKind::ScreenshotWindow, 0.0, {}},
-       false,
+      {GLFW_KEY_W, "W", key_asks(RequestKind::ScreenshotWindow), false,
        "screenshot of the whole window"},
-      {GLFW_KEY_V,
-       "V",
-       {RequestKind::SaveView, 0.0, {}},
-       false,
+      {GLFW_KEY_V, "V", key_asks(RequestKind::SaveView), false,
        "save the view (JSON in --screenshot-dir)"},
-      {GLFW_KEY_F5, "F5", {RequestKind::Reload, 0.0, {}}, false, "reload the scene file"},
-      {GLFW_KEY_HOME, "Home", {RequestKind::ResetView, 0.0, {}}, true, "reset pan and zoom"},
-      {GLFW_KEY_H, "H", {RequestKind::Toggle, 0.0, "help"}, false, "this help"},
-      {GLFW_KEY_F1, "F1", {RequestKind::Toggle, 0.0, "help"}, false, "this help"},
-      {GLFW_KEY_Q, "Q", {RequestKind::Quit, 0.0, {}}, true, "quit"},
-      {GLFW_KEY_ESCAPE, "Esc", {RequestKind::Quit, 0.0, {}}, true, "quit"},
+      {GLFW_KEY_F5, "F5", key_asks(RequestKind::Reload), false, "reload the scene file"},
+      {GLFW_KEY_HOME, "Home", key_asks(RequestKind::ResetView), true, "reset pan and zoom"},
+      {GLFW_KEY_H, "H", key_asks(RequestKind::Toggle, "help"), false, "this help"},
+      {GLFW_KEY_F1, "F1", key_asks(RequestKind::Toggle, "help"), false, "this help"},
+      {GLFW_KEY_Q, "Q", key_asks(RequestKind::Quit), true, "quit"},
+      {GLFW_KEY_ESCAPE, "Esc", key_asks(RequestKind::Quit), true, "quit"},
   };
   return table;
 }

@@ -139,17 +139,13 @@ void register_gui(CLI::App& app, int& exit_code) {
   CLI::App* command = app.add_subcommand(
       "gui", "Interactive window: load slider, live warm-started FETI-C, iteration history");
   look_up_bundled_scenes(command->add_option("scene", args->scene, kSceneArgumentHelp))->required();
-  command->add_option("--method", args->method, "Method to start with")
-      ->check(method_name())
-      ->capture_default_str();
+  add_method_option(command, args->method, "Method to start with");
   command
       ->add_option("--compare", args->compare,
                    "A second method solving the same scene at the same load beside the first: "
                    "two pictures, one residual plot with both curves")
       ->check(method_name());
-  command->add_option("--preconditioner", args->preconditioner, "FETI preconditioner")
-      ->check(preconditioner_name())
-      ->capture_default_str();
+  add_preconditioner_option(command, args->preconditioner, "FETI preconditioner");
   command->add_option("--load", args->load, "Load factor to start at")
       ->check(number_in(0.0, 0.0, Bound::Closed, Bound::None))
       ->capture_default_str();

@@ -1,6 +1,8 @@
 // The state of the window changes here only: App::apply turns one request into state
 // (and into a solver request when the solve's input changed); App::sync, once per frame,
-// applies all queued requests and takes the newest state the solver published.
+// applies all queued requests and takes the newest state the solver published. The
+// requests that change only how the picture is drawn are applied in views.cpp, beside
+// the saved views that hold the same settings.
 
 #include <algorithm>
 #include <cstdio>
@@ -265,53 +267,6 @@ void App::apply_history_request(const Request& r) {
       playing_ = false;
       follow_ = cursor_ == last && finished;
       redraw_ = true;
-      break;
-    default:
-      break;
-  }
-}
-
-// How the picture is drawn: magnification, colouring, toggles, pan and zoom, views.
-void App::apply_display_request(const Request& r) {
-  switch (r.kind) {
-    case RequestKind::SetMagnification:
-      magnification_ = r.value;
-      redraw_ = true;
-      break;
-    case RequestKind::Toggle:
-      if (r.text == "subdomains") subdomains_ = !subdomains_;
-      if (r.text == "forces") forces_ = !forces_;
-      if (r.text == "gaps") gaps_ = !gaps_;
-      // Stress and moment exclude each other; off, the subdomain or strut colours return.
-      if (r.text == "stress") {
-        stress_ = !stress_;
-        if (stress_) moment_ = false;
-      }
-      if (r.text == "moment") {
-        moment_ = !moment_;
-        if (moment_) stress_ = false;
-      }
-      if (r.text == "overlay") show_overlay_ = !show_overlay_;
-      if (r.text == "labels") labels_ = !labels_;
-      if (r.text == "corners") corners_ = !corners_;
-      if (r.text == "chart") {
-        chart_ = !chart_;
-        framing_key_ = {};  // the scene region changes
-      }
-      if (r.text == "help") help_ = !help_;
-      redraw_ = true;
-      break;
-    case RequestKind::SetColor:
-      if (const auto color = color_from_name(r.text)) set_color(*color);
-      redraw_ = true;
-      break;
-    case RequestKind::ResetView:
-      zoom_ = 1.0f;
-      pan_ = {0.0f, 0.0f};
-      redraw_ = true;
-      break;
-    case RequestKind::LoadView:
-      load_view(r);
       break;
     default:
       break;

@@ -1,7 +1,9 @@
-// Saved views in the window (docs/WINDOW.md, "Views"): the picture's size, the world
-// point at the centre of the scene region and the zoom, the magnification as shown, the
-// colouring, toggles and the scales the picture is drawn with, written as the JSON of
-// app/view_file.hpp and read back. `fetic render --view` draws the same picture headless.
+// How the window's picture is drawn: the requests that change it (magnification,
+// colouring, toggles, pan and zoom; App::apply passes them here), and saved views
+// (docs/WINDOW.md, "Views"): the picture's size, the world point at the centre of the
+// scene region and the zoom, the magnification as shown, the colouring, toggles and the
+// scales the picture is drawn with, written as the JSON of app/view_file.hpp and read
+// back. `fetic render --view` draws the same picture headless.
 
 #include <iostream>
 #include <string>
@@ -15,6 +17,53 @@
 #include "render/scene_framing.hpp"
 
 namespace fetic::app::gui {
+
+// How the picture is drawn: magnification, colouring, toggles, pan and zoom, views.
+void App::apply_display_request(const Request& r) {
+  switch (r.kind) {
+    case RequestKind::SetMagnification:
+      magnification_ = r.value;
+      redraw_ = true;
+      break;
+    case RequestKind::Toggle:
+      if (r.text == "subdomains") subdomains_ = !subdomains_;
+      if (r.text == "forces") forces_ = !forces_;
+      if (r.text == "gaps") gaps_ = !gaps_;
+      // Stress and moment exclude each other; off, the subdomain or strut colours return.
+      if (r.text == "stress") {
+        stress_ = !stress_;
+        if (stress_) moment_ = false;
+      }
+      if (r.text == "moment") {
+        moment_ = !moment_;
+        if (moment_) stress_ = false;
+      }
+      if (r.text == "overlay") show_overlay_ = !show_overlay_;
+      if (r.text == "labels") labels_ = !labels_;
+      if (r.text == "corners") corners_ = !corners_;
+      if (r.text == "chart") {
+        chart_ = !chart_;
+        framing_key_ = {};  // the scene region changes
+      }
+      if (r.text == "help") help_ = !help_;
+      redraw_ = true;
+      break;
+    case RequestKind::SetColor:
+      if (const auto color = color_from_name(r.text)) set_color(*color);
+      redraw_ = true;
+      break;
+    case RequestKind::ResetView:
+      zoom_ = 1.0f;
+      pan_ = {0.0f, 0.0f};
+      redraw_ = true;
+      break;
+    case RequestKind::LoadView:
+      load_view(r);
+      break;
+    default:
+      break;
+  }
+}
 
 SavedView App::current_view() const {
   SavedView saved;
