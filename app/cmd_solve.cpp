@@ -346,16 +346,21 @@ struct Sweep {
     progress.update(line);
   }
   // Distributed, each step's whole state (the pieces of every process) is gathered for
-  // rank 0's outputs; the sweep itself keeps the local states for its warm starts.
+  // rank 0's outputs; the sweep itself keeps the local states for its warm starts. The
+  // whole state is moved, never copied: rank 0 held it twice beside the factors
+  // (docs/DISTRIBUTED.md, rank 0's peak).
   void on_step(const solver::SweepStep& local, std::vector<solver::Snapshot>& whole_states) {
-    const solver::SweepStep* step = &local;
-    solver::SweepStep whole;
-    if (ranks.distributed()) {
-      whole_states.push_back(setup.method->gathered_snapshot());
-      whole = {local.load_factor, whole_states.back(), local.history};
-      step = &whole;
+    if (!ranks.distributed()) {
+      report_step(local);
+      return;
     }
-    ranks.on_root([&] { outputs.step(*step); });
+    solver::SweepStep whole{local.load_factor, setup.method->gathered_snapshot(), local.history};
+    report_step(whole);
+    whole_states.push_back(std::move(whole.state));
+  }
+  void report_step(const solver::SweepStep& finished) {
+    const solver::SweepStep* step = &finished;
+    ranks.on_root([&] { outputs.step(finished); });
     if (!sweeping || args.quiet || !ranks.writes()) return;
     progress.clear();
     char line[160];
@@ -391,7 +396,7 @@ struct Sweep {
     progress.clear();
     setup.info.solve_seconds = seconds_since(start) - outputs.writing_seconds();
     for (size_t i = 0; i < whole_states.size() && i < steps.size(); ++i)
-      steps[i].state = whole_states[i];
+      steps[i].state = std::move(whole_states[i]);
     return steps;
   }
 };

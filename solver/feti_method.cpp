@@ -241,6 +241,11 @@ Snapshot FetiMethod::gathered_snapshot() const {
   const std::vector<double> all_forces = comm.gather_to_root(forces);
   s.dual.resize(0);  // the multipliers stay distributed
   if (!comm.root()) return s;
+  // The own pieces, as numbers and as pieces, are in all_pieces now: freed before the
+  // whole is built, so that rank 0 does not hold them beside it (its peak under mpirun,
+  // docs/DISTRIBUTED.md).
+  std::vector<double>().swap(pieces);
+  std::vector<Piece>().swap(s.pieces);
   std::vector<Piece> ordered(d.total_pieces);
   for (size_t at = 0; at < all_pieces.size();) {
     Piece& piece = ordered[static_cast<size_t>(all_pieces[at])];
