@@ -33,8 +33,11 @@ struct DualCosts {
 // factor entries are those of K_j's estimate (K_rr has a few fewer); its interior factors
 // fold into them (the fit found no separate share); single precision keeps 83% of an
 // entry there against 60% for FETI-C's (its corner problem stays double).
-constexpr DualCosts kFetiCCosts{98, 49900, 1260, 7.2, 4.3, 3.5, 33};
-constexpr DualCosts kMprgpCosts{103, 45700, 1710, 6.7, 4.0, 3.8, 34};
+// The factor entries' costs were scaled on 5 December (afternoon) by the supernodal compact
+// factors' bytes against the column-by-column ones on a plane scene (K_j's factor 0.85,
+// the interior's and single precision 0.75-0.8: one row index per supernode, not per entry).
+constexpr DualCosts kFetiCCosts{98, 49900, 1260, 6.1, 3.5, 2.6, 33};
+constexpr DualCosts kMprgpCosts{103, 45700, 1710, 5.7, 3.2, 2.85, 34};
 constexpr DualCosts kFetiDpCosts{156, 6500, 220, 14.7, 12.3, 0.0, 0.0};
 // FETI-C's and MPRGP's interior factors in single precision: always since 5 December
 // (SolveOptions::single_interior_factors; the costs above were fitted with them double).

@@ -219,6 +219,21 @@ std::size_t supernodal_nonzeros(const cholmod_factor* L) {
   return count;
 }
 
+// The same for a simplicial factor (its columns start with the diagonal). With the exact
+// size the compact copy's arrays are allocated once and never shrunk: reserving L->nzmax
+// made finish() copy every factor once more into fresh pages (a sixth of the FETI
+// set-up's CPU, most of it page faults: docs/BENCHMARKS.md).
+std::size_t simplicial_nonzeros(const cholmod_factor* L) {
+  const int* p = static_cast<const int*>(L->p);
+  const int* nz = static_cast<const int*>(L->nz);
+  const double* x = static_cast<const double*>(L->x);
+  std::size_t count = 0;
+  for (int j = 0; j < static_cast<int>(L->n); ++j)
+    for (int k = p[j] + 1; k < p[j] + nz[j]; ++k)
+      count += x[k] != 0.0;
+  return count;
+}
+
 }  // namespace
 
 bool CholmodFactor::compact(bool single) {
@@ -232,7 +247,7 @@ bool CholmodFactor::compact(bool single) {
     if (c.status == CHOLMOD_OUT_OF_MEMORY) throw std::bad_alloc();
     return false;
   }
-  const std::size_t hint = L->is_super ? supernodal_nonzeros(L) : L->nzmax;
+  const std::size_t hint = L->is_super ? supernodal_nonzeros(L) : simplicial_nonzeros(L);
   auto out = std::make_unique<CompactFactor>(size_, static_cast<const int*>(L->Perm), hint, single);
   if (L->is_super) {
     const int* super = static_cast<const int*>(L->super);

@@ -1,6 +1,7 @@
 #include "solver/compact_factor.hpp"
 
 #include <algorithm>
+#include <iterator>
 #include <stdexcept>
 
 namespace fetic::solver {
@@ -11,40 +12,121 @@ CompactFactor::CompactFactor(int size, const int* permutation, std::size_t nonze
   if (size > kMaxSize) throw std::logic_error("CompactFactor: order above 65536");
   column_start_.reserve(static_cast<std::size_t>(size) + 1);
   inverse_diagonal_.reserve(static_cast<std::size_t>(size));
-  rows_.reserve(nonzeros_hint);
-  if (single_)
-    values32_.reserve(nonzeros_hint);
-  else
-    values_.reserve(nonzeros_hint);
+  column_rows_.reserve(nonzeros_hint);
+  column_values_.reserve(nonzeros_hint);
 }
 
 void CompactFactor::start_column(double diagonal) {
-  column_start_.push_back(static_cast<int>(rows_.size()));
+  column_start_.push_back(static_cast<int>(column_rows_.size()));
   inverse_diagonal_.push_back(1.0 / diagonal);
 }
 
 void CompactFactor::add(int row, double value) {
-  rows_.push_back(static_cast<std::uint16_t>(row));
-  if (single_)
-    values32_.push_back(static_cast<float>(value));
-  else
-    values_.push_back(value);
+  column_rows_.push_back(static_cast<std::uint16_t>(row));
+  column_values_.push_back(value);
 }
 
 void CompactFactor::finish() {
-  column_start_.push_back(static_cast<int>(rows_.size()));
+  column_start_.push_back(static_cast<int>(column_rows_.size()));
   if (static_cast<int>(inverse_diagonal_.size()) != size_)
     throw std::logic_error("CompactFactor: not every column was given");
-  // Exactly the entries given: no spare capacity held for the whole solve.
+  build_supernodes();
+  // The columns as given are not needed by a solve: nothing of them is held.
+  std::vector<int>().swap(column_start_);
+  std::vector<std::uint16_t>().swap(column_rows_);
+  std::vector<double>().swap(column_values_);
+}
+
+// Greedy over the columns: column j joins the run before it when the run's stored entries
+// (its triangle and the union of its columns' rows below it, for every column) are then
+// at most kRelaxedZeros explicit zeros. Nested patterns (fundamental supernodes) add none.
+void CompactFactor::find_supernodes() {
+  first_.assign(1, 0);
+  row_start_.assign(1, 0);
+  rows_.clear();
+  std::vector<int> below, merged;  // the run's rows below its last column
+  std::size_t given = 0;           // entries given in the run's columns
+  const auto close = [&](int end) {
+    first_.push_back(end);
+    rows_.insert(rows_.end(), below.begin(), below.end());
+    row_start_.push_back(static_cast<int>(rows_.size()));
+  };
+  for (int j = 0; j < size_; ++j) {
+    const std::uint16_t* begin = column_rows_.data() + column_start_[j];
+    const std::uint16_t* end = column_rows_.data() + column_start_[j + 1];
+    const auto count = static_cast<std::size_t>(end - begin);
+    if (j > first_.back()) {
+      const double nc = j - first_.back() + 1.0;
+      merged.clear();  // row j becomes a row of the diagonal block
+      const auto rest = below.begin() + (!below.empty() && below.front() == j ? 1 : 0);
+      std::set_union(rest, below.end(), begin, end, std::back_inserter(merged));
+      const double stored = nc * (nc - 1.0) / 2.0 + nc * static_cast<double>(merged.size());
+      if (stored - static_cast<double>(given + count) <= kRelaxedZeros * stored) {
+        below.swap(merged);
+        given += count;
+        continue;
+      }
+      close(j);
+    }
+    below.assign(begin, end);
+    given = count;
+  }
+  close(size_);
+}
+
+void CompactFactor::build_supernodes() {
+  find_supernodes();
+  first_.shrink_to_fit();  // held for the whole solve: no spare capacity
+  row_start_.shrink_to_fit();
   rows_.shrink_to_fit();
-  values_.shrink_to_fit();
-  values32_.shrink_to_fit();
+  std::size_t stored = 0;
+  for (int s = 0; s < supernodes(); ++s) {
+    const std::size_t nc = static_cast<std::size_t>(first_[s + 1] - first_[s]);
+    const std::size_t m = static_cast<std::size_t>(row_start_[s + 1] - row_start_[s]);
+    stored += nc * (nc - 1) / 2 + nc * m;
+    max_rows_ = std::max(max_rows_, static_cast<int>(m));
+  }
+  stored_below_ = stored;
+  if (single_)
+    values32_.assign(stored, 0.0f);
+  else
+    values_.assign(stored, 0.0);
+  std::vector<int> where(static_cast<std::size_t>(size_));
+  std::size_t offset = 0;
+  for (int s = 0; s < supernodes(); ++s)
+    offset = fill_supernode(s, offset, where);
+}
+
+// Supernode s's entries, stored from `triangle` on, from the columns given; those not
+// given stay zero. Returns where the next supernode's entries start.
+std::size_t CompactFactor::fill_supernode(int s, std::size_t triangle, std::vector<int>& where) {
+  const int j0 = first_[s], nc = first_[s + 1] - j0;
+  const int m = row_start_[s + 1] - row_start_[s];
+  for (int r = 0; r < m; ++r)
+    where[rows_[static_cast<std::size_t>(row_start_[s] + r)]] = r;
+  const std::size_t block = triangle + static_cast<std::size_t>(nc) * (nc - 1) / 2;
+  for (int k = 0; k < nc; ++k) {
+    const int j = j0 + k;
+    // Column k of the triangle holds rows j + 1 .. j0 + nc - 1 (nc - 1 - k entries).
+    const std::size_t column = triangle + static_cast<std::size_t>(k) * (nc - 1) -
+                               static_cast<std::size_t>(k) * (k - 1) / 2;
+    for (int e = column_start_[j]; e < column_start_[j + 1]; ++e) {
+      const int row = column_rows_[static_cast<std::size_t>(e)];
+      const std::size_t at = row < j0 + nc ? column + static_cast<std::size_t>(row - j - 1)
+                                           : block + static_cast<std::size_t>(k) * m + where[row];
+      if (single_)
+        values32_[at] = static_cast<float>(column_values_[static_cast<std::size_t>(e)]);
+      else
+        values_[at] = column_values_[static_cast<std::size_t>(e)];
+    }
+  }
+  return block + static_cast<std::size_t>(nc) * m;
 }
 
 std::size_t CompactFactor::bytes() const {
   return values_.capacity() * sizeof(double) + values32_.capacity() * sizeof(float) +
          rows_.capacity() * sizeof(std::uint16_t) + inverse_diagonal_.capacity() * sizeof(double) +
-         (permutation_.capacity() + column_start_.capacity()) * sizeof(int);
+         (permutation_.capacity() + first_.capacity() + row_start_.capacity()) * sizeof(int);
 }
 
 double CompactFactor::rcond() const {
@@ -55,43 +137,231 @@ double CompactFactor::rcond() const {
   return ratio * ratio;
 }
 
+namespace {
+
+// x = L_11^-1 x for a supernode's diagonal block (strict lower triangle packed by columns,
+// inverse diagonal apart).
 template <class Value>
-void CompactFactor::forward(const Value* values, double* y) const {
-  for (int j = 0; j < size_; ++j) {
-    const double yj = y[j] * inverse_diagonal_[j];
-    y[j] = yj;
-    for (int k = column_start_[j]; k < column_start_[j + 1]; ++k)
-      y[rows_[k]] -= static_cast<double>(values[k]) * yj;
+void triangle_forward(const Value* v, int nc, const double* inverse_diagonal, double* x) {
+  for (int k = 0; k < nc; ++k) {
+    const double xk = x[k] * inverse_diagonal[k];
+    x[k] = xk;
+    for (int i = k + 1; i < nc; ++i)
+      x[i] -= static_cast<double>(*v++) * xk;
+  }
+}
+
+// x = L_11'^-1 x.
+template <class Value>
+void triangle_backward(const Value* v, int nc, const double* inverse_diagonal, double* x) {
+  for (int k = nc - 1; k >= 0; --k) {
+    const Value* column = v + static_cast<std::ptrdiff_t>(k) * (nc - 1) - k * (k - 1) / 2;
+    double s = x[k];
+    for (int i = k + 1; i < nc; ++i)
+      s -= static_cast<double>(column[i - k - 1]) * x[i];
+    x[k] = s * inverse_diagonal[k];
+  }
+}
+
+// t = V x for the m x nc column-major block V: columns taken four, two, one at a time so
+// that t is read and written once per group and the loop over rows vectorizes.
+template <class Value>
+void block_times(const Value* __restrict v, int m, int nc, const double* __restrict x,
+                 double* __restrict t) {
+  std::fill(t, t + m, 0.0);
+  int k = 0;
+  for (; k + 4 <= nc; k += 4) {
+    const Value* c = v + static_cast<std::ptrdiff_t>(k) * m;
+    const double x0 = x[k], x1 = x[k + 1], x2 = x[k + 2], x3 = x[k + 3];
+    for (int r = 0; r < m; ++r)
+      t[r] += static_cast<double>(c[r]) * x0 + static_cast<double>(c[m + r]) * x1 +
+              static_cast<double>(c[2 * m + r]) * x2 + static_cast<double>(c[3 * m + r]) * x3;
+  }
+  for (; k + 2 <= nc; k += 2) {
+    const Value* c = v + static_cast<std::ptrdiff_t>(k) * m;
+    const double x0 = x[k], x1 = x[k + 1];
+    for (int r = 0; r < m; ++r)
+      t[r] += static_cast<double>(c[r]) * x0 + static_cast<double>(c[m + r]) * x1;
+  }
+  for (; k < nc; ++k) {
+    const Value* c = v + static_cast<std::ptrdiff_t>(k) * m;
+    const double x0 = x[k];
+    for (int r = 0; r < m; ++r)
+      t[r] += static_cast<double>(c[r]) * x0;
+  }
+}
+
+// x -= V' t: independent dot products, two columns at a time, each summed in vector lanes.
+template <class Value>
+void block_transposed_times(const Value* __restrict v, int m, int nc, const double* __restrict t,
+                            double* __restrict x) {
+  int k = 0;
+  for (; k + 2 <= nc; k += 2) {
+    const Value* c = v + static_cast<std::ptrdiff_t>(k) * m;
+    double a0 = 0.0, a1 = 0.0;
+#pragma omp simd reduction(+ : a0, a1)
+    for (int r = 0; r < m; ++r) {
+      a0 += static_cast<double>(c[r]) * t[r];
+      a1 += static_cast<double>(c[m + r]) * t[r];
+    }
+    x[k] -= a0;
+    x[k + 1] -= a1;
+  }
+  if (k < nc) {
+    const Value* c = v + static_cast<std::ptrdiff_t>(k) * m;
+    double a0 = 0.0;
+#pragma omp simd reduction(+ : a0)
+    for (int r = 0; r < m; ++r)
+      a0 += static_cast<double>(c[r]) * t[r];
+    x[k] -= a0;
+  }
+}
+
+// A supernode of one column: a scatter forward, one dot product (two chains) back.
+template <class Value>
+void column_forward(const Value* c, int m, const std::uint16_t* rows, double inverse_diagonal,
+                    double* y, int j) {
+  const double x = y[j] * inverse_diagonal;
+  y[j] = x;
+  for (int r = 0; r < m; ++r)
+    y[rows[r]] -= static_cast<double>(c[r]) * x;
+}
+
+template <class Value>
+void column_backward(const Value* c, int m, const std::uint16_t* rows, double inverse_diagonal,
+                     double* y, int j) {
+  double a = 0.0, b = 0.0;
+  int r = 0;
+  for (; r + 2 <= m; r += 2) {
+    a += static_cast<double>(c[r]) * y[rows[r]];
+    b += static_cast<double>(c[r + 1]) * y[rows[r + 1]];
+  }
+  if (r < m) a += static_cast<double>(c[r]) * y[rows[r]];
+  y[j] = (y[j] - (a + b)) * inverse_diagonal;
+}
+
+// A supernode of two columns (a node's two DOFs in a plane model: most supernodes), its
+// triangle the one entry L_10 and its block two columns of m rows, scattered and gathered
+// directly: no workspace pass and no loop set-up of the general case.
+template <class Value>
+void pair_forward(const Value* v, int m, const std::uint16_t* rows, const double* inverse_diagonal,
+                  double* y, int j0) {
+  const double x0 = y[j0] * inverse_diagonal[0];
+  const double x1 = (y[j0 + 1] - static_cast<double>(v[0]) * x0) * inverse_diagonal[1];
+  y[j0] = x0;
+  y[j0 + 1] = x1;
+  const Value* c0 = v + 1;
+  const Value* c1 = c0 + m;
+  for (int r = 0; r < m; ++r)
+    y[rows[r]] -= static_cast<double>(c0[r]) * x0 + static_cast<double>(c1[r]) * x1;
+}
+
+template <class Value>
+void pair_backward(const Value* v, int m, const std::uint16_t* rows, const double* inverse_diagonal,
+                   double* y, int j0) {
+  const Value* c0 = v + 1;
+  const Value* c1 = c0 + m;
+  double a0 = 0.0, a1 = 0.0, b0 = 0.0, b1 = 0.0;  // even and odd rows: shorter chains
+  int r = 0;
+  for (; r + 2 <= m; r += 2) {
+    const double t0 = y[rows[r]], t1 = y[rows[r + 1]];
+    a0 += static_cast<double>(c0[r]) * t0;
+    a1 += static_cast<double>(c1[r]) * t0;
+    b0 += static_cast<double>(c0[r + 1]) * t1;
+    b1 += static_cast<double>(c1[r + 1]) * t1;
+  }
+  if (r < m) {
+    const double t0 = y[rows[r]];
+    a0 += static_cast<double>(c0[r]) * t0;
+    a1 += static_cast<double>(c1[r]) * t0;
+  }
+  const double x1 = (y[j0 + 1] - (a1 + b1)) * inverse_diagonal[1];
+  y[j0 + 1] = x1;
+  y[j0] = (y[j0] - (a0 + b0) - static_cast<double>(v[0]) * x1) * inverse_diagonal[0];
+}
+
+}  // namespace
+
+template <class Value>
+void CompactFactor::forward(const Value* values, double* y, int columns, double* t) const {
+  const Value* next = values;  // the supernodes' entries follow each other
+  for (int s = 0; s < supernodes(); ++s) {
+    const int j0 = first_[s], nc = first_[s + 1] - j0;
+    const int m = row_start_[s + 1] - row_start_[s];
+    const Value* triangle = next;
+    next += static_cast<std::ptrdiff_t>(nc) * (nc - 1) / 2 + static_cast<std::ptrdiff_t>(nc) * m;
+    const Value* block = triangle + static_cast<std::ptrdiff_t>(nc) * (nc - 1) / 2;
+    const std::uint16_t* rows = rows_.data() + row_start_[s];
+    for (int c = 0; c < columns; ++c) {
+      double* yc = y + static_cast<std::ptrdiff_t>(c) * size_;
+      if (nc == 1) {  // a chain's columns (bars, beams)
+        column_forward(triangle, m, rows, inverse_diagonal_[j0], yc, j0);
+        continue;
+      }
+      if (nc == 2) {  // most supernodes of a plane model: a node's two DOFs
+        pair_forward(triangle, m, rows, inverse_diagonal_.data() + j0, yc, j0);
+        continue;
+      }
+      triangle_forward(triangle, nc, inverse_diagonal_.data() + j0, yc + j0);
+      if (m == 0) continue;
+      block_times(block, m, nc, yc + j0, t);
+      for (int r = 0; r < m; ++r)
+        yc[rows[r]] -= t[r];
+    }
   }
 }
 
 template <class Value>
-void CompactFactor::backward(const Value* values, double* y) const {
-  for (int j = size_ - 1; j >= 0; --j) {
-    double s = y[j];
-    for (int k = column_start_[j]; k < column_start_[j + 1]; ++k)
-      s -= static_cast<double>(values[k]) * y[rows_[k]];
-    y[j] = s * inverse_diagonal_[j];
+void CompactFactor::backward(const Value* values, double* y, int columns, double* t) const {
+  const Value* end = values + stored_below_;  // past the last supernode's entries
+  for (int s = supernodes() - 1; s >= 0; --s) {
+    const int j0 = first_[s], nc = first_[s + 1] - j0;
+    const int m = row_start_[s + 1] - row_start_[s];
+    end -= static_cast<std::ptrdiff_t>(nc) * (nc - 1) / 2 + static_cast<std::ptrdiff_t>(nc) * m;
+    const Value* triangle = end;
+    const Value* block = triangle + static_cast<std::ptrdiff_t>(nc) * (nc - 1) / 2;
+    const std::uint16_t* rows = rows_.data() + row_start_[s];
+    for (int c = 0; c < columns; ++c) {
+      double* yc = y + static_cast<std::ptrdiff_t>(c) * size_;
+      if (nc == 1) {
+        column_backward(triangle, m, rows, inverse_diagonal_[j0], yc, j0);
+        continue;
+      }
+      if (nc == 2) {
+        pair_backward(triangle, m, rows, inverse_diagonal_.data() + j0, yc, j0);
+        continue;
+      }
+      if (m > 0) {
+        for (int r = 0; r < m; ++r)
+          t[r] = yc[rows[r]];
+        block_transposed_times(block, m, nc, t, yc + j0);
+      }
+      triangle_backward(triangle, nc, inverse_diagonal_.data() + j0, yc + j0);
+    }
   }
 }
 
 void CompactFactor::solve(const double* b, double* x, int columns) const {
-  thread_local std::vector<double> work;
-  work.resize(static_cast<std::size_t>(size_));
+  thread_local std::vector<double> work, t;
+  const auto n = static_cast<std::size_t>(size_);
+  work.resize(n * static_cast<std::size_t>(columns));
+  t.resize(static_cast<std::size_t>(max_rows_));
   for (int c = 0; c < columns; ++c) {
-    const double* bc = b + static_cast<std::size_t>(c) * size_;
-    double* xc = x + static_cast<std::size_t>(c) * size_;
-    for (int k = 0; k < size_; ++k)
-      work[k] = bc[permutation_[k]];
-    if (single_) {
-      forward(values32_.data(), work.data());
-      backward(values32_.data(), work.data());
-    } else {
-      forward(values_.data(), work.data());
-      backward(values_.data(), work.data());
-    }
-    for (int k = 0; k < size_; ++k)
-      xc[permutation_[k]] = work[k];
+    const std::size_t offset = static_cast<std::size_t>(c) * n;
+    for (std::size_t k = 0; k < n; ++k)
+      work[offset + k] = b[offset + static_cast<std::size_t>(permutation_[k])];
+  }
+  if (single_) {
+    forward(values32_.data(), work.data(), columns, t.data());
+    backward(values32_.data(), work.data(), columns, t.data());
+  } else {
+    forward(values_.data(), work.data(), columns, t.data());
+    backward(values_.data(), work.data(), columns, t.data());
+  }
+  for (int c = 0; c < columns; ++c) {
+    const std::size_t offset = static_cast<std::size_t>(c) * n;
+    for (std::size_t k = 0; k < n; ++k)
+      x[offset + static_cast<std::size_t>(permutation_[k])] = work[offset + k];
   }
 }
 

@@ -1,14 +1,24 @@
 #pragma once
 // A lean, solve-only copy of a sparse Cholesky factor P A P' = L L' (docs/BENCHMARKS.md,
-// bytes per unknown). CHOLMOD's supernodal factor of a ~1,000-unknown subdomain stores
-// its supernodes as dense blocks padded with zeros (relaxed amalgamation: 1.6 stored
-// entries per nonzero) and spends more time per supernode in its BLAS calls than in the
-// arithmetic. Here L keeps only its nonzeros, column by column, with 16-bit row indices
-// (10 bytes an entry): about a quarter fewer bytes than the supernodal factor, and the
-// triangular solves are plain loops over them. With `single` the off-diagonal entries
-// are kept as floats (6 bytes an entry), the diagonal and all arithmetic in double: the
-// factor is then that of A + E with |E| about 6e-8 |L||L'| (docs/BENCHMARKS.md, single
-// precision factors).
+// bytes per unknown; "Supernodal compact factors"). CHOLMOD's own supernodal factor of a
+// ~1,000-unknown subdomain pads its supernodes with zeros (relaxed amalgamation: 1.6
+// stored entries per nonzero) and spends more time per supernode in its BLAS calls than
+// in the arithmetic; its simplicial factor keeps a 4-byte row index per entry and solves
+// one column at a time, each waiting for the one before.
+//
+// Here L is given column by column and stored as supernodes: runs of consecutive columns
+// whose rows below the run nest (fundamental supernodes), merged further while at most
+// kRelaxedZeros of the stored entries are explicit zeros. A supernode of nc columns
+// keeps its diagonal block's strict lower triangle (packed by columns) and a dense m x nc
+// column-major block of its rows below the run, with ONE list of those m rows (16-bit)
+// for the whole supernode: about 8 bytes an entry (4 with `single`) instead of 10 (6).
+// The forward solve is a small triangular solve, then t = block * x with the columns'
+// updates summed in several independent accumulators, scattered into y once; the back
+// solve gathers y's rows, forms block' * t as independent dot products, then the
+// triangle. The loops are dense and vectorize instead of one dependent chain a column.
+// With `single` the entries below the diagonal are floats; the diagonal and all
+// arithmetic stay double: the factor is then that of A + E with |E| about 6e-8 |L||L'|
+// (docs/BENCHMARKS.md, single precision factors).
 
 #include <cstddef>
 #include <cstdint>
@@ -20,6 +30,8 @@ class CompactFactor {
  public:
   // Largest order whose row indices fit the 16-bit entries.
   static constexpr int kMaxSize = 65536;
+  // Share of a relaxed supernode's stored entries that may be explicit zeros.
+  static constexpr double kRelaxedZeros = 0.1;
 
   // Built column by column in order: start_column(j, L_jj), then add(i, L_ij) for rows
   // i > j in increasing order; finish() after the last column.
@@ -30,28 +42,41 @@ class CompactFactor {
 
   int size() const { return size_; }
   bool single() const { return single_; }
-  // Stored entries of L (its diagonal included).
-  std::size_t nonzeros() const { return rows_.size() + inverse_diagonal_.size(); }
+  // Stored entries of L (its diagonal and the relaxed supernodes' zeros included).
+  std::size_t nonzeros() const { return stored_below_ + inverse_diagonal_.size(); }
+  int supernodes() const { return static_cast<int>(first_.size()) - 1; }
   std::size_t bytes() const;
   // min(diag L)^2 / max(diag L)^2, as CHOLMOD estimates rcond of an LL' factor.
   double rcond() const;
 
-  // x = A^-1 b for `columns` column-major right-hand sides. Thread-safe (the workspace
-  // is per thread).
+  // x = A^-1 b for `columns` column-major right-hand sides, each supernode applied to all
+  // of them while it is in the cache. Thread-safe (the workspaces are per thread).
   void solve(const double* b, double* x, int columns = 1) const;
 
  private:
+  void build_supernodes();  // finish(): the columns given into supernodes
+  void find_supernodes();
+  std::size_t fill_supernode(int s, std::size_t triangle, std::vector<int>& where);
   template <class Value>
-  void forward(const Value* values, double* y) const;  // L y' = y
+  void forward(const Value* values, double* y, int columns, double* t) const;  // L y' = y
   template <class Value>
-  void backward(const Value* values, double* y) const;  // L' y' = y
+  void backward(const Value* values, double* y, int columns, double* t) const;  // L' y' = y
 
   int size_ = 0;
   bool single_ = false;
-  std::vector<int> permutation_;   // P: row k of P A P' is row permutation_[k] of A
-  std::vector<int> column_start_;  // into rows_/values_, size + 1
+  std::vector<int> permutation_;  // P: row k of P A P' is row permutation_[k] of A
   std::vector<double> inverse_diagonal_;
+  // The columns as given, until finish().
+  std::vector<int> column_start_;
+  std::vector<std::uint16_t> column_rows_;
+  std::vector<double> column_values_;
+  // The supernodes: s holds columns first_[s] .. first_[s + 1] - 1, its rows below them
+  // rows_[row_start_[s] ..], its entries (triangle, then block) after those of s - 1.
+  std::vector<int> first_;
+  std::vector<int> row_start_;
   std::vector<std::uint16_t> rows_;
+  std::size_t stored_below_ = 0;
+  int max_rows_ = 0;             // the largest m: the solves' workspace
   std::vector<double> values_;   // L's entries below the diagonal (double)
   std::vector<float> values32_;  // or as floats (single)
 };

@@ -20,6 +20,27 @@ std::vector<int> choose_fixing_dofs(const Eigen::MatrixXd& kernel) {
   return fixed;
 }
 
+namespace {
+
+// The lower triangle of K's principal submatrix over the DOFs with position[dof] >= 0
+// (increasing with dof), copied column by column: all a factorization reads (CHOLMOD
+// reads the lower triangle alone), without the triplets and their sorting.
+SparseMatrix lower_submatrix(const SparseMatrix& K, const std::vector<int>& position, int size) {
+  SparseMatrix sub(size, size);
+  sub.reserve(K.nonZeros() / 2 + K.cols());
+  for (int col = 0; col < K.outerSize(); ++col) {
+    if (position[col] < 0) continue;
+    sub.startVec(position[col]);
+    for (SparseMatrix::InnerIterator it(K, col); it; ++it)
+      if (it.row() >= col && position[it.row()] >= 0)
+        sub.insertBack(position[it.row()], position[col]) = it.value();
+  }
+  sub.finalize();
+  return sub;
+}
+
+}  // namespace
+
 CholmodFactor::Result GeneralizedInverse::factorize(const SparseMatrix& K,
                                                     const Eigen::MatrixXd& kernel) {
   size_ = static_cast<int>(K.rows());
@@ -48,14 +69,7 @@ CholmodFactor::Result GeneralizedInverse::factorize(const SparseMatrix& K,
     position[dof] = interior++;
   }
   if (interior == 0) return result;
-  std::vector<Eigen::Triplet<double>> entries;
-  for (int col = 0; col < K.outerSize(); ++col)
-    if (position[col] >= 0)
-      for (SparseMatrix::InnerIterator it(K, col); it; ++it)
-        if (position[it.row()] >= 0)
-          entries.emplace_back(position[it.row()], position[col], it.value());
-  SparseMatrix K_ii(interior, interior);
-  K_ii.setFromTriplets(entries.begin(), entries.end());
+  const SparseMatrix K_ii = lower_submatrix(K, position, interior);
   // A singular K_ii leaves has_interior_solve() false: the preconditioner reports it.
   if (interior_factor_.factorize(K_ii, simplicial_) == CholmodFactor::Result::Ok)
     interior_factor_.compact(single_ || single_interior_);
@@ -76,16 +90,8 @@ CholmodFactor::Result GeneralizedInverse::factorize_kept(const SparseMatrix& K) 
     kept_.push_back(dof);
   }
   if (fixed_.empty()) return compacted(factor_.factorize(K, simplicial_));
-  std::vector<Eigen::Triplet<double>> entries;
-  entries.reserve(static_cast<size_t>(K.nonZeros()));
-  for (int col = 0; col < K.outerSize(); ++col)
-    for (SparseMatrix::InnerIterator it(K, col); it; ++it)
-      if (position[it.row()] >= 0 && position[col] >= 0)
-        entries.emplace_back(position[it.row()], position[col], it.value());
   const int n = static_cast<int>(kept_.size());
-  SparseMatrix reduced(n, n);
-  reduced.setFromTriplets(entries.begin(), entries.end());
-  return compacted(factor_.factorize(reduced, simplicial_));
+  return compacted(factor_.factorize(lower_submatrix(K, position, n), simplicial_));
 }
 
 CholmodFactor::Result GeneralizedInverse::compacted(CholmodFactor::Result result) {

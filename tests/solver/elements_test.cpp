@@ -32,6 +32,13 @@ Eigen::Matrix<double, 8, 1> linear_field(const Eigen::Matrix<double, 4, 2>& x, d
   return u;
 }
 
+// The mesh of a one-strut plane scene.
+StrutMesh plane_strut(const fetic::testing::TomlPoint& from, const fetic::testing::TomlPoint& to,
+                      const std::string& keys) {
+  const std::string text = SceneToml("plane").strut("P", from, to, keys);
+  return build_strut_mesh(fetic::scenes::parse_scene(text, "plane.toml"), 0);
+}
+
 }  // namespace
 
 TEST_CASE("bilinear quadrilateral reproduces exact strain energies of linear fields") {
@@ -75,17 +82,56 @@ TEST_CASE("bilinear quadrilateral: three rigid-body modes span its kernel, rotat
 }
 
 TEST_CASE("assembled plane strut: rigid_body_modes lie in the kernel of every subdomain box") {
-  const std::string text = SceneToml("plane").strut(
-      "P", {0.2, 0.1}, {1.4, 0.9},
+  const StrutMesh mesh = plane_strut(
+      {0.2, 0.1}, {1.4, 0.9},
       "E = 7e10, elements = 6, subdomains = 2, height = 0.1, thickness = 0.02, nu = 0.33, "
       "elements_across = 3, fixed = ['from']");
-  const auto scene = fetic::scenes::parse_scene(text, "plane.toml");
-  const StrutMesh mesh = build_strut_mesh(scene, 0);
   for (NodeBox box : {whole_strut(mesh), NodeBox{0, 3, 0, 3}, NodeBox{3, 6, 1, 2}}) {
     const SparseMatrix K = assemble_stiffness(mesh, box);
     const Eigen::MatrixXd R = rigid_body_modes(mesh, box);
     CHECK(R.cols() == 3);
     CHECK((K * R).norm() < 1e-10 * Eigen::MatrixXd(K).norm() * R.norm());
+  }
+}
+
+TEST_CASE("assembled plane box equals the sum of its element blocks bit for bit") {
+  // The assembly writes compressed columns directly; the truth here is the definition:
+  // every element's 8x8 block added at its nodes' DOFs (by triplets, summed in element
+  // order). Boxes one element across (two nodes: the neighbour offsets must not alias),
+  // offset from the strut's origin, the whole strut, and one without elements.
+  const StrutMesh mesh = plane_strut(
+      {0.0, 0.0}, {2.0, 0.3},
+      "E = 7e10, elements = 7, subdomains = 1, height = 0.2, thickness = 0.02, nu = 0.31, "
+      "elements_across = 4, fixed = ['from']");
+  Eigen::Matrix<double, 4, 2> corners;
+  for (int a = 0; a < 4; ++a) {
+    const int i = a == 1 || a == 2 ? 1 : 0, k = a >= 2 ? 1 : 0;
+    corners.row(a) = mesh.nodes[mesh.node(i, k)].transpose();
+  }
+  const auto Ke = quad_stiffness(corners, mesh.E, mesh.nu, mesh.thickness);
+  for (NodeBox box : {whole_strut(mesh), NodeBox{2, 3, 1, 2}, NodeBox{0, 7, 3, 4},
+                      NodeBox{5, 6, 0, 4}, NodeBox{1, 4, 2, 4}, NodeBox{3, 3, 0, 4}}) {
+    std::vector<Eigen::Triplet<double>> entries;
+    for (int i = box.i0; i < box.i1; ++i)
+      for (int k = box.k0; k < box.k1; ++k) {
+        const int nodes[4] = {box.local(i, k), box.local(i + 1, k), box.local(i + 1, k + 1),
+                              box.local(i, k + 1)};
+        for (int a = 0; a < 8; ++a)
+          for (int b = 0; b < 8; ++b)
+            entries.emplace_back(2 * nodes[a / 2] + a % 2, 2 * nodes[b / 2] + b % 2, Ke(a, b));
+      }
+    SparseMatrix expected(2 * box.node_count(), 2 * box.node_count());
+    expected.setFromTriplets(entries.begin(), entries.end());
+    const SparseMatrix K = assemble_stiffness(mesh, box);
+    REQUIRE(K.isCompressed());
+    REQUIRE(K.rows() == expected.rows());
+    REQUIRE(K.nonZeros() == expected.nonZeros());
+    for (int col = 0; col <= K.cols(); ++col)
+      REQUIRE(K.outerIndexPtr()[col] == expected.outerIndexPtr()[col]);
+    for (Eigen::Index e = 0; e < K.nonZeros(); ++e) {
+      REQUIRE(K.innerIndexPtr()[e] == expected.innerIndexPtr()[e]);
+      REQUIRE(K.valuePtr()[e] == expected.valuePtr()[e]);
+    }
   }
 }
 
