@@ -207,21 +207,17 @@ int run_bench(const BenchArgs& args) {
             "||F|| runs once, in the set-up). "
             "'!' marks a solve that did not converge.\n\n"
          << table(rows);
-  if (!args.csv.empty()) {
-    try {
-      write_output(args.csv, [&](std::ostream& out) {
-        out << "scene,method,unknowns,iterations,converged,setup_ms,solve_ms,warm_iterations,"
-               "cold_iterations,f_applications,kappa\n";
-        for (const Measurement& m : rows)
-          out << m.scene << ',' << m.variant << ',' << m.unknowns << ',' << m.iterations << ','
-              << m.converged << ',' << m.setup_ms << ',' << m.solve_ms << ',' << m.warm_iterations
-              << ',' << m.cold_iterations << ',' << m.f_applications << ',' << m.kappa << '\n';
-      });
-    } catch (const OutputError& error) {
-      return report_output_error(error);
-    }
-  }
-  return kExitOk;
+  if (args.csv.empty()) return kExitOk;
+  return exit_status_of_writing([&] {
+    write_output(args.csv, [&](std::ostream& out) {
+      out << "scene,method,unknowns,iterations,converged,setup_ms,solve_ms,warm_iterations,"
+             "cold_iterations,f_applications,kappa\n";
+      for (const Measurement& m : rows)
+        out << m.scene << ',' << m.variant << ',' << m.unknowns << ',' << m.iterations << ','
+            << m.converged << ',' << m.setup_ms << ',' << m.solve_ms << ',' << m.warm_iterations
+            << ',' << m.cold_iterations << ',' << m.f_applications << ',' << m.kappa << '\n';
+    });
+  });
 }
 
 }  // namespace

@@ -154,12 +154,7 @@ int run_generate(const GenerateArgs& args) {
     std::cerr << error.what() << '\n';
     return kExitUsage;
   }
-  try {
-    write_output(args.out.empty() ? "-" : args.out, text);
-  } catch (const OutputError& error) {
-    return report_output_error(error);
-  }
-  return kExitOk;
+  return exit_status_of_writing([&] { write_output(args.out.empty() ? "-" : args.out, text); });
 }
 
 }  // namespace

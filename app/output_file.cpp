@@ -618,6 +618,15 @@ int report_output_error(const OutputError& error) {
   return error.interrupted() ? kExitInterrupted : kExitOutput;
 }
 
+int exit_status_of_writing(const std::function<void()>& write) {
+  try {
+    write();
+  } catch (const OutputError& error) {
+    return report_output_error(error);
+  }
+  return kExitOk;
+}
+
 void remove_temporary_outputs() noexcept {
   // try_lock: this may run while another thread holds the lock (it then stays).
   if (!temporaries_mutex.try_lock()) return;

@@ -60,10 +60,8 @@ void write_output_by(const std::string& path,
 // written in place; other targets as above. Thread-safe; every write is checked.
 class OutputStream {
  public:
-  OutputStream();
+  OutputStream();  // not copyable: it owns its open target (state_)
   ~OutputStream();
-  OutputStream(const OutputStream&) = delete;
-  OutputStream& operator=(const OutputStream&) = delete;
   // Throws OutputError when the target cannot be opened.
   void open(const std::string& path);
   bool is_open() const;
@@ -131,6 +129,10 @@ inline bool is_stdout(const std::string& path) {
 
 // Prints the error and returns the exit status it means (5, or 130 when interrupted).
 int report_output_error(const OutputError& error);
+
+// Runs `write` and returns the command's exit status: 0, or report_output_error's for the
+// OutputError it threw (a command whose last step is writing its output).
+int exit_status_of_writing(const std::function<void()>& write);
 
 // Removes the temporary files this process is writing (for the out-of-memory and
 // terminate paths, which end the process without unwinding).

@@ -62,40 +62,44 @@ bool is_color(const std::string& name) {
   return name == "subdomain" || name == "strut" || name == "stress" || name == "moment";
 }
 
-// Every action of the script format; docs/WINDOW.md lists the same.
+// Every action of the script format (docs/WINDOW.md lists the same), by the argument it
+// takes: a number in a range, a name from a list, nothing, a file or a place.
 const ActionSpec kActions[] = {
     {"load", RequestKind::SetLoad, Argument::Number, 0.0, 1e300},
+    {"magnification", RequestKind::SetMagnification, Argument::Number, 1e-12, 1e15},
+    {"scrub", RequestKind::Scrub, Argument::Number, 0.0, 1e9},
+    {"record-sweep", RequestKind::RecordSweep, Argument::Number, 2.0, 10000.0},
+
     {"method", RequestKind::SetMethod, Argument::Choice, 0, 0,
      "feti-c, mprgp, feti-dp, active-set, feti, cg or sd", &is_method},
     {"preconditioner", RequestKind::SetPreconditioner, Argument::Choice, 0, 0,
      "dirichlet, lumped or none", &is_preconditioner},
     {"compare", RequestKind::SetCompare, Argument::Choice, 0, 0,
      "a method (feti-c, mprgp, feti-dp, active-set, feti, cg or sd) or none", &is_compare},
-    {"magnification", RequestKind::SetMagnification, Argument::Number, 1e-12, 1e15},
+    {"live", RequestKind::SetLive, Argument::Choice, 0, 0, "on or off", &is_on_off},
+    {"toggle", RequestKind::Toggle, Argument::Choice, 0, 0,
+     "subdomains, forces, gaps, stress, moment, overlay, labels, chart, corners or help",
+     &is_toggle},
+    {"color", RequestKind::SetColor, Argument::Choice, 0, 0, "subdomain, strut, stress or moment",
+     &is_color},
+
     {"play", RequestKind::Play, Argument::None},
     {"pause", RequestKind::Pause, Argument::None},
     {"step", RequestKind::Step, Argument::None},
     {"back", RequestKind::StepBack, Argument::None},
     {"reset", RequestKind::Reset, Argument::None},
     {"cancel", RequestKind::Cancel, Argument::None},
-    {"live", RequestKind::SetLive, Argument::Choice, 0, 0, "on or off", &is_on_off},
-    {"scrub", RequestKind::Scrub, Argument::Number, 0.0, 1e9},
-    {"toggle", RequestKind::Toggle, Argument::Choice, 0, 0,
-     "subdomains, forces, gaps, stress, moment, overlay, labels, chart, corners or help",
-     &is_toggle},
-    {"color", RequestKind::SetColor, Argument::Choice, 0, 0, "subdomain, strut, stress or moment",
-     &is_color},
-    {"screenshot", RequestKind::Screenshot, Argument::Optional},
-    {"screenshot-window", RequestKind::ScreenshotWindow, Argument::Optional},
-    {"view", RequestKind::LoadView, Argument::Required},
-    {"save-view", RequestKind::SaveView, Argument::Optional},
-    {"locate", RequestKind::Locate, Argument::Locate},
     {"record-iterations", RequestKind::RecordIterations, Argument::None},
-    {"record-sweep", RequestKind::RecordSweep, Argument::Number, 2.0, 10000.0},
-    {"export-vtu", RequestKind::ExportParaView, Argument::Optional},
     {"reload", RequestKind::Reload, Argument::None},
     {"wait", RequestKind::Quit, Argument::None},
     {"quit", RequestKind::Quit, Argument::None},
+
+    {"screenshot", RequestKind::Screenshot, Argument::Optional},
+    {"screenshot-window", RequestKind::ScreenshotWindow, Argument::Optional},
+    {"save-view", RequestKind::SaveView, Argument::Optional},
+    {"export-vtu", RequestKind::ExportParaView, Argument::Optional},
+    {"view", RequestKind::LoadView, Argument::Required},
+    {"locate", RequestKind::Locate, Argument::Locate},
 };
 
 // A whole number that fits (from_chars: no sign, no spaces, no overflow).
