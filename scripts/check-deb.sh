@@ -48,7 +48,7 @@ for page in "$doc/README.md" "$doc"/docs/*.md; do
   done
 done
 test -s "$doc/copyright" && test -s "$doc/changelog.Debian.gz"
-zcat "$tmp/root/usr/share/man/man1/fetic.1.gz" | grep -q '^.SH "FETIC SOLVE"'
+zcat "$tmp/root/usr/share/man/man1/fetic.1.gz" | grep '^.SH "FETIC SOLVE"' > /dev/null
 test -x "$tmp/root/usr/share/fetic/scripts/vtu_picture.py"
 echo "check-deb: documentation links resolve; man page, copyright and helper script installed"
 if command -v lintian > /dev/null; then
@@ -56,6 +56,9 @@ if command -v lintian > /dev/null; then
   echo "check-deb: lintian: $(grep -c '^E:' "$tmp/lintian.txt" || true) errors, $(grep -c '^W:' "$tmp/lintian.txt" || true) warnings"
 fi
 
+# A pipe into `grep -q` would close as soon as it matched: fetic checks every write and
+# ends with status 5 when standard output is closed under it, which pipefail then makes
+# this script's failure (it did, at random, on 5 December). grep > /dev/null reads it all.
 run_installed() {  # the commands a user runs after installing, from an empty directory
   cat <<'SCRIPT'
 set -euo pipefail
@@ -63,12 +66,12 @@ work=$(mktemp -d) && cd "$work"
 fetic --version
 fetic figures --out figures
 test "$(ls figures/*.png | wc -l)" -ge 6
-fetic scenes | grep -q two_bars
+fetic scenes | grep two_bars > /dev/null
 fetic solve two_bars --load-steps 0:2:5 --json r.json \
   --csv-steps curve.csv --vtu vtu --quiet
 test -s r.json && test -s curve.csv && test -s vtu/struts.pvd
 fetic bench-render --frames 3 --size 320x200 > /dev/null
-fetic solve --help | grep -q "Exit status"
+fetic solve --help | grep "Exit status" > /dev/null
 echo "check-deb: the installed fetic ran from $work"
 rm -rf "$work"
 SCRIPT
