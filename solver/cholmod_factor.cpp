@@ -219,10 +219,10 @@ std::size_t supernodal_nonzeros(const cholmod_factor* L) {
   return count;
 }
 
-// The same for a simplicial factor (its columns start with the diagonal). With the exact
-// size the compact copy's arrays are allocated once and never shrunk: reserving L->nzmax
-// made finish() copy every factor once more into fresh pages (a sixth of the FETI
-// set-up's CPU, most of it page faults: docs/BENCHMARKS.md).
+// The same for a simplicial factor (its columns start with the diagonal). The compact
+// copy's column arrays are then reserved at their exact size: with L->nzmax they were
+// reallocated into fresh pages (page faults are most of the FETI set-up's copying here,
+// docs/BENCHMARKS.md); finish() then moves the columns into supernodes.
 std::size_t simplicial_nonzeros(const cholmod_factor* L) {
   const int* p = static_cast<const int*>(L->p);
   const int* nz = static_cast<const int*>(L->nz);

@@ -42,7 +42,8 @@ class CholmodFactor {
   // analysed pattern). NotPositiveDefinite when a removal leaves A singular.
   Result update(const SparseMatrix& C, bool add);
   // Replaces CHOLMOD's factor by a lean copy for solving only (CompactFactor: its
-  // nonzeros alone, 10 bytes each, and faster solves for small factors). Afterwards only
+  // nonzeros in supernodes of nested columns, one row list each, and faster solves for
+  // small factors). Afterwards only
   // solve() and the queries work; refactorize() and update() throw.
   // Returns false (and keeps CHOLMOD's factor) when the order is too large for it.
   // `single`: L's entries below the diagonal kept as floats (CompactFactor).

@@ -22,6 +22,13 @@ void CompactFactor::start_column(double diagonal) {
 }
 
 void CompactFactor::add(int row, double value) {
+  // finish() places each entry by its row (triangle offset or the block's row list): a
+  // row out of order would be written outside the supernode.
+  if (column_start_.empty()) throw std::logic_error("CompactFactor: add() before start_column()");
+  const int column = static_cast<int>(inverse_diagonal_.size()) - 1;
+  const bool first = static_cast<int>(column_rows_.size()) == column_start_.back();
+  if (row <= column || row >= size_ || (!first && row <= column_rows_.back()))
+    throw std::logic_error("CompactFactor: rows must be below the diagonal, increasing");
   column_rows_.push_back(static_cast<std::uint16_t>(row));
   column_values_.push_back(value);
 }
@@ -155,7 +162,8 @@ void triangle_forward(const Value* v, int nc, const double* inverse_diagonal, do
 template <class Value>
 void triangle_backward(const Value* v, int nc, const double* inverse_diagonal, double* x) {
   for (int k = nc - 1; k >= 0; --k) {
-    const Value* column = v + static_cast<std::ptrdiff_t>(k) * (nc - 1) - k * (k - 1) / 2;
+    const Value* column = v + static_cast<std::ptrdiff_t>(k) * (nc - 1) -
+                          static_cast<std::ptrdiff_t>(k) * (k - 1) / 2;
     double s = x[k];
     for (int i = k + 1; i < nc; ++i)
       s -= static_cast<double>(column[i - k - 1]) * x[i];

@@ -33,8 +33,9 @@ class CompactFactor {
   // Share of a relaxed supernode's stored entries that may be explicit zeros.
   static constexpr double kRelaxedZeros = 0.1;
 
-  // Built column by column in order: start_column(j, L_jj), then add(i, L_ij) for rows
-  // i > j in increasing order; finish() after the last column.
+  // Built column by column in order: start_column(L_jj) for column j, then add(i, L_ij)
+  // for rows i > j in increasing order (checked: std::logic_error otherwise); finish()
+  // after the last column.
   CompactFactor(int size, const int* permutation, std::size_t nonzeros_hint, bool single = false);
   void start_column(double diagonal);
   void add(int row, double value);

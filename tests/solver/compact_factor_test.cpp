@@ -114,3 +114,25 @@ TEST_CASE("Single precision supernodes hold about half the bytes of double ones"
   // Fewer supernodes than columns: the fill makes columns nest.
   CHECK(full.supernodes() < 200);
 }
+
+TEST_CASE("A compact factor refuses entries that are not below the diagonal in order") {
+  const std::vector<int> perm{0, 1, 2};
+  solver::CompactFactor factor(3, perm.data(), 3);
+  CHECK_THROWS_AS(factor.add(1, 0.5), std::logic_error);  // before any column
+  factor.start_column(2.0);
+  CHECK_THROWS_AS(factor.add(0, 0.5), std::logic_error);  // the diagonal itself
+  factor.add(2, 0.5);
+  CHECK_THROWS_AS(factor.add(1, 0.5), std::logic_error);  // rows not increasing
+  factor.start_column(2.0);
+  CHECK_THROWS_AS(factor.add(3, 0.5), std::logic_error);  // beyond the order
+  factor.add(2, 0.25);
+  factor.start_column(2.0);
+  factor.finish();
+  std::vector<double> b{1.0, 1.0, 1.0}, x(3);
+  factor.solve(b.data(), x.data());
+  // The entries kept: L(2,0) = 0.5 and L(2,1) = 0.25.
+  const Eigen::Matrix3d L = (Eigen::Matrix3d() << 2, 0, 0, 0, 2, 0, 0.5, 0.25, 2).finished();
+  const Eigen::Vector3d expected = (L * L.transpose()).ldlt().solve(Eigen::Vector3d::Ones());
+  for (int i = 0; i < 3; ++i)
+    CHECK(x[i] == Approx(expected[i]).epsilon(1e-14));
+}
