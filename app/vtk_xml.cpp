@@ -90,6 +90,13 @@ class Base64Writer {
 // at 1e7"). Which level an array gets depends on its values alone, not on the threads.
 class ZlibBlocks {
  public:
+  // `bytes`: the array's size. Room for its compressed blocks is reserved at once (only
+  // the pages written become resident): a held array grown by doubling was copied at each
+  // step and, at the last one, held twice - the 1e7 displacements' 140 MB among them.
+  explicit ZlibBlocks(std::size_t bytes) {
+    const std::size_t blocks = (bytes + kBlockSize - 1) / kBlockSize;
+    compressed_.reserve(blocks * compressBound(static_cast<uLong>(kBlockSize)));
+  }
   void write(const std::uint8_t* data, std::size_t size) {
     append_in_chunks(pending_, kBatch * kBlockSize, data, size, [this] { compress_pending(); });
   }
@@ -194,7 +201,7 @@ void write_values(std::ostream& out, const std::function<void(const VtkSink<T>&)
     text.flush();
     out << '\n';
   } else {
-    ZlibBlocks blocks;
+    ZlibBlocks blocks(count * sizeof(T));
     make([&](const T* values, std::size_t n) {
       blocks.write(reinterpret_cast<const std::uint8_t*>(values), n * sizeof(T));
       made += n;
