@@ -72,8 +72,7 @@ CoarseProblem::OwnPattern CoarseProblem::own_pattern(const SubdomainOperator& op
 // rows r touching j of g_r(modes of j) g_r', in increasing r (the same order on every
 // number of processes). Values are laid out per own subdomain, entries (a, b) sorted.
 // Each subdomain's part is found on its own (both cores; a sorted list of its entries,
-// not a map: this pass was serial and about 2.5 s at 1e7 unknowns), then they are
-// joined in subdomain order.
+// not a map: this pass was serial), then they are joined in subdomain order.
 void CoarseProblem::build_pattern() {
   const FetiSystem& s = system_;
   const Decomposition& d = s.decomposition();
