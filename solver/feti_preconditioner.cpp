@@ -242,6 +242,7 @@ std::size_t FetiPreconditioner::factor_memory() const {
 
 void FetiPreconditioner::apply(const Eigen::VectorXd& w, const std::vector<char>* mask,
                                Eigen::VectorXd& z) const {
+  Stopwatch watch(system_.times().preconditioner);
   const int rows = static_cast<int>(w.size());
   if (kind_ == Preconditioner::None) {
     z = w;

@@ -336,6 +336,7 @@ Eigen::VectorXd FetiSystem::own_modes_product(const SparseMatrix& M, const Eigen
                                               const std::vector<char>* mask) const {
   // The own subdomains' modes of M v; each sums its rows in increasing global order, the
   // same for any number of processes (a neighbour's modes are left to its process).
+  Stopwatch watch(times_.mode_products);
   Eigen::VectorXd local = Eigen::VectorXd::Zero(decomposition_.total_modes);
   for (int r = 0; r < M.outerSize(); ++r) {
     if (mask && !(*mask)[r]) continue;
@@ -408,6 +409,7 @@ void FetiSystem::project_onto_range_of_B(Eigen::VectorXd& v) const {
   // Every process takes part when any has redundant rows (the exchange below is collective
   // among neighbours), also one that holds none of them.
   if (decomposition_.redundant_groups.empty()) return;
+  Stopwatch watch(times_.range_projection);
   // Each row's new value (s_i - s_j) / m, s_c = B_g' v for copy c, is the sum of one part
   // per end: s_i / m from the process of copy i, -s_j / m from that of copy j. Rows of no
   // group keep their value (on the owning process; the others add zero).

@@ -48,8 +48,11 @@ struct SubdomainOperator {
 
 // Time spent in each part of the operators (for the benchmark's split of an iteration).
 struct OperatorTimes {
-  double local_solves = 0.0;  // K_j^+ applications (and the preconditioner's local work)
-  double coarse = 0.0;        // coarse problem: factorizations and solves
+  double local_solves = 0.0;      // K_j^+ applications and B's gathers (F, d, the residual)
+  double coarse = 0.0;            // coarse problem: factorizations and solves
+  double preconditioner = 0.0;    // M^-1 applications (their local solves and B products)
+  double mode_products = 0.0;     // G v and G' a of the coarse projections
+  double range_projection = 0.0;  // project_onto_range_of_B
 };
 
 // Wall time of the set-up's parts (FetiSystem's own; the preconditioner and the coarse
