@@ -31,6 +31,19 @@ SparseMatrix extract(const SparseMatrix& K, const std::vector<int>& row_position
 
 using DofKey = std::pair<int, int>;  // (subdomain, subdomain-local DOF)
 
+// K_ib's rows renumbered into the order of K_ii's lean factor `factor` (row k of the
+// factor is interior DOF permutation()[k]). Each column keeps its entries in their stored
+// order, so that K_ib' v sums them as before: the same bits.
+void to_factor_order(SparseMatrix& K_ib, const CompactFactor& factor) {
+  K_ib.makeCompressed();
+  std::vector<int> position(factor.permutation().size());
+  for (int k = 0; k < factor.size(); ++k)
+    position[factor.permutation()[k]] = k;
+  int* rows = K_ib.innerIndexPtr();
+  for (Eigen::Index e = 0; e < K_ib.nonZeros(); ++e)
+    rows[e] = position[rows[e]];
+}
+
 }  // namespace
 
 // Diagonal stiffness of every DOF the local rows' scaling needs: own subdomains' from
@@ -140,11 +153,14 @@ bool FetiPreconditioner::set_up_local(const SubdomainOperator& op, Local& local,
   local.K_ib = extract(op.K, i_position, ni, b_position, nb);
   if (op.K_plus.has_interior_solve()) {
     local.interior = &op.K_plus;
-    return true;
+    local.interior_factor = op.K_plus.compact_interior_factor();
+  } else {
+    const SparseMatrix K_ii = extract(op.K, i_position, ni, i_position, ni);
+    if (local.K_ii.factorize(K_ii, true) != CholmodFactor::Result::Ok) return false;
+    local.K_ii.compact();  // only solved with from here on
+    local.interior_factor = local.K_ii.compact_factor();
   }
-  const SparseMatrix K_ii = extract(op.K, i_position, ni, i_position, ni);
-  if (local.K_ii.factorize(K_ii, true) != CholmodFactor::Result::Ok) return false;
-  local.K_ii.compact();  // only solved with from here on
+  if (local.interior_factor) to_factor_order(local.K_ib, *local.interior_factor);
   return true;
 }
 
@@ -262,7 +278,15 @@ void FetiPreconditioner::apply(const Eigen::VectorXd& w, const std::vector<char>
     for (const Incidence& in : local.incidence)
       if (!mask || (*mask)[in.row]) x(in.dof) += in.value * w(in.row);
     y.noalias() = local.K_bb * x;
-    if (local.interior || local.K_ii.size() > 0) {
+    if (local.interior_factor) {
+      // K_ib's rows in the factor's order: the right-hand side is formed there and
+      // solved in place (per thread, not per application: no allocation).
+      thread_local Eigen::VectorXd in_factor_order;
+      in_factor_order.resize(local.K_ib.rows());
+      in_factor_order.noalias() = local.K_ib * x;
+      local.interior_factor->solve_in_place(in_factor_order.data());
+      y.noalias() -= local.K_ib.transpose() * in_factor_order;
+    } else if (local.interior || local.K_ii.size() > 0) {
       // Per thread, not per application: no allocation in the iterations.
       thread_local Eigen::VectorXd interior_rhs, interior;
       interior_rhs.resize(local.K_ib.rows());

@@ -47,7 +47,10 @@ class FetiPreconditioner {
     SparseMatrix K_bb, K_ib;
     CholmodFactor K_ii;  // own factor only when K_j's factor cannot solve with K_ii
     const GeneralizedInverse* interior = nullptr;  // K_j's K^+, which also holds K_ii's factor
-    int offset = 0;                                // into the workspaces
+    // K_ii's lean factor, if it has one: K_ib's rows are then renumbered into its order,
+    // so that M^-1 solves in place (CompactFactor::solve_in_place).
+    const CompactFactor* interior_factor = nullptr;
+    int offset = 0;  // into the workspaces
   };
   // One term of a row's sum: y_(index) * value.
   using Term = RowTerm;
