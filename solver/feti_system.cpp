@@ -250,6 +250,13 @@ void FetiSystem::build_redundant_groups() {
     }
     if (held) groups_.push_back(std::move(local));
   }
+  std::vector<char> in_group(static_cast<std::size_t>(space_.rows()), 0);
+  for (const LocalGroup& group : groups_)
+    for (int r : group.rows)
+      if (r >= 0) {
+        groups_disjoint_ = groups_disjoint_ && !in_group[static_cast<std::size_t>(r)];
+        in_group[static_cast<std::size_t>(r)] = 1;
+      }
 }
 
 void FetiSystem::solve_subdomains(const Eigen::VectorXd* lambda, double s, double load_factor,
@@ -480,13 +487,30 @@ void FetiSystem::project_onto_range_of_B(Eigen::VectorXd& v) const {
   // Each row's new value (s_i - s_j) / m, s_c = B_g' v for copy c, is the sum of one part
   // per end: s_i / m from the process of copy i, -s_j / m from that of copy j. Rows of no
   // group keep their value (on the owning process; the others add zero).
+  // In one process v is projected in place: no copy of it and back (a group reads its
+  // rows before it writes them, and no row is in two groups).
   const bool distributed = communicator().distributed();
+  if (!distributed && groups_disjoint_) {
+    project_groups(v, v);
+    return;
+  }
   Eigen::VectorXd partial = v;
   if (distributed)
     for (int r = 0; r < space_.rows(); ++r)
       if (!space_.owned(r)) partial(r) = 0.0;
-  double copy_sum[64];  // per copy (a node has at most four copies)
-  for (const LocalGroup& group : groups_) {
+  project_groups(v, partial);
+  if (distributed) space_.complete_rows(partial);
+  v = partial;
+}
+
+// partial(r) = the projection's part of this process for each row r of a group, from v
+// (the groups on both threads: each writes only its own rows).
+void FetiSystem::project_groups(const Eigen::VectorXd& v, Eigen::VectorXd& partial) const {
+  const int count = static_cast<int>(groups_.size());
+#pragma omp parallel for schedule(static) num_threads(threads_for(8LL * count))
+  for (int g = 0; g < count; ++g) {
+    const LocalGroup& group = groups_[g];
+    double copy_sum[64];  // per copy (a node has at most four copies)
     const int m = std::min(group.copies, 64);
     std::fill(copy_sum, copy_sum + m, 0.0);
     for (size_t k = 0; k < group.rows.size(); ++k) {
@@ -506,8 +530,6 @@ void FetiSystem::project_onto_range_of_B(Eigen::VectorXd& v) const {
                                                         : (group.own_end[i] ? from_i : from_j);
     }
   }
-  if (distributed) space_.complete_rows(partial);
-  v = partial;
 }
 
 void FetiSystem::release_stiffness() {

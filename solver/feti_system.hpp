@@ -174,6 +174,7 @@ class FetiSystem {
   void sum_rows(const Eigen::VectorXd& values, Eigen::VectorXd& out) const;
   void build_G();
   void build_redundant_groups();
+  void project_groups(const Eigen::VectorXd& v, Eigen::VectorXd& partial) const;
 
   // Per local row, the entries on own subdomains, grouped by subdomain in increasing order.
   struct RowPart {
@@ -201,6 +202,7 @@ class FetiSystem {
   std::vector<RowPart> row_parts_;
   std::vector<PartEntry> part_entries_;
   std::vector<LocalGroup> groups_;
+  bool groups_disjoint_ = true;  // no local row in two groups
   Eigen::VectorXd c_;
   SparseMatrix G_;
   SparseMatrix G_abs_;
