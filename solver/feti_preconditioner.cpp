@@ -227,14 +227,15 @@ FetiPreconditioner::FetiPreconditioner(const FetiSystem& system, Preconditioner 
       const int i = system.own_index(entry->subdomain);
       const int p = position_in_boundary[i][entry->dof];
       local_[i].incidence.push_back({r, p, entry->value * weight});
+      local_[i].terms.push_back(static_cast<int>(terms_.size()));
       terms_.push_back({local_[i].offset + p, entry->value * weight,
                         previous >= 0 && entry->subdomain != previous});
       previous = entry->subdomain;
     }
   }
   row_first_[space.rows()] = static_cast<int>(terms_.size());
-  x_.resize(offset);
-  y_.resize(offset);
+  boundary_dofs_ = offset;
+  term_values_.resize(terms_.size());
 }
 
 void FetiPreconditioner::add_memory(LocalMemory& m) const {
@@ -242,11 +243,12 @@ void FetiPreconditioner::add_memory(LocalMemory& m) const {
     m.preconditioner_factor += static_cast<double>(local.K_ii.memory_in_use());
     m.preconditioner_blocks += sparse_bytes(local.K_bb) + sparse_bytes(local.K_ib);
     m.index += static_cast<double>(local.boundary.capacity()) * sizeof(int);
-    m.incidence += static_cast<double>(local.incidence.capacity()) * sizeof(Incidence);
+    m.incidence += static_cast<double>(local.incidence.capacity()) * sizeof(Incidence) +
+                   static_cast<double>(local.terms.capacity()) * sizeof(int);
   }
   m.incidence += static_cast<double>(row_first_.capacity()) * sizeof(int) +
                  static_cast<double>(terms_.capacity()) * sizeof(Term);
-  m.workspaces += static_cast<double>(x_.size() + y_.size()) * sizeof(double);
+  m.workspaces += static_cast<double>(term_values_.capacity()) * sizeof(double);
 }
 
 std::size_t FetiPreconditioner::factor_memory() const {
@@ -268,13 +270,13 @@ void FetiPreconditioner::apply(const Eigen::VectorXd& w, const std::vector<char>
     return;
   }
   const int count = static_cast<int>(local_.size());
-#pragma omp parallel for schedule(dynamic, 4) num_threads(threads_for(4 * x_.size()))
+#pragma omp parallel for schedule(dynamic, 4) num_threads(threads_for(4LL * boundary_dofs_))
   for (int j = 0; j < count; ++j) {
     const Local& local = local_[j];
     const int nb = static_cast<int>(local.boundary.size());
-    auto x = x_.segment(local.offset, nb);
-    auto y = y_.segment(local.offset, nb);
-    x.setZero();
+    thread_local Eigen::VectorXd x, y;  // per thread: no allocation per application
+    x.setZero(nb);
+    y.resize(nb);
     for (const Incidence& in : local.incidence)
       if (!mask || (*mask)[in.row]) x(in.dof) += in.value * w(in.row);
     y.noalias() = local.K_bb * x;
@@ -298,12 +300,16 @@ void FetiPreconditioner::apply(const Eigen::VectorXd& w, const std::vector<char>
         local.K_ii.solve(interior_rhs.data(), interior.data());
       y.noalias() -= local.K_ib.transpose() * interior;
     }
+    for (std::size_t k = 0; k < local.incidence.size(); ++k)
+      term_values_[static_cast<std::size_t>(local.terms[k])] = y(local.incidence[k].dof);
   }
   z.resize(rows);
 #pragma omp parallel for schedule(static) num_threads(threads_for(rows))
   for (int r = 0; r < rows; ++r) {
+    const int first = row_first_[r];
     z(r) = !mask || (*mask)[r]
-               ? sum_row_terms(terms_.data() + row_first_[r], terms_.data() + row_first_[r + 1], y_)
+               ? sum_row_terms_in_order(terms_.data() + first, terms_.data() + row_first_[r + 1],
+                                        term_values_.data() + first)
                : 0.0;
   }
   system_.space().complete_rows(z);
