@@ -57,7 +57,10 @@ std::vector<double> flatten(const ProfileRun& run) {
           b.setup.incidence,
           b.setup.factorization,
           b.setup.coarse_space,
-          b.preconditioner_setup_seconds};
+          b.preconditioner_setup_seconds,
+          b.preconditioner_seconds - a.preconditioner_seconds,
+          b.mode_product_seconds - a.mode_product_seconds,
+          b.range_projection_seconds - a.range_projection_seconds};
 }
 
 const char* const kFields[] = {"subdomains",
@@ -97,7 +100,10 @@ const char* const kFields[] = {"subdomains",
                                "setup_incidence_seconds",
                                "setup_factorization_seconds",
                                "setup_coarse_space_seconds",
-                               "setup_preconditioner_seconds"};
+                               "setup_preconditioner_seconds",
+                               "preconditioner_seconds",
+                               "mode_product_seconds",
+                               "range_projection_seconds"};
 
 }  // namespace
 

@@ -49,6 +49,8 @@ class CholmodFactor {
   // `single`: L's entries below the diagonal kept as floats (CompactFactor).
   bool compact(bool single = false);
   bool compacted() const { return compact_ != nullptr; }
+  // The lean copy after compact() (solve_in_place, its permutation), else null.
+  const CompactFactor* compact_factor() const { return compact_.get(); }
   // Column where factorization broke down (valid after NotPositiveDefinite).
   int failed_column() const { return failed_column_; }
   // CHOLMOD's cheap estimate min(diag L) / max(diag L), squared for an LL' factor.

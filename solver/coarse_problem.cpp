@@ -355,6 +355,7 @@ Eigen::VectorXd CoarseProblem::apply_G(const Eigen::VectorXd& v) const {
 }
 
 Eigen::VectorXd CoarseProblem::apply_Gt(const Eigen::VectorXd& a) const {
+  Stopwatch watch(system_.times().mode_products);
   Eigen::VectorXd out = system_.G().transpose() * a;
   for (int r = 0; r < out.size(); ++r)
     if (!active_[r]) out(r) = 0.0;

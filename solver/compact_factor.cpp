@@ -376,23 +376,28 @@ void CompactFactor::backward(const Value* values, double* y, int columns, double
   }
 }
 
+void CompactFactor::solve_in_place(double* y, int columns) const {
+  thread_local std::vector<double> t;
+  if (t.size() < static_cast<std::size_t>(max_rows_)) t.resize(static_cast<std::size_t>(max_rows_));
+  if (single_) {
+    forward(values32_.data(), y, columns, t.data());
+    backward(values32_.data(), y, columns, t.data());
+  } else {
+    forward(values_.data(), y, columns, t.data());
+    backward(values_.data(), y, columns, t.data());
+  }
+}
+
 void CompactFactor::solve(const double* b, double* x, int columns) const {
-  thread_local std::vector<double> work, t;
+  thread_local std::vector<double> work;
   const auto n = static_cast<std::size_t>(size_);
   work.resize(n * static_cast<std::size_t>(columns));
-  t.resize(static_cast<std::size_t>(max_rows_));
   for (int c = 0; c < columns; ++c) {
     const std::size_t offset = static_cast<std::size_t>(c) * n;
     for (std::size_t k = 0; k < n; ++k)
       work[offset + k] = b[offset + static_cast<std::size_t>(permutation_[k])];
   }
-  if (single_) {
-    forward(values32_.data(), work.data(), columns, t.data());
-    backward(values32_.data(), work.data(), columns, t.data());
-  } else {
-    forward(values_.data(), work.data(), columns, t.data());
-    backward(values_.data(), work.data(), columns, t.data());
-  }
+  solve_in_place(work.data(), columns);
   for (int c = 0; c < columns; ++c) {
     const std::size_t offset = static_cast<std::size_t>(c) * n;
     for (std::size_t k = 0; k < n; ++k)

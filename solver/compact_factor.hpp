@@ -65,6 +65,12 @@ class CompactFactor {
   // x = A^-1 b for `columns` column-major right-hand sides, each supernode applied to all
   // of them while it is in the cache. Thread-safe (the workspaces are per thread).
   void solve(const double* b, double* x, int columns = 1) const;
+  // The same on a vector already in the factor's order: y = (P A P')^-1 y, where y's row
+  // k is row permutation()[k] of A's. A caller that gathers its right-hand side straight
+  // into this order (FETI's F and the Dirichlet preconditioner) saves solve()'s two
+  // permuting passes and its copy.
+  void solve_in_place(double* y, int columns = 1) const;
+  const std::vector<int>& permutation() const { return permutation_; }
 
  private:
   // The columns below the diagonal, as given to add() (Row = uint16) or as compressed

@@ -3,6 +3,11 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <vector>
+
+#include <omp.h>
+
+#include "solver/threads.hpp"
 
 namespace fetic::solver {
 namespace {
@@ -123,18 +128,42 @@ double ExactSum::value() const {
   return negative ? -result : result;
 }
 
+namespace {
+
+// The exact sum of a[i] * b[i] over [0, n) (where mask[i] != 0, with a mask), each thread
+// summing one contiguous part and the parts merged: exact, so the same bits for any
+// number of threads (a dual vector at 1e7 unknowns has 870,000 rows, and an iteration
+// takes several scalar products).
+ExactSum dot_by_parts(const double* a, const double* b, long n, const char* mask) {
+  const int threads = threads_for(n);
+  if (threads == 1) {
+    ExactSum sum;
+    for (long i = 0; i < n; ++i)
+      if (!mask || mask[i]) sum.add(a[i] * b[i]);
+    return sum;
+  }
+  std::vector<ExactSum> parts(static_cast<std::size_t>(threads));
+#pragma omp parallel num_threads(threads)
+  {
+    const long count = omp_get_num_threads(), t = omp_get_thread_num();
+    ExactSum sum;  // on the thread's own stack: no cache line shared while adding
+    for (long i = n * t / count; i < n * (t + 1) / count; ++i)
+      if (!mask || mask[i]) sum.add(a[i] * b[i]);
+    parts[static_cast<std::size_t>(t)] = sum;
+  }
+  for (std::size_t t = 1; t < parts.size(); ++t)
+    parts[0].merge(parts[t]);
+  return parts[0];
+}
+
+}  // namespace
+
 ExactSum exact_dot(const double* a, const double* b, long n) {
-  ExactSum sum;
-  for (long i = 0; i < n; ++i)
-    sum.add(a[i] * b[i]);
-  return sum;
+  return dot_by_parts(a, b, n, nullptr);
 }
 
 ExactSum exact_dot(const double* a, const double* b, long n, const char* mask) {
-  ExactSum sum;
-  for (long i = 0; i < n; ++i)
-    if (mask[i]) sum.add(a[i] * b[i]);
-  return sum;
+  return dot_by_parts(a, b, n, mask);
 }
 
 }  // namespace fetic::solver

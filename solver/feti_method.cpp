@@ -115,6 +115,9 @@ ProcessProfile FetiMethod::profile() const {
   p.f_applications = system_.f_applications();
   p.local_seconds = system_.times().local_solves;
   p.coarse_seconds = system_.times().coarse;
+  p.preconditioner_seconds = system_.times().preconditioner;
+  p.mode_product_seconds = system_.times().mode_products;
+  p.range_projection_seconds = system_.times().range_projection;
   p.exchange_seconds = stats.exchange_seconds;
   p.reduction_seconds = stats.reduction_seconds;
   p.gather_seconds = stats.gather_seconds;

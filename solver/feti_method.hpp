@@ -25,11 +25,14 @@ struct ProcessProfile {
   int rows = 0;            // local rows of B
   int shared_rows = 0;     // of which also held by another process
   long long f_applications = 0;
-  double local_seconds = 0.0;      // local solves (F, d, residual, preconditioner)
-  double coarse_seconds = 0.0;     // coarse factorizations and solves
-  double exchange_seconds = 0.0;   // neighbour exchanges
-  double reduction_seconds = 0.0;  // scalar reductions
-  double gather_seconds = 0.0;     // gathers (coarse vectors and matrix)
+  double local_seconds = 0.0;             // local solves and B's gathers (F, d, residual)
+  double coarse_seconds = 0.0;            // coarse factorizations and solves
+  double preconditioner_seconds = 0.0;    // M^-1 applications
+  double mode_product_seconds = 0.0;      // G v and G' a of the coarse projections
+  double range_projection_seconds = 0.0;  // projections onto range(B)
+  double exchange_seconds = 0.0;          // neighbour exchanges
+  double reduction_seconds = 0.0;         // scalar reductions
+  double gather_seconds = 0.0;            // gathers (coarse vectors and matrix)
   CommunicationStats communication;
   int coarse_size = 0;
   long long coarse_nonzeros = 0;

@@ -31,6 +31,19 @@ SparseMatrix extract(const SparseMatrix& K, const std::vector<int>& row_position
 
 using DofKey = std::pair<int, int>;  // (subdomain, subdomain-local DOF)
 
+// K_ib's rows renumbered into the order of K_ii's lean factor `factor` (row k of the
+// factor is interior DOF permutation()[k]). Each column keeps its entries in their stored
+// order, so that K_ib' v sums them as before: the same bits.
+void to_factor_order(SparseMatrix& K_ib, const CompactFactor& factor) {
+  K_ib.makeCompressed();
+  std::vector<int> position(factor.permutation().size());
+  for (int k = 0; k < factor.size(); ++k)
+    position[factor.permutation()[k]] = k;
+  int* rows = K_ib.innerIndexPtr();
+  for (Eigen::Index e = 0; e < K_ib.nonZeros(); ++e)
+    rows[e] = position[rows[e]];
+}
+
 }  // namespace
 
 // Diagonal stiffness of every DOF the local rows' scaling needs: own subdomains' read
@@ -150,11 +163,14 @@ bool FetiPreconditioner::set_up_local(const SubdomainOperator& op, Local& local,
   local.K_ib = extract(op.K, i_position, ni, b_position, nb);
   if (op.K_plus.has_interior_solve()) {
     local.interior = &op.K_plus;
-    return true;
+    local.interior_factor = op.K_plus.compact_interior_factor();
+  } else {
+    const SparseMatrix K_ii = extract(op.K, i_position, ni, i_position, ni);
+    if (local.K_ii.factorize(K_ii, true) != CholmodFactor::Result::Ok) return false;
+    local.K_ii.compact();  // only solved with from here on
+    local.interior_factor = local.K_ii.compact_factor();
   }
-  const SparseMatrix K_ii = extract(op.K, i_position, ni, i_position, ni);
-  if (local.K_ii.factorize(K_ii, true) != CholmodFactor::Result::Ok) return false;
-  local.K_ii.compact();  // only solved with from here on
+  if (local.interior_factor) to_factor_order(local.K_ib, *local.interior_factor);
   return true;
 }
 
@@ -221,14 +237,15 @@ FetiPreconditioner::FetiPreconditioner(const FetiSystem& system, Preconditioner 
       const int i = system.own_index(entry->subdomain);
       const int p = position_in_boundary[i][entry->dof];
       local_[i].incidence.push_back({r, p, entry->value * weight});
+      local_[i].terms.push_back(static_cast<int>(terms_.size()));
       terms_.push_back({local_[i].offset + p, entry->value * weight,
                         previous >= 0 && entry->subdomain != previous});
       previous = entry->subdomain;
     }
   }
   row_first_[space.rows()] = static_cast<int>(terms_.size());
-  x_.resize(offset);
-  y_.resize(offset);
+  boundary_dofs_ = offset;
+  term_values_.resize(terms_.size());
 }
 
 void FetiPreconditioner::add_memory(LocalMemory& m) const {
@@ -236,11 +253,12 @@ void FetiPreconditioner::add_memory(LocalMemory& m) const {
     m.preconditioner_factor += static_cast<double>(local.K_ii.memory_in_use());
     m.preconditioner_blocks += sparse_bytes(local.K_bb) + sparse_bytes(local.K_ib);
     m.index += static_cast<double>(local.boundary.capacity()) * sizeof(int);
-    m.incidence += static_cast<double>(local.incidence.capacity()) * sizeof(Incidence);
+    m.incidence += static_cast<double>(local.incidence.capacity()) * sizeof(Incidence) +
+                   static_cast<double>(local.terms.capacity()) * sizeof(int);
   }
   m.incidence += static_cast<double>(row_first_.capacity()) * sizeof(int) +
                  static_cast<double>(terms_.capacity()) * sizeof(Term);
-  m.workspaces += static_cast<double>(x_.size() + y_.size()) * sizeof(double);
+  m.workspaces += static_cast<double>(term_values_.capacity()) * sizeof(double);
 }
 
 std::size_t FetiPreconditioner::factor_memory() const {
@@ -252,6 +270,7 @@ std::size_t FetiPreconditioner::factor_memory() const {
 
 void FetiPreconditioner::apply(const Eigen::VectorXd& w, const std::vector<char>* mask,
                                Eigen::VectorXd& z) const {
+  Stopwatch watch(system_.times().preconditioner);
   const int rows = static_cast<int>(w.size());
   if (kind_ == Preconditioner::None) {
     z = w;
@@ -261,17 +280,25 @@ void FetiPreconditioner::apply(const Eigen::VectorXd& w, const std::vector<char>
     return;
   }
   const int count = static_cast<int>(local_.size());
-#pragma omp parallel for schedule(dynamic, 4) num_threads(threads_for(4 * x_.size()))
+#pragma omp parallel for schedule(dynamic, 4) num_threads(threads_for(4LL * boundary_dofs_))
   for (int j = 0; j < count; ++j) {
     const Local& local = local_[j];
     const int nb = static_cast<int>(local.boundary.size());
-    auto x = x_.segment(local.offset, nb);
-    auto y = y_.segment(local.offset, nb);
-    x.setZero();
+    thread_local Eigen::VectorXd x, y;  // per thread: no allocation per application
+    x.setZero(nb);
+    y.resize(nb);
     for (const Incidence& in : local.incidence)
       if (!mask || (*mask)[in.row]) x(in.dof) += in.value * w(in.row);
     y.noalias() = local.K_bb * x;
-    if (local.interior || local.K_ii.size() > 0) {
+    if (local.interior_factor) {
+      // K_ib's rows in the factor's order: the right-hand side is formed there and
+      // solved in place (per thread, not per application: no allocation).
+      thread_local Eigen::VectorXd in_factor_order;
+      in_factor_order.resize(local.K_ib.rows());
+      in_factor_order.noalias() = local.K_ib * x;
+      local.interior_factor->solve_in_place(in_factor_order.data());
+      y.noalias() -= local.K_ib.transpose() * in_factor_order;
+    } else if (local.interior || local.K_ii.size() > 0) {
       // Per thread, not per application: no allocation in the iterations.
       thread_local Eigen::VectorXd interior_rhs, interior;
       interior_rhs.resize(local.K_ib.rows());
@@ -283,12 +310,16 @@ void FetiPreconditioner::apply(const Eigen::VectorXd& w, const std::vector<char>
         local.K_ii.solve(interior_rhs.data(), interior.data());
       y.noalias() -= local.K_ib.transpose() * interior;
     }
+    for (std::size_t k = 0; k < local.incidence.size(); ++k)
+      term_values_[static_cast<std::size_t>(local.terms[k])] = y(local.incidence[k].dof);
   }
   z.resize(rows);
 #pragma omp parallel for schedule(static) num_threads(threads_for(rows))
   for (int r = 0; r < rows; ++r) {
+    const int first = row_first_[r];
     z(r) = !mask || (*mask)[r]
-               ? sum_row_terms(terms_.data() + row_first_[r], terms_.data() + row_first_[r + 1], y_)
+               ? sum_row_terms_in_order(terms_.data() + first, terms_.data() + row_first_[r + 1],
+                                        term_values_.data() + first)
                : 0.0;
   }
   system_.space().complete_rows(z);

@@ -47,7 +47,11 @@ class FetiPreconditioner {
     SparseMatrix K_bb, K_ib;
     CholmodFactor K_ii;  // own factor only when K_j's factor cannot solve with K_ii
     const GeneralizedInverse* interior = nullptr;  // K_j's K^+, which also holds K_ii's factor
-    int offset = 0;                                // into the workspaces
+    // K_ii's lean factor, if it has one: K_ib's rows are then renumbered into its order,
+    // so that M^-1 solves in place (CompactFactor::solve_in_place).
+    const CompactFactor* interior_factor = nullptr;
+    int offset = 0;          // of its boundary among all subdomains'
+    std::vector<int> terms;  // per entry of `incidence`: its term among the rows' sums
   };
   // One term of a row's sum: y_(index) * value.
   using Term = RowTerm;
@@ -64,7 +68,10 @@ class FetiPreconditioner {
   std::vector<Local> local_;
   std::vector<int> row_first_;  // per local row, into terms_ (size rows + 1)
   std::vector<Term> terms_;
-  mutable Eigen::VectorXd x_, y_;
+  int boundary_dofs_ = 0;  // of all own subdomains
+  // Each subdomain's S_j B_j' w at its terms of the rows' sums (in the order of terms_),
+  // so that the sums read it in order.
+  mutable std::vector<double> term_values_;
 };
 
 }  // namespace fetic::solver

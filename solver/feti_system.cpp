@@ -109,6 +109,7 @@ void FetiSystem::build_incidence() {
     for (const RowEntry* entry : entries) {
       const int i = own_index_[entry->subdomain];
       subdomains_[i].incidence.push_back({r, entry->dof, entry->value});
+      subdomains_[i].terms.push_back(static_cast<int>(part_entries_.size()));
       part_entries_.push_back({dof_offsets_[i] + entry->dof, entry->value,
                                previous >= 0 && entry->subdomain != previous});
       previous = entry->subdomain;
@@ -117,7 +118,29 @@ void FetiSystem::build_incidence() {
   }
   x_.resize(dofs);
   y_.resize(dofs);
+  boundary_y_.resize(part_entries_.size());
 }
+
+namespace {
+
+// Per entry of B_j, its DOF's row in K_j^+'s lean factor (-1: a fixed DOF); empty when
+// there is no lean factor.
+std::vector<int> factor_positions(const GeneralizedInverse& K_plus,
+                                  const std::vector<Incidence>& incidence) {
+  const CompactFactor* factor = K_plus.compact_factor();
+  if (!factor) return {};
+  std::vector<int> position(static_cast<std::size_t>(K_plus.size()), -1);
+  const std::vector<int>& kept = K_plus.kept_dofs();
+  for (int k = 0; k < factor->size(); ++k)
+    position[kept[factor->permutation()[k]]] = k;
+  std::vector<int> positions;
+  positions.reserve(incidence.size());
+  for (const Incidence& in : incidence)
+    positions.push_back(position[in.dof]);
+  return positions;
+}
+
+}  // namespace
 
 void FetiSystem::factorize_subdomains(bool interior_first, bool single_factors,
                                       bool single_interior) {
@@ -161,6 +184,8 @@ void FetiSystem::factorize_subdomains(bool interior_first, bool single_factors,
       results[i] = op.K_plus.factorize(op.K, op.R);
     }
     singular[i] = results[i] == CholmodFactor::Result::Ok && op.K_plus.rcond() < kSingularRcond;
+    if (results[i] == CholmodFactor::Result::Ok)
+      op.positions = factor_positions(op.K_plus, op.incidence);
   }
   throw_if_stopped("factorizing the subdomains");
   // The lowest failing subdomain of any process is reported, by every process alike.
@@ -225,10 +250,17 @@ void FetiSystem::build_redundant_groups() {
     }
     if (held) groups_.push_back(std::move(local));
   }
+  std::vector<char> in_group(static_cast<std::size_t>(space_.rows()), 0);
+  for (const LocalGroup& group : groups_)
+    for (int r : group.rows)
+      if (r >= 0) {
+        groups_disjoint_ = groups_disjoint_ && !in_group[static_cast<std::size_t>(r)];
+        in_group[static_cast<std::size_t>(r)] = 1;
+      }
 }
 
-void FetiSystem::solve_subdomains(const Eigen::VectorXd* lambda, double s,
-                                  double load_factor) const {
+void FetiSystem::solve_subdomains(const Eigen::VectorXd* lambda, double s, double load_factor,
+                                  bool whole) const {
   Stopwatch watch(times_.local_solves);
   ++subdomain_passes_;
   const Decomposition& d = decomposition_;
@@ -236,8 +268,13 @@ void FetiSystem::solve_subdomains(const Eigen::VectorXd* lambda, double s,
 #pragma omp parallel for schedule(dynamic, 4) num_threads(threads_for(x_.size()))
   for (int i = 0; i < count; ++i) {
     const SubdomainOperator& op = subdomains_[i];
+    if (!whole && load_factor == 0.0 && !op.positions.empty()) {
+      solve_subdomain_fused(i, lambda, s);
+      continue;
+    }
     const Subdomain& sub = d.subdomains[op.index];
     auto x = x_.segment(dof_offsets_[i], sub.dof_count);
+    auto y = y_.segment(dof_offsets_[i], sub.dof_count);
     if (load_factor != 0.0)
       x = load_factor * sub.load;
     else
@@ -247,16 +284,53 @@ void FetiSystem::solve_subdomains(const Eigen::VectorXd* lambda, double s,
         x(in.dof) += s * in.value * (*lambda)(in.row);
     // K^+ 0 = 0: a subdomain the vector does not touch needs no solve (FETI-DP's contact
     // coarse space applies F to columns that touch two clusters).
-    if (x.isZero(0.0)) {
-      y_.segment(dof_offsets_[i], sub.dof_count).setZero();
-      continue;
-    }
-    op.K_plus.apply(x_.data() + dof_offsets_[i], y_.data() + dof_offsets_[i]);
+    if (x.isZero(0.0))
+      y.setZero();
+    else
+      op.K_plus.apply(x.data(), y.data());
+    for (std::size_t k = 0; k < op.incidence.size(); ++k)
+      boundary_y_[static_cast<std::size_t>(op.terms[k])] = y(op.incidence[k].dof);
   }
 }
 
+// The same numbers as the general path in solve_subdomains, in the same order: each
+// entry of the factor's vector sums its terms of B_j' lambda from zero, the solve is
+// CompactFactor's, and a fixed DOF's value is zero.
+void FetiSystem::solve_subdomain_fused(int i, const Eigen::VectorXd* lambda, double s) const {
+  const SubdomainOperator& op = subdomains_[i];
+  const std::size_t entries = op.incidence.size();
+  // Per thread, not per subdomain: no allocation in the iterations.
+  thread_local std::vector<double> work;
+  work.resize(static_cast<std::size_t>(op.K_plus.compact_factor()->size()));
+  std::fill(work.begin(), work.end(), 0.0);
+  bool touched = false;
+  if (lambda)
+    for (std::size_t k = 0; k < entries; ++k) {
+      const Incidence& in = op.incidence[k];
+      const double term = s * in.value * (*lambda)(in.row);
+      touched = touched || term != 0.0;
+      if (op.positions[k] >= 0) work[static_cast<std::size_t>(op.positions[k])] += term;
+    }
+  if (touched) op.K_plus.compact_factor()->solve_in_place(work.data());
+  for (std::size_t k = 0; k < entries; ++k)
+    boundary_y_[static_cast<std::size_t>(op.terms[k])] =
+        op.positions[k] >= 0 ? work[static_cast<std::size_t>(op.positions[k])] : 0.0;
+}
+
 void FetiSystem::gather_rows(Eigen::VectorXd& out) const {
-  sum_rows(y_, out);
+  const int rows = space_.rows();
+  out.resize(rows);
+  {
+    Stopwatch watch(times_.local_solves);
+#pragma omp parallel for schedule(static) num_threads(threads_for(rows))
+    for (int r = 0; r < rows; ++r) {
+      const int first = row_parts_[r].first;
+      out(r) = sum_row_terms_in_order(part_entries_.data() + first,
+                                      part_entries_.data() + row_parts_[r].end,
+                                      boundary_y_.data() + first);
+    }
+  }
+  space_.complete_rows(out);
 }
 
 void FetiSystem::apply_B(const Eigen::VectorXd& u, Eigen::VectorXd& out) const {
@@ -336,6 +410,7 @@ Eigen::VectorXd FetiSystem::own_modes_product(const SparseMatrix& M, const Eigen
                                               const std::vector<char>* mask) const {
   // The own subdomains' modes of M v; each sums its rows in increasing global order, the
   // same for any number of processes (a neighbour's modes are left to its process).
+  Stopwatch watch(times_.mode_products);
   Eigen::VectorXd local = Eigen::VectorXd::Zero(decomposition_.total_modes);
   for (int r = 0; r < M.outerSize(); ++r) {
     if (mask && !(*mask)[r]) continue;
@@ -355,7 +430,7 @@ Eigen::VectorXd FetiSystem::own_modes_product(const SparseMatrix& M, const Eigen
 Eigen::VectorXd FetiSystem::subdomain_displacements(const Eigen::VectorXd& lambda,
                                                     const Eigen::VectorXd& alpha,
                                                     double load_factor) const {
-  solve_subdomains(&lambda, -1.0, load_factor);
+  solve_subdomains(&lambda, -1.0, load_factor, true);
   Eigen::VectorXd u = y_;
   for (size_t i = 0; i < subdomains_.size(); ++i) {
     const Subdomain& sub = decomposition_.subdomains[subdomains_[i].index];
@@ -408,16 +483,34 @@ void FetiSystem::project_onto_range_of_B(Eigen::VectorXd& v) const {
   // Every process takes part when any has redundant rows (the exchange below is collective
   // among neighbours), also one that holds none of them.
   if (decomposition_.redundant_groups.empty()) return;
+  Stopwatch watch(times_.range_projection);
   // Each row's new value (s_i - s_j) / m, s_c = B_g' v for copy c, is the sum of one part
   // per end: s_i / m from the process of copy i, -s_j / m from that of copy j. Rows of no
   // group keep their value (on the owning process; the others add zero).
+  // In one process v is projected in place: no copy of it and back (a group reads its
+  // rows before it writes them, and no row is in two groups).
   const bool distributed = communicator().distributed();
+  if (!distributed && groups_disjoint_) {
+    project_groups(v, v);
+    return;
+  }
   Eigen::VectorXd partial = v;
   if (distributed)
     for (int r = 0; r < space_.rows(); ++r)
       if (!space_.owned(r)) partial(r) = 0.0;
-  double copy_sum[64];  // per copy (a node has at most four copies)
-  for (const LocalGroup& group : groups_) {
+  project_groups(v, partial);
+  if (distributed) space_.complete_rows(partial);
+  v = partial;
+}
+
+// partial(r) = the projection's part of this process for each row r of a group, from v
+// (the groups on both threads: each writes only its own rows).
+void FetiSystem::project_groups(const Eigen::VectorXd& v, Eigen::VectorXd& partial) const {
+  const int count = static_cast<int>(groups_.size());
+#pragma omp parallel for schedule(static) num_threads(threads_for(8LL * count))
+  for (int g = 0; g < count; ++g) {
+    const LocalGroup& group = groups_[g];
+    double copy_sum[64];  // per copy (a node has at most four copies)
     const int m = std::min(group.copies, 64);
     std::fill(copy_sum, copy_sum + m, 0.0);
     for (size_t k = 0; k < group.rows.size(); ++k) {
@@ -437,8 +530,6 @@ void FetiSystem::project_onto_range_of_B(Eigen::VectorXd& v) const {
                                                         : (group.own_end[i] ? from_i : from_j);
     }
   }
-  if (distributed) space_.complete_rows(partial);
-  v = partial;
 }
 
 void FetiSystem::release_stiffness() {
@@ -456,7 +547,8 @@ LocalMemory FetiSystem::memory() const {
     m.preconditioner_factor += static_cast<double>(op.K_plus.interior_memory());
     m.index += static_cast<double>(op.K_plus.index_memory());
     m.rigid_modes += static_cast<double>(op.R.size()) * sizeof(double);
-    m.incidence += static_cast<double>(op.incidence.capacity()) * sizeof(Incidence);
+    m.incidence += static_cast<double>(op.incidence.capacity()) * sizeof(Incidence) +
+                   static_cast<double>(op.positions.capacity() + op.terms.capacity()) * sizeof(int);
   }
   for (const SubdomainOperator& op : subdomains_)
     m.loads +=
@@ -465,7 +557,8 @@ LocalMemory FetiSystem::memory() const {
                  static_cast<double>(part_entries_.capacity()) * sizeof(PartEntry);
   m.rigid_modes += sparse_bytes(G_) + sparse_bytes(G_abs_);
   m.index += static_cast<double>(own_index_.capacity() + dof_offsets_.capacity()) * sizeof(int);
-  m.workspaces += static_cast<double>(x_.size() + y_.size()) * sizeof(double);
+  m.workspaces +=
+      static_cast<double>(x_.size() + y_.size() + boundary_y_.capacity()) * sizeof(double);
   return m;
 }
 

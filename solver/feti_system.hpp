@@ -44,12 +44,20 @@ struct SubdomainOperator {
   Eigen::MatrixXd R;  // rigid-body modes, dof_count x mode_count
   GeneralizedInverse K_plus;
   std::vector<Incidence> incidence;  // the entries of B_j, by row
+  // Per entry of `incidence`, for F's fused pass (FetiSystem::solve_subdomains): where
+  // its DOF is in the vector K_plus's lean factor solves in place (-1: a fixed DOF), and
+  // its term among the local rows' sums. No positions: K_plus solves through apply().
+  std::vector<int> positions;
+  std::vector<int> terms;
 };
 
 // Time spent in each part of the operators (for the benchmark's split of an iteration).
 struct OperatorTimes {
-  double local_solves = 0.0;  // K_j^+ applications (and the preconditioner's local work)
-  double coarse = 0.0;        // coarse problem: factorizations and solves
+  double local_solves = 0.0;      // K_j^+ applications and B's gathers (F, d, the residual)
+  double coarse = 0.0;            // coarse problem: factorizations and solves
+  double preconditioner = 0.0;    // M^-1 applications (their local solves and B products)
+  double mode_products = 0.0;     // G v and G' a of the coarse projections
+  double range_projection = 0.0;  // project_onto_range_of_B
 };
 
 // Wall time of the set-up's parts (FetiSystem's own; the preconditioner and the coarse
@@ -147,9 +155,15 @@ class FetiSystem {
   void release_stiffness();
 
  private:
-  // Y_j = K_j^+ (t f_j + s B_j' lambda) for every own subdomain, into y_ (concatenated).
-  void solve_subdomains(const Eigen::VectorXd* lambda, double s, double load_factor) const;
-  // out_r = sum over B's entries of row r of value * y_(subdomain, dof), all processes.
+  // Y_j = K_j^+ (t f_j + s B_j' lambda) for every own subdomain: its values at B's
+  // entries into boundary_y_ and, with `whole` (or without a lean factor), all of it into
+  // y_ (concatenated).
+  void solve_subdomains(const Eigen::VectorXd* lambda, double s, double load_factor,
+                        bool whole = false) const;
+  // Own subdomain i's part of it through the lean factor in one pass: B_i' lambda
+  // gathered straight into the factor's order, the solve, B's values read out of it.
+  void solve_subdomain_fused(int i, const Eigen::VectorXd* lambda, double s) const;
+  // out_r = sum over B's entries of row r of value * Y(subdomain, dof), all processes.
   void gather_rows(Eigen::VectorXd& out) const;
   void build_incidence();
   void factorize_subdomains(bool interior_first, bool single_factors, bool single_interior);
@@ -160,6 +174,7 @@ class FetiSystem {
   void sum_rows(const Eigen::VectorXd& values, Eigen::VectorXd& out) const;
   void build_G();
   void build_redundant_groups();
+  void project_groups(const Eigen::VectorXd& v, Eigen::VectorXd& partial) const;
 
   // Per local row, the entries on own subdomains, grouped by subdomain in increasing order.
   struct RowPart {
@@ -187,10 +202,12 @@ class FetiSystem {
   std::vector<RowPart> row_parts_;
   std::vector<PartEntry> part_entries_;
   std::vector<LocalGroup> groups_;
+  bool groups_disjoint_ = true;  // no local row in two groups
   Eigen::VectorXd c_;
   SparseMatrix G_;
   SparseMatrix G_abs_;
-  mutable Eigen::VectorXd x_, y_;  // workspaces over the own subdomains' DOFs
+  mutable Eigen::VectorXd x_, y_;           // workspaces over the own subdomains' DOFs
+  mutable std::vector<double> boundary_y_;  // Y at B's entries, per term of part_entries_
   mutable OperatorTimes times_;
   mutable long long f_applications_ = 0;
   mutable long long subdomain_passes_ = 0;

@@ -55,6 +55,15 @@ class GeneralizedInverse {
 
   // y = K^+ x for `columns` column-major right-hand sides. Not reentrant.
   void apply(const double* x, double* y, int columns = 1) const;
+  // The lean copies of the factors (null where CHOLMOD keeps its own), for callers that
+  // solve in place in the factor's order (CompactFactor::solve_in_place) and so skip
+  // apply()'s gathers and scatters: K's, whose row k is DOF
+  // kept_dofs()[permutation()[k]] (the fixed DOFs, whose rows of K^+ are zero, are not
+  // among them), and K_ii's, whose row k is interior DOF permutation()[k] (interior DOFs
+  // numbered in increasing order).
+  const CompactFactor* compact_factor() const { return factor_.compact_factor(); }
+  const std::vector<int>& kept_dofs() const { return kept_; }
+  const CompactFactor* compact_interior_factor() const { return interior_factor_.compact_factor(); }
   Eigen::VectorXd apply(const Eigen::VectorXd& x) const;
 
  private:

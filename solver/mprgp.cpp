@@ -9,6 +9,7 @@
 
 #include "solver/boundedness.hpp"
 #include "solver/interruption.hpp"
+#include "solver/stopwatch.hpp"
 
 namespace fetic::solver {
 namespace {
@@ -64,7 +65,9 @@ Eigen::VectorXd Mprgp::to_multipliers(const Eigen::VectorXd& x) const {
 }
 
 Eigen::VectorXd Mprgp::to_gradient(const Eigen::VectorXd& w) const {
-  return w - system_.G().transpose() * coarse_.solve(coarse_.apply_G(w));
+  const Eigen::VectorXd a = coarse_.solve(coarse_.apply_G(w));
+  Stopwatch watch(system_.times().mode_products);
+  return w - system_.G().transpose() * a;
 }
 
 // ||H|| by the power method on the feasible subspace (PERMON: relative change 1e-4, at

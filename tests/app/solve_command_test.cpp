@@ -248,6 +248,12 @@ TEST_CASE("solve --profile: per process counts, and MPRGP's iterations by step k
     // The subdomains' DOFs: the scene's 340 plus a copy of every interface node's.
     CHECK(process["unknowns"].get<double>() > 340.0);
     CHECK(process["f_applications"].get<double>() >= profile["iterations"].get<double>());
+    // The solve's time by part (the Dirichlet preconditioner is applied at least once
+    // per iteration of each method).
+    for (const char* part : {"local_seconds", "coarse_seconds", "preconditioner_seconds",
+                             "mode_product_seconds", "range_projection_seconds"})
+      CHECK(process[part].get<double>() >= 0.0);
+    CHECK(process["preconditioner_seconds"].get<double>() > 0.0);
     // The Lanczos estimate of the longest CG run: Ritz values of an SPD operator.
     const nlohmann::json& condition = profile["condition_estimate"];
     CHECK(condition["cg_steps"].get<int>() > 0);
