@@ -70,8 +70,13 @@ void JsonText::parallel_items(std::size_t count, int depth, ItemWriter item, voi
       }
       runs_[r] = text.take();
     }
+    // Straight to the stream, not copied once more through buffer_.
+    flush();
     for (std::size_t r = 0; r < used; ++r)
-      raw(runs_[r]);
+      if (out_)
+        out_->write(runs_[r].data(), static_cast<std::streamsize>(runs_[r].size()));
+      else
+        buffer_.append(runs_[r]);
   }
   newline(depth);
   raw("]");
