@@ -68,6 +68,26 @@ CoarseProblem::OwnPattern CoarseProblem::own_pattern(const SubdomainOperator& op
   return part;
 }
 
+// Appends one own subdomain's part: its values after those before, its products and rows.
+void CoarseProblem::join_pattern(const OwnPattern& part, std::vector<int>& pattern) {
+  const int value_offset = static_cast<int>(own_values_.size());
+  const int product_offset = static_cast<int>(products_.size());
+  for (const auto& [a, b] : part.entries) {
+    pattern.push_back(a);
+    pattern.push_back(b);
+  }
+  own_values_.resize(own_values_.size() + part.entries.size(), 0.0);
+  for (Product product : part.products) {
+    product.value += value_offset;
+    products_.push_back(product);
+  }
+  for (RowProducts rp : part.rows) {
+    rp.first += product_offset;
+    rp.end += product_offset;
+    row_products_.push_back(rp);
+  }
+}
+
 // The block rows of G G' this process computes: for own subdomain j, the sum over the
 // rows r touching j of g_r(modes of j) g_r', in increasing r (the same order on every
 // number of processes). Values are laid out per own subdomain, entries (a, b) sorted.
@@ -79,36 +99,27 @@ void CoarseProblem::build_pattern() {
   const Communicator& comm = s.communicator();
   const auto& ops = s.subdomains();
   const int count = static_cast<int>(ops.size());
-
-  std::vector<OwnPattern> parts(count);
-  long long work = 0;
-  for (const SubdomainOperator& op : ops)
-    work += static_cast<long long>(op.incidence.size()) * 10;
-#pragma omp parallel for schedule(dynamic, 16) num_threads(threads_for(work))
-  for (int i = 0; i < count; ++i) {
-    if (stop_requested()) continue;  // Ctrl-C: skip the rest (no throw inside OpenMP)
-    parts[i] = own_pattern(ops[i], d.subdomains[ops[i].index]);
-  }
-  throw_if_stopped("assembling the coarse problem");
+  // In blocks of subdomains, each joined and freed before the next is found: every part
+  // at once held the products twice where the set-up's memory peaks (+16 MB at 984,900
+  // unknowns).
+  constexpr int kBlock = 128;
+  std::vector<OwnPattern> parts(static_cast<size_t>(std::min(count, kBlock)));
   std::vector<int> pattern;  // (a, b) pairs of this process' values, in value order
-  for (OwnPattern& part : parts) {
-    const int value_offset = static_cast<int>(own_values_.size());
-    const int product_offset = static_cast<int>(products_.size());
-    for (const auto& [a, b] : part.entries) {
-      pattern.push_back(a);
-      pattern.push_back(b);
+  for (int first = 0; first < count; first += kBlock) {
+    const int last = std::min(count, first + kBlock);
+    long long work = 0;
+    for (int i = first; i < last; ++i)
+      work += static_cast<long long>(ops[i].incidence.size()) * 10;
+#pragma omp parallel for schedule(dynamic, 4) num_threads(threads_for(work))
+    for (int i = first; i < last; ++i) {
+      if (stop_requested()) continue;  // Ctrl-C: skip the rest (no throw inside OpenMP)
+      parts[i - first] = own_pattern(ops[i], d.subdomains[ops[i].index]);
     }
-    own_values_.resize(own_values_.size() + part.entries.size(), 0.0);
-    for (Product product : part.products) {
-      product.value += value_offset;
-      products_.push_back(product);
+    throw_if_stopped("assembling the coarse problem");
+    for (int i = first; i < last; ++i) {
+      join_pattern(parts[i - first], pattern);
+      parts[i - first] = OwnPattern();
     }
-    for (RowProducts rp : part.rows) {
-      rp.first += product_offset;
-      rp.end += product_offset;
-      row_products_.push_back(rp);
-    }
-    part = OwnPattern();  // freed as it is joined
   }
 
   // The whole pattern, gathered once; the lower triangle becomes the matrix.

@@ -124,6 +124,7 @@ class CoarseProblem {
     std::vector<Product> products;  // value: into entries
   };
   OwnPattern own_pattern(const SubdomainOperator& op, const Subdomain& sub) const;
+  void join_pattern(const OwnPattern& part, std::vector<int>& pattern);
   std::vector<RowProducts> row_products_;  // in increasing local row, grouped by own subdomain
   std::vector<Product> products_;
   std::vector<double> own_values_;
