@@ -9,6 +9,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <thread>
 
 #include "app/commands.hpp"
 #include "app/exit_codes.hpp"
@@ -26,11 +27,13 @@
 #include "app/solve_outputs.hpp"
 #include "app/solve_profile.hpp"
 #include "scenes/scene_error.hpp"
+#include "solver/element_results.hpp"
 #include "solver/feti_method.hpp"
 #include "solver/interruption.hpp"
 #include "solver/load_sweep.hpp"
 #include "solver/method.hpp"
 #include "solver/stopwatch.hpp"
+#include "solver/threads.hpp"
 
 namespace fetic::app {
 namespace {
@@ -60,18 +63,34 @@ std::string count_of(long long n, const char* singular, const char* plural) {
   return std::to_string(n) + " " + (n == 1 ? singular : plural);
 }
 
+// The largest displacement (the first node that has it): strut by strut on the process'
+// threads, one strut's nodes at a time (the whole model's were 155 MB at 1e7).
+struct Largest {
+  double size = 0.0;
+  int strut = -1, node = -1;
+};
+Largest largest_displacement(const solver::Model& model, const solver::Snapshot& state) {
+  const solver::StrutResults results(model, state);
+  std::vector<Largest> per_strut(model.struts.size());
+  const int threads = solver::threads_for(model.dof_count());
+#pragma omp parallel for num_threads(threads) schedule(dynamic)
+  for (size_t s = 0; s < per_strut.size(); ++s) {
+    const std::vector<solver::Vec2> u = results.displacements(static_cast<int>(s));
+    for (size_t n = 0; n < u.size(); ++n)
+      if (per_strut[s].node < 0 || u[n].norm() > per_strut[s].size)
+        per_strut[s] = {u[n].norm(), static_cast<int>(s), static_cast<int>(n)};
+  }
+  Largest largest;
+  for (const Largest& strut : per_strut)
+    if (strut.node >= 0 && (largest.strut < 0 || strut.size > largest.size)) largest = strut;
+  return largest;
+}
+
 void print_summary(std::ostream& out, const solver::Model& model, const solver::Snapshot& state,
                    const RunInfo& info) {
-  const auto displacements = solver::strut_displacements(model, state);
-  double largest = 0.0;
-  int largest_strut = -1, largest_node = -1;
-  for (size_t s = 0; s < displacements.size(); ++s)
-    for (size_t n = 0; n < displacements[s].size(); ++n)
-      if (largest_strut < 0 || displacements[s][n].norm() > largest) {
-        largest = displacements[s][n].norm();
-        largest_strut = static_cast<int>(s);
-        largest_node = static_cast<int>(n);
-      }
+  const Largest found = largest_displacement(model, state);
+  const double largest = found.size;
+  const int largest_strut = found.strut, largest_node = found.node;
   out << "scene        " << info.scene_path << " (" << scenes::to_string(model.kind) << ", "
       << count_of(static_cast<long long>(model.struts.size()), "strut", "struts") << ", "
       << count_of(static_cast<long long>(model.contact_labels.size()), "contact", "contacts")
@@ -248,7 +267,42 @@ struct SetUp {
   std::map<double, std::vector<std::vector<solver::Vec2>>> references;  // --reference
   RunInfo info;
   ProfileRun profile;
+  bool profiled = false;  // profile holds the solve's figures
+  std::thread releasing;  // frees the method while the outputs are written
+
+  SetUp() = default;
+  SetUp(const SetUp&) = delete;
+  SetUp& operator=(const SetUp&) = delete;
+  ~SetUp() {
+    if (releasing.joinable()) releasing.join();
+  }
 };
+
+// After the sweep the method is needed only for its profile, taken here. In one process it
+// is then freed on another thread while the outputs are written: the subdomain factors
+// are most of the process (6.5 GB of the 1e7 scene), and freeing them took about a second
+// after the summary (docs/BENCHMARKS.md, "Outputs at 1e7"); the outputs are then also
+// written beside less memory. Under mpirun the method stays until the end: its
+// destruction could meet the collectives of the main thread.
+void take_profile(const std::vector<solver::SweepStep>& steps, SetUp& setup, bool distributed) {
+  if (setup.dual) {
+    ProfileRun& profile = setup.profile;
+    profile.after_solve = setup.dual->profile();
+    profile.setup_seconds = setup.info.setup_seconds;
+    profile.solve_seconds = setup.info.solve_seconds;
+    profile.iterations = steps.empty() ? 0 : steps.back().state.iteration;
+    if (const auto* mprgp = dynamic_cast<const solver::Mprgp*>(setup.dual)) {
+      profile.mprgp_steps = mprgp->counts();
+      profile.setup_f_applications = mprgp->setup_f_applications();
+      profile.contact_coarse_columns = mprgp->contact_columns();
+    }
+    profile.condition = setup.dual->condition_estimate();
+    setup.profiled = true;
+  }
+  if (distributed) return;
+  setup.dual = nullptr;
+  setup.releasing = std::thread([method = std::move(setup.method)]() mutable { method.reset(); });
+}
 
 int set_up(const SolveArgs& args, const solver::Model& model, const RankPolicy& ranks,
            SetUp& setup) {
@@ -410,6 +464,7 @@ int write_outputs(const SolveArgs& args, const std::vector<solver::SweepStep>& s
                   RankPolicy& ranks, SolveOutputs& outputs, SolveMonitor& monitor,
                   PendingOutputs& pending, bool was_interrupted) {
   int status = kExitOk;
+  take_profile(steps, setup, ranks.distributed());
   // Interrupted under mpirun with outputs to write: rank 0 says so before it writes.
   const int signal = was_interrupted ? ranks.signal() : 0;  // collective
   const bool announce = was_interrupted && ranks.distributed() && outputs.writes_anything();
@@ -434,20 +489,9 @@ int write_outputs(const SolveArgs& args, const std::vector<solver::SweepStep>& s
     } catch (const OutputError& error) {
       keep_first(error);
     }
-  if (!args.profile.empty() && setup.dual) {
-    ProfileRun& profile = setup.profile;
-    profile.after_solve = setup.dual->profile();
-    profile.setup_seconds = setup.info.setup_seconds;
-    profile.solve_seconds = setup.info.solve_seconds;
-    profile.iterations = steps.empty() ? 0 : steps.back().state.iteration;
-    if (const auto* mprgp = dynamic_cast<const solver::Mprgp*>(setup.dual)) {
-      profile.mprgp_steps = mprgp->counts();
-      profile.setup_f_applications = mprgp->setup_f_applications();
-      profile.contact_coarse_columns = mprgp->contact_columns();
-    }
-    profile.condition = setup.dual->condition_estimate();
+  if (!args.profile.empty() && setup.profiled) {
     try {
-      write_solve_profile(args.profile, ranks.processes(), profile);
+      write_solve_profile(args.profile, ranks.processes(), setup.profile);
     } catch (const OutputError& error) {
       if (ranks.writes()) keep_first(error);
     }

@@ -10,7 +10,9 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
+#include <future>
 #include <iostream>
+#include <memory>
 #include <mutex>
 #include <set>
 #include <vector>
@@ -143,36 +145,70 @@ std::string write_all(int fd, const char* data, size_t size, bool& interrupted_o
   return "";
 }
 
-// An std::streambuf over a file descriptor that keeps the first failure.
+// An std::streambuf over a file descriptor that keeps the first failure. A full buffer is
+// written by another thread while the next one fills (two buffers of 1 MiB): the kernel's
+// copy into the page cache (copy_folio_from_iter, about 0.5 GB/s on this machine's VM)
+// then overlaps the formatting and compressing of the next bytes instead of following it
+// - 3 s of the 7.5 s that writing the 1.6 GB result file of a 1e7-unknown solve took
+// (docs/BENCHMARKS.md, "Outputs at 1e7"). Bytes arrive in order: one write at a time.
 class FdBuffer : public std::streambuf {
  public:
-  explicit FdBuffer(int fd) : fd_(fd) { setp(buffer_.data(), buffer_.data() + buffer_.size()); }
+  // The buffers are not cleared: a small output makes only the pages it fills resident.
+  explicit FdBuffer(int fd) : fd_(fd) {
+    for (std::unique_ptr<char[]>& buffer : buffers_)
+      buffer.reset(new char[kSize]);
+    setp(buffers_[0].get(), buffers_[0].get() + kSize);
+  }
+  ~FdBuffer() override { wait(); }
+  FdBuffer(const FdBuffer&) = delete;
+  FdBuffer& operator=(const FdBuffer&) = delete;
+  // Valid after sync() (the stream's flush), which waits for every byte.
   const std::string& error() const { return error_; }
   bool interrupted() const { return interrupted_; }
 
  protected:
   int_type overflow(int_type c) override {
-    if (!drain()) return traits_type::eof();
+    if (!hand_over()) return traits_type::eof();
     if (!traits_type::eq_int_type(c, traits_type::eof())) {
       *pptr() = traits_type::to_char_type(c);
       pbump(1);
     }
     return traits_type::not_eof(c);
   }
-  int sync() override { return drain() ? 0 : -1; }
+  int sync() override {
+    const bool handed = hand_over();
+    wait();
+    return handed && error_.empty() ? 0 : -1;
+  }
 
  private:
-  bool drain() {
-    const size_t pending = static_cast<size_t>(pptr() - pbase());
-    setp(buffer_.data(), buffer_.data() + buffer_.size());
+  static constexpr size_t kSize = size_t{1} << 20;
+
+  // Waits for the write in flight; its failure becomes error_.
+  void wait() {
+    if (!writing_.valid()) return;
+    writing_.get();
+  }
+  // Starts writing the filled buffer on the writer thread and fills the other meanwhile.
+  bool hand_over() {
+    const size_t filled = static_cast<size_t>(pptr() - pbase());
+    wait();
+    const char* data = pbase();
+    current_ = 1 - current_;
+    setp(buffers_[current_].get(), buffers_[current_].get() + kSize);
     if (!error_.empty()) return false;
-    error_ = write_all(fd_, buffer_.data(), pending, interrupted_);
-    return error_.empty();
+    if (filled > 0)
+      writing_ = std::async(std::launch::async, [this, data, filled] {
+        error_ = write_all(fd_, data, filled, interrupted_);
+      });
+    return true;
   }
 
   int fd_;
-  std::array<char, 1 << 16> buffer_{};
-  std::string error_;
+  std::array<std::unique_ptr<char[]>, 2> buffers_;
+  int current_ = 0;
+  std::future<void> writing_;  // the write of the other buffer, while it runs
+  std::string error_;          // written by the writer thread, read after wait()
   bool interrupted_ = false;
 };
 

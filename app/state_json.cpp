@@ -51,12 +51,13 @@ void write_strut(JsonText& text, const solver::Model& model, int s,
   const std::vector<solver::Vec2> u = results.displacements(s);
   const solver::StrutElements elements = results.elements(s);
   const auto points = [&](const std::vector<solver::Vec2>& list, int inner) {
-    text.array(mesh.nodes.size(), inner, [&](size_t n, int at) {
-      text.array(2, at, [&](size_t k, int) { text.number(list[n][static_cast<int>(k)]); });
+    text.parallel_array(mesh.nodes.size(), inner, [&](JsonText& out, size_t n, int at) {
+      out.array(2, at, [&](size_t k, int) { out.number(list[n][static_cast<int>(k)]); });
     });
   };
   const auto numbers = [&](const auto& list, int inner) {
-    text.array(list.size(), inner, [&](size_t k, int) { text.number(list[k]); });
+    text.parallel_array(list.size(), inner,
+                        [&](JsonText& out, size_t k, int) { out.number(list[k]); });
   };
   const int inner = depth + 1;
   text.raw("{");
@@ -68,9 +69,10 @@ void write_strut(JsonText& text, const solver::Model& model, int s,
   points(u, inner);
   text.member("elements", inner, false);
   const auto per = static_cast<size_t>(elements.nodes_per_element);
-  text.array(static_cast<size_t>(elements.element_count()), inner, [&](size_t e, int at) {
-    text.array(per, at, [&](size_t a, int) { text.number(elements.connectivity[e * per + a]); });
-  });
+  text.parallel_array(
+      static_cast<size_t>(elements.element_count()), inner, [&](JsonText& out, size_t e, int at) {
+        out.array(per, at, [&](size_t a, int) { out.number(elements.connectivity[e * per + a]); });
+      });
   text.member("element_subdomains", inner, false);
   numbers(elements.subdomain, inner);
   text.member("stress", inner, false);

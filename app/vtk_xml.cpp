@@ -83,8 +83,20 @@ class Base64Writer {
 // depend on the threads), at zlib's fastest level: on a result's float arrays level 1
 // compressed 4.8 times faster than the default level 6 to files 1.4% larger (level 6 was
 // most of writing a 1e7-unknown result: 47 s of a 60 s target on a loaded machine).
+// An array whose first block level 1 cannot shrink below kStoreAbove of its size is
+// stored (zlib level 0: the same zlib streams, copied instead of searched): a plane
+// result's stresses shrink only to 0.86-0.93 at 27-33 MB/s, where storing runs at GB/s -
+// they were 60% of the compressing time for 5% of the file (docs/BENCHMARKS.md, "Outputs
+// at 1e7"). Which level an array gets depends on its values alone, not on the threads.
 class ZlibBlocks {
  public:
+  // `bytes`: the array's size. Room for its compressed blocks is reserved at once (only
+  // the pages written become resident): a held array grown by doubling was copied at each
+  // step and, at the last one, held twice - the 1e7 displacements' 140 MB among them.
+  explicit ZlibBlocks(std::size_t bytes) {
+    const std::size_t blocks = (bytes + kBlockSize - 1) / kBlockSize;
+    compressed_.reserve(blocks * compressBound(static_cast<uLong>(kBlockSize)));
+  }
   void write(const std::uint8_t* data, std::size_t size) {
     append_in_chunks(pending_, kBatch * kBlockSize, data, size, [this] { compress_pending(); });
   }
@@ -105,7 +117,21 @@ class ZlibBlocks {
  private:
   static constexpr std::size_t kBatch = 64;  // 2 MB of values: enough for two threads
 
+  static constexpr double kStoreAbove = 0.75;
+
+  // Level 1, or 0 when the array's first block does not shrink below kStoreAbove.
+  void choose_level() {
+    const std::size_t size = std::min(kBlockSize, pending_.size());
+    uLongf length = compressBound(static_cast<uLong>(size));
+    std::vector<std::uint8_t> probe(length);
+    const bool shrinks = compress2(probe.data(), &length, pending_.data(), static_cast<uLong>(size),
+                                   Z_BEST_SPEED) == Z_OK &&
+                         static_cast<double>(length) <= kStoreAbove * static_cast<double>(size);
+    level_ = shrinks ? Z_BEST_SPEED : Z_NO_COMPRESSION;
+  }
+
   void compress_pending() {
+    if (level_ < 0) choose_level();
     const std::size_t blocks = (pending_.size() + kBlockSize - 1) / kBlockSize;
     std::vector<std::vector<std::uint8_t>> out(blocks);
     bool failed = false;
@@ -117,7 +143,7 @@ class ZlibBlocks {
       uLongf length = compressBound(static_cast<uLong>(size));
       out[b].resize(length);
       failed = failed || compress2(out[b].data(), &length, pending_.data() + from,
-                                   static_cast<uLong>(size), Z_BEST_SPEED) != Z_OK;
+                                   static_cast<uLong>(size), level_) != Z_OK;
       out[b].resize(length);
     }
     if (failed) throw std::runtime_error("zlib could not compress a data array");
@@ -133,6 +159,7 @@ class ZlibBlocks {
   std::vector<std::uint8_t> pending_, compressed_;
   std::vector<std::uint64_t> sizes_;
   std::uint64_t last_ = 0;
+  int level_ = -1;  // not chosen yet
 };
 
 template <typename T>
@@ -174,7 +201,7 @@ void write_values(std::ostream& out, const std::function<void(const VtkSink<T>&)
     text.flush();
     out << '\n';
   } else {
-    ZlibBlocks blocks;
+    ZlibBlocks blocks(count * sizeof(T));
     make([&](const T* values, std::size_t n) {
       blocks.write(reinterpret_cast<const std::uint8_t*>(values), n * sizeof(T));
       made += n;

@@ -219,19 +219,37 @@ std::size_t supernodal_nonzeros(const cholmod_factor* L) {
   return count;
 }
 
-// The same for a simplicial factor (its columns start with the diagonal). The compact
-// copy's column arrays are then reserved at their exact size: with L->nzmax they were
-// reallocated into fresh pages (page faults are most of the FETI set-up's copying here,
-// docs/BENCHMARKS.md); finish() then moves the columns into supernodes.
-std::size_t simplicial_nonzeros(const cholmod_factor* L) {
-  const int* p = static_cast<const int*>(L->p);
+// A packed simplicial LL' factor's explicit zeros dropped in place (its arrays are
+// CHOLMOD's, freed right after the compact copy is made), and the rows checked: each
+// column starts with its diagonal, then rows increasing below it. The compact copy then
+// reads the columns where they are (CompactFactor::Columns) - no copy of them, no
+// per-entry add(): page faults on fresh memory are most of the FETI set-up's copying
+// here (docs/BENCHMARKS.md).
+CompactFactor::Columns drop_zeros(cholmod_factor* L) {
+  int* p = static_cast<int*>(L->p);
+  int* i = static_cast<int*>(L->i);
   const int* nz = static_cast<const int*>(L->nz);
-  const double* x = static_cast<const double*>(L->x);
-  std::size_t count = 0;
-  for (int j = 0; j < static_cast<int>(L->n); ++j)
-    for (int k = p[j] + 1; k < p[j] + nz[j]; ++k)
-      count += x[k] != 0.0;
-  return count;
+  double* x = static_cast<double*>(L->x);
+  const int n = static_cast<int>(L->n);
+  int next = 0;
+  for (int j = 0; j < n; ++j) {
+    const int begin = p[j], end = p[j] + nz[j];
+    if (i[begin] != j) throw std::logic_error("CholmodFactor: column without its diagonal first");
+    p[j] = next;
+    i[next] = j;
+    x[next++] = x[begin];
+    int previous = j;
+    for (int k = begin + 1; k < end; ++k) {
+      if (i[k] <= previous || i[k] >= n)
+        throw std::logic_error("CholmodFactor: unsorted column rows");
+      previous = i[k];
+      if (x[k] == 0.0) continue;
+      i[next] = i[k];
+      x[next++] = x[k];
+    }
+  }
+  p[n] = next;
+  return {p, i, x};
 }
 
 }  // namespace
@@ -247,29 +265,19 @@ bool CholmodFactor::compact(bool single) {
     if (c.status == CHOLMOD_OUT_OF_MEMORY) throw std::bad_alloc();
     return false;
   }
-  const std::size_t hint = L->is_super ? supernodal_nonzeros(L) : simplicial_nonzeros(L);
-  auto out = std::make_unique<CompactFactor>(size_, static_cast<const int*>(L->Perm), hint, single);
+  std::unique_ptr<CompactFactor> out;
   if (L->is_super) {
+    out = std::make_unique<CompactFactor>(size_, static_cast<const int*>(L->Perm),
+                                          supernodal_nonzeros(L), single);
     const int* super = static_cast<const int*>(L->super);
     for (int s = 0; s < static_cast<int>(L->nsuper); ++s)
       for (int j = super[s]; j < super[s + 1]; ++j)
         add_supernodal_column(L, s, j, *out);
+    out->finish();
   } else {
-    const int* p = static_cast<const int*>(L->p);
-    const int* i = static_cast<const int*>(L->i);
-    const int* nz = static_cast<const int*>(L->nz);
-    const double* x = static_cast<const double*>(L->x);
-    for (int j = 0; j < size_; ++j) {
-      out->start_column(x[p[j]]);  // the diagonal comes first
-      int previous = j;
-      for (int k = p[j] + 1; k < p[j] + nz[j]; ++k) {
-        if (i[k] <= previous) throw std::logic_error("CholmodFactor: unsorted column rows");
-        previous = i[k];
-        if (x[k] != 0.0) out->add(i[k], x[k]);
-      }
-    }
+    out = std::make_unique<CompactFactor>(size_, static_cast<const int*>(L->Perm), drop_zeros(L),
+                                          single);
   }
-  out->finish();
   compact_peak_ = c.memory_usage;
   compact_ = std::move(out);
   impl_.reset();  // CHOLMOD's factor, workspaces and common: none is needed any more

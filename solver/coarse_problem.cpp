@@ -2,13 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
-#include <map>
 #include <queue>
 #include <stdexcept>
 
 #include "solver/free_motion_space.hpp"
 #include "solver/interruption.hpp"
 #include "solver/stopwatch.hpp"
+#include "solver/threads.hpp"
 
 namespace fetic::solver {
 namespace {
@@ -27,54 +27,88 @@ CoarseProblem::CoarseProblem(const FetiSystem& system) : system_(system) {
   if (system.model().frame()) frame_motions_ = std::make_shared<const FreeMotionSpace>(system);
 }
 
+// One own subdomain's block rows of G G': its entries (a, b), sorted and each once, and
+// per local row it touches the products g_a g_b, their values numbered from 0.
+CoarseProblem::OwnPattern CoarseProblem::own_pattern(const SubdomainOperator& op,
+                                                     const Subdomain& sub) const {
+  const SparseMatrix& G = system_.G();
+  const auto own_mode = [&](int mode) {
+    return mode >= sub.mode_offset && mode < sub.mode_offset + sub.mode_count;
+  };
+  std::vector<int> rows;
+  for (const Incidence& in : op.incidence)
+    rows.push_back(in.row);
+  rows.erase(std::unique(rows.begin(), rows.end()), rows.end());  // incidence is by row
+  OwnPattern part;
+  for (int r : rows)
+    for (SparseMatrix::InnerIterator a(G, r); a; ++a) {
+      if (!own_mode(static_cast<int>(a.row()))) continue;
+      for (SparseMatrix::InnerIterator b(G, r); b; ++b)
+        part.entries.emplace_back(static_cast<int>(a.row()), static_cast<int>(b.row()));
+    }
+  std::sort(part.entries.begin(), part.entries.end());
+  part.entries.erase(std::unique(part.entries.begin(), part.entries.end()), part.entries.end());
+  for (int r : rows) {
+    RowProducts rp;
+    rp.row = r;
+    rp.first = static_cast<int>(part.products.size());
+    int ia = 0;
+    for (SparseMatrix::InnerIterator a(G, r); a; ++a, ++ia) {
+      if (!own_mode(static_cast<int>(a.row()))) continue;
+      int ib = 0;
+      for (SparseMatrix::InnerIterator b(G, r); b; ++b, ++ib) {
+        const std::pair<int, int> ab{static_cast<int>(a.row()), static_cast<int>(b.row())};
+        const auto at = std::lower_bound(part.entries.begin(), part.entries.end(), ab);
+        part.products.push_back({static_cast<int>(at - part.entries.begin()), ia, ib});
+      }
+    }
+    rp.end = static_cast<int>(part.products.size());
+    part.rows.push_back(rp);
+  }
+  return part;
+}
+
 // The block rows of G G' this process computes: for own subdomain j, the sum over the
 // rows r touching j of g_r(modes of j) g_r', in increasing r (the same order on every
 // number of processes). Values are laid out per own subdomain, entries (a, b) sorted.
+// Each subdomain's part is found on its own (both cores; a sorted list of its entries,
+// not a map: this pass was serial), then they are joined in subdomain order.
 void CoarseProblem::build_pattern() {
   const FetiSystem& s = system_;
   const Decomposition& d = s.decomposition();
   const Communicator& comm = s.communicator();
-  const SparseMatrix& G = s.G();
+  const auto& ops = s.subdomains();
+  const int count = static_cast<int>(ops.size());
 
-  // Per own subdomain: its entries (a, b) and, per local row it touches, the products.
+  std::vector<OwnPattern> parts(count);
+  long long work = 0;
+  for (const SubdomainOperator& op : ops)
+    work += static_cast<long long>(op.incidence.size()) * 10;
+#pragma omp parallel for schedule(dynamic, 16) num_threads(threads_for(work))
+  for (int i = 0; i < count; ++i) {
+    if (stop_requested()) continue;  // Ctrl-C: skip the rest (no throw inside OpenMP)
+    parts[i] = own_pattern(ops[i], d.subdomains[ops[i].index]);
+  }
+  throw_if_stopped("assembling the coarse problem");
   std::vector<int> pattern;  // (a, b) pairs of this process' values, in value order
-  for (const SubdomainOperator& op : s.subdomains()) {
-    throw_if_stopped("assembling the coarse problem");
-    const Subdomain& sub = d.subdomains[op.index];
-    std::vector<int> rows;
-    for (const Incidence& in : op.incidence)
-      rows.push_back(in.row);
-    rows.erase(std::unique(rows.begin(), rows.end()), rows.end());  // incidence is by row
-    std::map<std::pair<int, int>, int> position;
-    for (int r : rows)
-      for (SparseMatrix::InnerIterator a(G, r); a; ++a) {
-        if (a.row() < sub.mode_offset || a.row() >= sub.mode_offset + sub.mode_count) continue;
-        for (SparseMatrix::InnerIterator b(G, r); b; ++b)
-          position.emplace(std::make_pair(static_cast<int>(a.row()), static_cast<int>(b.row())), 0);
-      }
-    const int first = static_cast<int>(own_values_.size());
-    int k = first;
-    for (auto& [ab, at] : position) {
-      at = k++;
-      pattern.push_back(ab.first);
-      pattern.push_back(ab.second);
+  for (OwnPattern& part : parts) {
+    const int value_offset = static_cast<int>(own_values_.size());
+    const int product_offset = static_cast<int>(products_.size());
+    for (const auto& [a, b] : part.entries) {
+      pattern.push_back(a);
+      pattern.push_back(b);
     }
-    own_values_.resize(k, 0.0);
-    for (int r : rows) {
-      RowProducts rp;
-      rp.row = r;
-      rp.first = static_cast<int>(products_.size());
-      int ia = 0;
-      for (SparseMatrix::InnerIterator a(G, r); a; ++a, ++ia) {
-        if (a.row() < sub.mode_offset || a.row() >= sub.mode_offset + sub.mode_count) continue;
-        int ib = 0;
-        for (SparseMatrix::InnerIterator b(G, r); b; ++b, ++ib)
-          products_.push_back(
-              {position.at({static_cast<int>(a.row()), static_cast<int>(b.row())}), ia, ib});
-      }
-      rp.end = static_cast<int>(products_.size());
+    own_values_.resize(own_values_.size() + part.entries.size(), 0.0);
+    for (Product product : part.products) {
+      product.value += value_offset;
+      products_.push_back(product);
+    }
+    for (RowProducts rp : part.rows) {
+      rp.first += product_offset;
+      rp.end += product_offset;
       row_products_.push_back(rp);
     }
+    part = OwnPattern();  // freed as it is joined
   }
 
   // The whole pattern, gathered once; the lower triangle becomes the matrix.

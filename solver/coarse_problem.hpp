@@ -32,6 +32,7 @@
 // them as orthonormal directions, one UnheldGroup each.
 
 #include <memory>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -119,6 +120,13 @@ class CoarseProblem {
     int row = 0;             // local row
     int first = 0, end = 0;  // into products_
   };
+  // One own subdomain's part of the pattern (build_pattern joins them in order).
+  struct OwnPattern {
+    std::vector<std::pair<int, int>> entries;  // (a, b), sorted: value k is entries[k]
+    std::vector<RowProducts> rows;
+    std::vector<Product> products;  // value: into entries
+  };
+  OwnPattern own_pattern(const SubdomainOperator& op, const Subdomain& sub) const;
   std::vector<RowProducts> row_products_;  // in increasing local row, grouped by own subdomain
   std::vector<Product> products_;
   std::vector<double> own_values_;

@@ -281,6 +281,38 @@ std::vector<int> Communicator::gather_to_root(const std::vector<int>& local) con
   return gather_to_root_impl(local, rank_, size_, stats_);
 }
 
+void Communicator::gather_to_root_each(
+    const std::vector<double>& local,
+    const std::function<void(int, const std::vector<double>&)>& take) const {
+  if (size_ == 1) {
+    take(0, local);
+    return;
+  }
+  Stopwatch timer(stats_.gather_seconds);
+  ++stats_.gathers;
+  stats_.gathered_bytes += static_cast<std::int64_t>(local.size() * sizeof(double));
+  const int count = static_cast<int>(local.size());
+  std::vector<int> counts(rank_ == 0 ? size_ : 0);
+  MPI_Request request;
+  MPI_Igather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, MPI_COMM_WORLD, &request);
+  wait_one(request);
+  constexpr int kGatherEachTag = 1;  // exchanges use tag 0
+  if (rank_ != 0) {
+    MPI_Isend(local.data(), count, MPI_DOUBLE, 0, kGatherEachTag, MPI_COMM_WORLD, &request);
+    wait_one(request);
+    return;
+  }
+  take(0, local);
+  std::vector<double> values;
+  for (int q = 1; q < size_; ++q) {
+    values.resize(static_cast<size_t>(counts[q]));
+    MPI_Irecv(values.data(), counts[q], MPI_DOUBLE, q, kGatherEachTag, MPI_COMM_WORLD, &request);
+    wait_one(request);
+    take(q, values);
+    std::vector<double>().swap(values);  // one process' values at a time
+  }
+}
+
 void Communicator::broadcast(std::string& text, int root) const {
   if (size_ == 1) return;
   unsigned long long length = text.size();

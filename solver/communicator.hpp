@@ -9,6 +9,7 @@
 // solve costs in communication, for the benchmark's cost model.
 
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -68,6 +69,12 @@ class Communicator {
   // Only rank 0 receives the concatenation (others get an empty vector).
   std::vector<double> gather_to_root(const std::vector<double>& local) const;
   std::vector<int> gather_to_root(const std::vector<int>& local) const;
+  // Rank 0 is handed each process' `local` in rank order, its own first: take(rank,
+  // values). It holds one other process' values at a time, never the concatenation, so
+  // that a whole state built from the parts is not held twice (docs/DISTRIBUTED.md,
+  // rank 0's peak). The other processes send theirs; `take` runs on rank 0 only.
+  void gather_to_root_each(const std::vector<double>& local,
+                           const std::function<void(int, const std::vector<double>&)>& take) const;
   // Rank `root`'s value on every process.
   void broadcast(std::string& text, int root = 0) const;
   void broadcast(double& value, int root = 0) const;

@@ -52,6 +52,11 @@ std::vector<double> Communicator::gather_to_root(const std::vector<double>& loca
 std::vector<int> Communicator::gather_to_root(const std::vector<int>& local) const {
   return local;
 }
+void Communicator::gather_to_root_each(
+    const std::vector<double>& local,
+    const std::function<void(int, const std::vector<double>&)>& take) const {
+  take(0, local);
+}
 
 void Communicator::broadcast(std::string&, int) const {}
 void Communicator::broadcast(double&, int) const {}

@@ -33,11 +33,21 @@ void CompactFactor::add(int row, double value) {
   column_values_.push_back(value);
 }
 
+CompactFactor::CompactFactor(int size, const int* permutation, const Columns& columns, bool single)
+    : size_(size), single_(single), permutation_(permutation, permutation + size) {
+  if (size > kMaxSize) throw std::logic_error("CompactFactor: order above 65536");
+  inverse_diagonal_.resize(static_cast<std::size_t>(size));
+  for (int j = 0; j < size; ++j)
+    inverse_diagonal_[static_cast<std::size_t>(j)] = 1.0 / columns.values[columns.start[j]];
+  build_supernodes(ColumnView<int>{columns.start, columns.rows, columns.values, 1});
+}
+
 void CompactFactor::finish() {
   column_start_.push_back(static_cast<int>(column_rows_.size()));
   if (static_cast<int>(inverse_diagonal_.size()) != size_)
     throw std::logic_error("CompactFactor: not every column was given");
-  build_supernodes();
+  build_supernodes(ColumnView<std::uint16_t>{column_start_.data(), column_rows_.data(),
+                                             column_values_.data(), 0});
   // The columns as given are not needed by a solve: nothing of them is held.
   std::vector<int>().swap(column_start_);
   std::vector<std::uint16_t>().swap(column_rows_);
@@ -47,7 +57,8 @@ void CompactFactor::finish() {
 // Greedy over the columns: column j joins the run before it when the run's stored entries
 // (its triangle and the union of its columns' rows below it, for every column) are then
 // at most kRelaxedZeros explicit zeros. Nested patterns (fundamental supernodes) add none.
-void CompactFactor::find_supernodes() {
+template <class Row>
+void CompactFactor::find_supernodes(const ColumnView<Row>& columns) {
   first_.assign(1, 0);
   row_start_.assign(1, 0);
   rows_.clear();
@@ -59,8 +70,8 @@ void CompactFactor::find_supernodes() {
     row_start_.push_back(static_cast<int>(rows_.size()));
   };
   for (int j = 0; j < size_; ++j) {
-    const std::uint16_t* begin = column_rows_.data() + column_start_[j];
-    const std::uint16_t* end = column_rows_.data() + column_start_[j + 1];
+    const Row* begin = columns.rows + columns.begin(j);
+    const Row* end = columns.rows + columns.end(j);
     const auto count = static_cast<std::size_t>(end - begin);
     if (j > first_.back()) {
       const double nc = j - first_.back() + 1.0;
@@ -81,8 +92,9 @@ void CompactFactor::find_supernodes() {
   close(size_);
 }
 
-void CompactFactor::build_supernodes() {
-  find_supernodes();
+template <class Row>
+void CompactFactor::build_supernodes(const ColumnView<Row>& columns) {
+  find_supernodes(columns);
   first_.shrink_to_fit();  // held for the whole solve: no spare capacity
   row_start_.shrink_to_fit();
   rows_.shrink_to_fit();
@@ -101,12 +113,14 @@ void CompactFactor::build_supernodes() {
   std::vector<int> where(static_cast<std::size_t>(size_));
   std::size_t offset = 0;
   for (int s = 0; s < supernodes(); ++s)
-    offset = fill_supernode(s, offset, where);
+    offset = fill_supernode(columns, s, offset, where);
 }
 
 // Supernode s's entries, stored from `triangle` on, from the columns given; those not
 // given stay zero. Returns where the next supernode's entries start.
-std::size_t CompactFactor::fill_supernode(int s, std::size_t triangle, std::vector<int>& where) {
+template <class Row>
+std::size_t CompactFactor::fill_supernode(const ColumnView<Row>& columns, int s,
+                                          std::size_t triangle, std::vector<int>& where) {
   const int j0 = first_[s], nc = first_[s + 1] - j0;
   const int m = row_start_[s + 1] - row_start_[s];
   for (int r = 0; r < m; ++r)
@@ -117,14 +131,14 @@ std::size_t CompactFactor::fill_supernode(int s, std::size_t triangle, std::vect
     // Column k of the triangle holds rows j + 1 .. j0 + nc - 1 (nc - 1 - k entries).
     const std::size_t column = triangle + static_cast<std::size_t>(k) * (nc - 1) -
                                static_cast<std::size_t>(k) * (k - 1) / 2;
-    for (int e = column_start_[j]; e < column_start_[j + 1]; ++e) {
-      const int row = column_rows_[static_cast<std::size_t>(e)];
+    for (int e = columns.begin(j); e < columns.end(j); ++e) {
+      const int row = columns.rows[e];
       const std::size_t at = row < j0 + nc ? column + static_cast<std::size_t>(row - j - 1)
                                            : block + static_cast<std::size_t>(k) * m + where[row];
       if (single_)
-        values32_[at] = static_cast<float>(column_values_[static_cast<std::size_t>(e)]);
+        values32_[at] = static_cast<float>(columns.values[e]);
       else
-        values_[at] = column_values_[static_cast<std::size_t>(e)];
+        values_[at] = columns.values[e];
     }
   }
   return block + static_cast<std::size_t>(nc) * m;

@@ -41,6 +41,18 @@ class CompactFactor {
   void add(int row, double value);
   void finish();
 
+  // A whole factor given as compressed columns, read in place (CHOLMOD's simplicial LL'
+  // after its explicit zeros were dropped): column j's entries are start[j] ..
+  // start[j + 1] - 1, its diagonal first, then nonzeros at increasing rows below it (the
+  // caller checks this). The supernodes are built straight from these arrays: no column
+  // copy, no per-entry add() (they were a fifth of the FETI set-up, docs/BENCHMARKS.md).
+  struct Columns {
+    const int* start;
+    const int* rows;
+    const double* values;
+  };
+  CompactFactor(int size, const int* permutation, const Columns& columns, bool single = false);
+
   int size() const { return size_; }
   bool single() const { return single_; }
   // Stored entries of L (its diagonal and the relaxed supernodes' zeros included).
@@ -61,9 +73,24 @@ class CompactFactor {
   const std::vector<int>& permutation() const { return permutation_; }
 
  private:
-  void build_supernodes();  // finish(): the columns given into supernodes
-  void find_supernodes();
-  std::size_t fill_supernode(int s, std::size_t triangle, std::vector<int>& where);
+  // The columns below the diagonal, as given to add() (Row = uint16) or as compressed
+  // columns with the diagonal first (Row = int, skip = 1).
+  template <class Row>
+  struct ColumnView {
+    const int* start;
+    const Row* rows;
+    const double* values;
+    int skip;
+    int begin(int j) const { return start[j] + skip; }
+    int end(int j) const { return start[j + 1]; }
+  };
+  template <class Row>
+  void build_supernodes(const ColumnView<Row>& columns);  // the columns into supernodes
+  template <class Row>
+  void find_supernodes(const ColumnView<Row>& columns);
+  template <class Row>
+  std::size_t fill_supernode(const ColumnView<Row>& columns, int s, std::size_t triangle,
+                             std::vector<int>& where);
   template <class Value>
   void forward(const Value* values, double* y, int columns, double* t) const;  // L y' = y
   template <class Value>

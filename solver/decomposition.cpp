@@ -1,6 +1,7 @@
 #include "solver/decomposition.hpp"
 
 #include <algorithm>
+#include <span>
 
 namespace fetic::solver {
 
@@ -24,14 +25,20 @@ std::vector<SubdomainPart> parts_of(const Subdomain& sub, int index) {
 namespace {
 
 // A node's copies: (subdomain, subdomain-local node), in increasing subdomain order.
-using Copies = std::vector<std::pair<int, int>>;
+using CopySpan = std::span<const std::pair<int, int>>;
 
-struct StrutCopies {
-  std::vector<Copies> of_node;  // per strut node
+// A strut's nodes' copies in one flat list, node by node (a vector per node was one
+// allocation per node: about 5 million at 1e7 unknowns, in a serial pass).
+struct StrutCopyList {
+  std::vector<int> first;                 // per node, and one past the last node
+  std::vector<std::pair<int, int>> copy;  // node n's: copy[first[n]] .. copy[first[n + 1] - 1]
+  CopySpan of_node(int node) const {
+    return {copy.data() + first[node], copy.data() + first[node + 1]};
+  }
 };
 
 // Gluing rows u_i - u_j = 0 between every two copies of one DOF component.
-void add_gluing_rows(const Copies& c, int dofs_per_node, int comp, Decomposition& d) {
+void add_gluing_rows(CopySpan c, int dofs_per_node, int comp, Decomposition& d) {
   RedundantGroup group;
   group.copies = static_cast<int>(c.size());
   for (size_t i = 0; i < c.size(); ++i)
@@ -51,14 +58,25 @@ void add_gluing_rows(const Copies& c, int dofs_per_node, int comp, Decomposition
 
 // Step 1: the subdomains of every strut (its node boxes), each node's copies, and each
 // node's load on its first copy only.
-std::vector<StrutCopies> place_subdomains(const Model& model, Decomposition& d) {
-  std::vector<StrutCopies> copies(model.struts.size());
+std::vector<StrutCopyList> place_subdomains(const Model& model, Decomposition& d) {
+  std::vector<StrutCopyList> copies(model.struts.size());
   for (size_t s = 0; s < model.struts.size(); ++s) {
     const StrutMesh& mesh = model.struts[s];
-    copies[s].of_node.resize(mesh.node_count());
     const auto along = split_nodes(mesh.nx, mesh.subdomains_along);
     const auto across = mesh.ny > 0 ? split_nodes(mesh.ny, mesh.subdomains_across)
                                     : std::vector<std::pair<int, int>>{{0, 0}};
+    // Each node's count of copies first (the boxes overlap in their shared nodes).
+    std::vector<int>& first = copies[s].first;
+    first.assign(static_cast<size_t>(mesh.node_count()) + 1, 0);
+    for (const auto& [i0, i1] : along)
+      for (const auto& [k0, k1] : across)
+        for (int i = i0; i <= i1; ++i)
+          for (int k = k0; k <= k1; ++k)
+            ++first[mesh.node(i, k) + 1];
+    for (int node = 0; node < mesh.node_count(); ++node)
+      first[node + 1] += first[node];
+    copies[s].copy.resize(static_cast<size_t>(first.back()));
+    std::vector<int> next(first.begin(), first.end() - 1);
     for (const auto& [i0, i1] : along) {
       for (const auto& [k0, k1] : across) {
         Subdomain sub;
@@ -74,13 +92,13 @@ std::vector<StrutCopies> place_subdomains(const Model& model, Decomposition& d) 
         const int index = static_cast<int>(d.subdomains.size());
         for (int i = i0; i <= i1; ++i)
           for (int k = k0; k <= k1; ++k)
-            copies[s].of_node[mesh.node(i, k)].emplace_back(index, sub.box.local(i, k));
+            copies[s].copy[next[mesh.node(i, k)]++] = {index, sub.box.local(i, k)};
         d.subdomains.push_back(std::move(sub));
       }
     }
     // Each node's load goes to its first copy only.
     for (int node = 0; node < mesh.node_count(); ++node) {
-      const auto [sub, local] = copies[s].of_node[node].front();
+      const auto [sub, local] = copies[s].of_node(node).front();
       for (int c = 0; c < mesh.dofs_per_node; ++c)
         d.subdomains[sub].load(local * mesh.dofs_per_node + c) =
             model.loads[s](node * mesh.dofs_per_node + c);
@@ -90,7 +108,7 @@ std::vector<StrutCopies> place_subdomains(const Model& model, Decomposition& d) 
 }
 
 // Step 2: gluing rows between the copies of every node that no support holds.
-void glue_strut_copies(const Model& model, const std::vector<StrutCopies>& copies,
+void glue_strut_copies(const Model& model, const std::vector<StrutCopyList>& copies,
                        Decomposition& d) {
   for (size_t s = 0; s < model.struts.size(); ++s) {
     const StrutMesh& mesh = model.struts[s];
@@ -98,7 +116,7 @@ void glue_strut_copies(const Model& model, const std::vector<StrutCopies>& copie
     for (const HeldNode& node : model.held_nodes[s])
       held[node.node] = node.components;
     for (int node = 0; node < mesh.node_count(); ++node) {
-      const Copies& c = copies[s].of_node[node];
+      const CopySpan c = copies[s].of_node(node);
       // Fully redundant: one row per pair of copies (at a cross point of four subdomains
       // six rows, not three), which the scaled Dirichlet preconditioner needs to stay
       // effective there.
@@ -111,11 +129,11 @@ void glue_strut_copies(const Model& model, const std::vector<StrutCopies>& copie
 // Step 3 (frame model): joints. The ends' copies of every shared component that no
 // support holds, glued like the copies of one node - every pair of ends, so that a joint
 // of k ends is a cross point of k subdomains (see decomposition.hpp).
-void glue_joints(const Model& model, const std::vector<StrutCopies>& copies, Decomposition& d) {
+void glue_joints(const Model& model, const std::vector<StrutCopyList>& copies, Decomposition& d) {
   for (const JointLink& joint : model.joints) {
-    Copies ends;
+    std::vector<std::pair<int, int>> ends;
     for (const auto& [strut, node] : joint.ends)
-      ends.push_back(copies[strut].of_node[node].front());
+      ends.push_back(copies[strut].of_node(node).front());
     const auto [first_strut, first_node] = joint.ends.front();
     for (int comp = 0; comp < joint.shared; ++comp)
       if (!(model.held(first_strut, first_node) >> comp & 1u)) add_gluing_rows(ends, 3, comp, d);
@@ -123,12 +141,12 @@ void glue_joints(const Model& model, const std::vector<StrutCopies>& copies, Dec
 }
 
 // Step 4: Dirichlet rows, one per held component of every copy of a held node.
-void hold_dirichlet_nodes(const Model& model, const std::vector<StrutCopies>& copies,
+void hold_dirichlet_nodes(const Model& model, const std::vector<StrutCopyList>& copies,
                           Decomposition& d) {
   for (size_t s = 0; s < model.struts.size(); ++s) {
     const StrutMesh& mesh = model.struts[s];
     for (const HeldNode& node : model.held_nodes[s])
-      for (const auto& [sub, local] : copies[s].of_node[node.node])
+      for (const auto& [sub, local] : copies[s].of_node(node.node))
         for (int comp = 0; comp < mesh.dofs_per_node; ++comp) {
           if (!(node.components >> comp & 1u)) continue;
           Row row;
@@ -141,7 +159,7 @@ void hold_dirichlet_nodes(const Model& model, const std::vector<StrutCopies>& co
 
 // Step 5: a row per contact pair, on the first copy of each side's node (none when both
 // sides are held).
-void add_contact_rows(const Model& model, const std::vector<StrutCopies>& copies,
+void add_contact_rows(const Model& model, const std::vector<StrutCopyList>& copies,
                       Decomposition& d) {
   d.pair_row.assign(model.pairs.size(), -1);
   for (size_t k = 0; k < model.pairs.size(); ++k) {
@@ -155,7 +173,7 @@ void add_contact_rows(const Model& model, const std::vector<StrutCopies>& copies
     row.rhs = pair.gap;
     for (const ContactSide& side : contact_sides(model, pair)) {
       const StrutMesh& mesh = model.struts[side.strut];
-      const auto [sub, local] = copies[side.strut].of_node[side.node].front();
+      const auto [sub, local] = copies[side.strut].of_node(side.node).front();
       for (int comp = 0; comp < mesh.dofs_per_node; ++comp)
         if (side.coefficients(comp) != 0.0)
           row.entries.push_back({sub, local * mesh.dofs_per_node + comp, side.coefficients(comp)});
@@ -169,7 +187,7 @@ void add_contact_rows(const Model& model, const std::vector<StrutCopies>& copies
 
 Decomposition decompose(const Model& model) {
   Decomposition d;
-  const std::vector<StrutCopies> copies = place_subdomains(model, d);
+  const std::vector<StrutCopyList> copies = place_subdomains(model, d);
   glue_strut_copies(model, copies, d);
   glue_joints(model, copies, d);
   hold_dirichlet_nodes(model, copies, d);

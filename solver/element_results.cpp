@@ -6,6 +6,7 @@
 #include "solver/decomposition.hpp"
 #include "solver/method.hpp"
 #include "solver/stiffness.hpp"
+#include "solver/threads.hpp"
 
 namespace fetic::solver {
 namespace {
@@ -202,20 +203,28 @@ StrutElements StrutResults::elements(int strut) const {
   StrutElements out = topology(strut);
   const StrutMesh& mesh = model_.struts[static_cast<size_t>(strut)];
   const std::vector<char> clamped = clamped_flags(model_, strut);
-  for (int p : pieces_[static_cast<size_t>(strut)]) {
-    const Piece& piece = snapshot_.pieces[static_cast<size_t>(p)];
+  const std::vector<int>& pieces = pieces_[static_cast<size_t>(strut)];
+  if (mesh.dofs_per_node != 1 && !is_plane(mesh) && mesh.dofs_per_node != 3) {
+    // A model without a recovery here yet: its values are unknown, not zero.
+    for (auto* fields : {&out.stress, &out.resultants})
+      for (NamedValues& field : *fields)
+        field.values.assign(field.values.size(), std::numeric_limits<double>::quiet_NaN());
+    return out;
+  }
+  // Each piece writes the elements of its own box: the pieces run on the process' threads
+  // (a plane strut of a 1e7-unknown scene has 192 pieces and 190,000 elements, and every
+  // output asks for them).
+  const int threads = threads_for(static_cast<long long>(out.element_count()));
+#pragma omp parallel for num_threads(threads) schedule(dynamic)
+  for (size_t at = 0; at < pieces.size(); ++at) {
+    const Piece& piece = snapshot_.pieces[static_cast<size_t>(pieces[at])];
     const Eigen::VectorXd dofs = clamped_piece_dofs(mesh, piece, clamped);
     if (mesh.dofs_per_node == 1) {
       recover_bar(mesh, piece.box, dofs, out);
     } else if (is_plane(mesh)) {
       recover_plane(mesh, piece.box, dofs, out);
-    } else if (mesh.dofs_per_node == 3) {
-      recover_frame(mesh, piece.box, dofs, out);
     } else {
-      // A model without a recovery here yet: its values are unknown, not zero.
-      for (auto* fields : {&out.stress, &out.resultants})
-        for (NamedValues& field : *fields)
-          field.values.assign(field.values.size(), std::numeric_limits<double>::quiet_NaN());
+      recover_frame(mesh, piece.box, dofs, out);
     }
   }
   return out;

@@ -202,34 +202,77 @@ Snapshot FetiMethod::snapshot() const {
   return s;
 }
 
+namespace {
+
+// Pieces as numbers for gathering: box index, strut, box, then per node (ux, uy) and in
+// the frame model its rotation.
+std::vector<double> pieces_as_numbers(const std::vector<Piece>& pieces,
+                                      const std::vector<int>& piece_index, bool rotations) {
+  std::vector<double> numbers;
+  for (size_t i = 0; i < pieces.size(); ++i) {
+    const Piece& piece = pieces[i];
+    numbers.insert(numbers.end(),
+                   {static_cast<double>(piece_index[i]), static_cast<double>(piece.strut),
+                    static_cast<double>(piece.box.i0), static_cast<double>(piece.box.i1),
+                    static_cast<double>(piece.box.k0), static_cast<double>(piece.box.k1)});
+    for (size_t n = 0; n < piece.displacement.size(); ++n) {
+      numbers.push_back(piece.displacement[n].x());
+      numbers.push_back(piece.displacement[n].y());
+      if (rotations) numbers.push_back(piece.rotation[n]);
+    }
+  }
+  return numbers;
+}
+
+// The pieces of pieces_as_numbers put in their places in `whole`.
+void place_pieces(const std::vector<double>& numbers, bool rotations, std::vector<Piece>& whole) {
+  for (size_t at = 0; at < numbers.size();) {
+    Piece& piece = whole[static_cast<size_t>(numbers[at])];
+    piece.strut = static_cast<int>(numbers[at + 1]);
+    piece.box = NodeBox{static_cast<int>(numbers[at + 2]), static_cast<int>(numbers[at + 3]),
+                        static_cast<int>(numbers[at + 4]), static_cast<int>(numbers[at + 5])};
+    at += 6;
+    piece.displacement.resize(piece.box.node_count());
+    if (rotations) piece.rotation.resize(piece.box.node_count());
+    for (size_t n = 0; n < piece.displacement.size(); ++n) {
+      piece.displacement[n] = Vec2(numbers[at], numbers[at + 1]);
+      at += 2;
+      if (rotations) piece.rotation[n] = numbers[at++];
+    }
+  }
+}
+
+}  // namespace
+
 Snapshot FetiMethod::gathered_snapshot() const {
   Snapshot s = snapshot();
   const Communicator& comm = system_.communicator();
   if (!comm.distributed()) return s;
-  // Pieces as numbers: box index, strut, box, then per node (ux, uy) and in the frame
-  // model its rotation; per owned pair row the pair, its force and its working-set flag (FETI-C
-  // knows every pair's flag, MPRGP only its own rows').
   const Decomposition& d = system_.decomposition();
   const DualSpace& space = system_.space();
-  std::vector<double> pieces, forces;
   const bool rotations = model_.frame();
   std::vector<int> piece_index;
   for (const SubdomainOperator& op : system_.subdomains())
     for (const SubdomainPart& part : parts_of(d.subdomains[op.index], op.index))
       piece_index.push_back(part.piece);
   std::sort(piece_index.begin(), piece_index.end());  // the order of pieces()
-  for (size_t i = 0; i < s.pieces.size(); ++i) {
-    const Piece& piece = s.pieces[i];
-    pieces.insert(pieces.end(),
-                  {static_cast<double>(piece_index[i]), static_cast<double>(piece.strut),
-                   static_cast<double>(piece.box.i0), static_cast<double>(piece.box.i1),
-                   static_cast<double>(piece.box.k0), static_cast<double>(piece.box.k1)});
-    for (size_t n = 0; n < piece.displacement.size(); ++n) {
-      pieces.push_back(piece.displacement[n].x());
-      pieces.push_back(piece.displacement[n].y());
-      if (rotations) pieces.push_back(piece.rotation[n]);
-    }
+  // Rank 0 moves its own pieces into the whole and takes the others' one process at a
+  // time: it never holds the whole as numbers beside the whole as pieces (its peak
+  // under mpirun, docs/DISTRIBUTED.md).
+  std::vector<Piece> whole(comm.root() ? d.total_pieces : 0);
+  std::vector<double> numbers;
+  if (comm.root()) {
+    for (size_t i = 0; i < s.pieces.size(); ++i)
+      whole[static_cast<size_t>(piece_index[i])] = std::move(s.pieces[i]);
+  } else {
+    numbers = pieces_as_numbers(s.pieces, piece_index, rotations);
   }
+  comm.gather_to_root_each(numbers, [&](int, const std::vector<double>& values) {
+    place_pieces(values, rotations, whole);
+  });
+  // Per owned pair row: the pair, its force and its working-set flag (FETI-C knows every
+  // pair's flag, MPRGP only its own rows').
+  std::vector<double> forces;
   for (size_t k = 0; k < s.force.size(); ++k) {
     const int row = d.pair_row[k];
     if (row < 0) continue;
@@ -240,31 +283,10 @@ Snapshot FetiMethod::gathered_snapshot() const {
       forces.push_back(s.in_working_set[k]);
     }
   }
-  const std::vector<double> all_pieces = comm.gather_to_root(pieces);
   const std::vector<double> all_forces = comm.gather_to_root(forces);
   s.dual.resize(0);  // the multipliers stay distributed
   if (!comm.root()) return s;
-  // The own pieces, as numbers and as pieces, are in all_pieces now: freed before the
-  // whole is built, so that rank 0 does not hold them beside it (its peak under mpirun,
-  // docs/DISTRIBUTED.md).
-  std::vector<double>().swap(pieces);
-  std::vector<Piece>().swap(s.pieces);
-  std::vector<Piece> ordered(d.total_pieces);
-  for (size_t at = 0; at < all_pieces.size();) {
-    Piece& piece = ordered[static_cast<size_t>(all_pieces[at])];
-    piece.strut = static_cast<int>(all_pieces[at + 1]);
-    piece.box = NodeBox{static_cast<int>(all_pieces[at + 2]), static_cast<int>(all_pieces[at + 3]),
-                        static_cast<int>(all_pieces[at + 4]), static_cast<int>(all_pieces[at + 5])};
-    at += 6;
-    piece.displacement.resize(piece.box.node_count());
-    if (rotations) piece.rotation.resize(piece.box.node_count());
-    for (size_t n = 0; n < piece.displacement.size(); ++n) {
-      piece.displacement[n] = Vec2(all_pieces[at], all_pieces[at + 1]);
-      at += 2;
-      if (rotations) piece.rotation[n] = all_pieces[at++];
-    }
-  }
-  s.pieces = std::move(ordered);
+  s.pieces = std::move(whole);
   for (size_t at = 0; at + 2 < all_forces.size(); at += 3) {
     const auto k = static_cast<size_t>(all_forces[at]);
     s.force[k] = all_forces[at + 1];

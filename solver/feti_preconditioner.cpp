@@ -46,28 +46,27 @@ void to_factor_order(SparseMatrix& K_ib, const CompactFactor& factor) {
 
 }  // namespace
 
-// Diagonal stiffness of every DOF the local rows' scaling needs: own subdomains' from
-// their K, the neighbours' asked of their processes (one request and one answer).
-std::vector<std::vector<double>> FetiPreconditioner::scaling_weights(bool scaled) const {
+// Diagonal stiffness of every DOF the local rows' scaling needs: own subdomains' read
+// from their K where needed, the neighbours' asked of their processes (one request and
+// one answer). Returns the weights of the own entries of every local row, row after row
+// in one list (a map of every DOF and a vector per row were millions of allocations in
+// this serial pass at 1e7 unknowns).
+std::vector<double> FetiPreconditioner::scaling_weights(bool scaled) const {
   const Decomposition& d = system_.decomposition();
   const DualSpace& space = system_.space();
   const Communicator& comm = space.communicator();
   const auto& ops = system_.subdomains();
 
-  std::map<DofKey, double> stiffness;
-  if (scaled) {
+  std::map<DofKey, double> remote;  // the neighbours' DOFs' (MPI)
+  if (scaled && comm.size() > 1) {
     std::vector<std::set<DofKey>> wanted(comm.size());
     for (int r = 0; r < space.rows(); ++r) {
       const Row& row = d.rows[space.global_row(r)];
       for (const auto* list : {&row.entries, &row.copies})
-        for (const RowEntry& entry : *list) {
-          const int own = system_.own_index(entry.subdomain);
-          if (own >= 0)
-            stiffness[{entry.subdomain, entry.dof}] = ops[own].K.coeff(entry.dof, entry.dof);
-          else
+        for (const RowEntry& entry : *list)
+          if (system_.own_index(entry.subdomain) < 0)
             wanted[system_.partition().owner_of(entry.subdomain)].insert(
                 {entry.subdomain, entry.dof});
-        }
     }
     std::vector<std::vector<double>> requests(comm.size());
     for (int q = 0; q < comm.size(); ++q)
@@ -86,13 +85,19 @@ std::vector<std::vector<double>> FetiPreconditioner::scaling_weights(bool scaled
     for (int q = 0; q < comm.size(); ++q) {
       size_t k = 0;
       for (const DofKey& key : wanted[q])
-        stiffness[key] = answered[q][k++];
+        remote[key] = answered[q][k++];
     }
   }
+  const auto stiffness = [&](const RowEntry& entry) {
+    const int own = system_.own_index(entry.subdomain);
+    return own >= 0 ? ops[own].K.coeff(entry.dof, entry.dof)
+                    : remote.at({entry.subdomain, entry.dof});
+  };
 
   // An entry of subdomain i in a row shared with subdomain j gets k_j / (sum of k over
   // every copy of the DOF): 1/multiplicity between equal neighbours.
-  std::vector<std::vector<double>> weights(space.rows());
+  std::vector<double> weights;
+  std::vector<std::pair<DofKey, double>> side;  // per row, sorted by key
   for (int r = 0; r < space.rows(); ++r) {
     const Row& row = d.rows[space.global_row(r)];
     // Largest diagonal stiffness per side (a plane contact row has two entries a side).
@@ -102,11 +107,16 @@ std::vector<std::vector<double>> FetiPreconditioner::scaling_weights(bool scaled
     auto side_of = [&](const RowEntry& entry) {
       return DofKey{entry.subdomain, gluing ? entry.dof : -1};
     };
-    std::map<DofKey, double> side;
+    side.clear();
     for (const RowEntry& entry : row.entries) {
-      const double k = scaled ? stiffness.at({entry.subdomain, entry.dof}) : 1.0;
-      auto [it, inserted] = side.emplace(side_of(entry), k);
-      if (!inserted) it->second = std::max(it->second, k);
+      const double k = scaled ? stiffness(entry) : 1.0;
+      const DofKey key = side_of(entry);
+      auto it = std::lower_bound(side.begin(), side.end(), key,
+                                 [](const auto& a, const DofKey& b) { return a.first < b; });
+      if (it != side.end() && it->first == key)
+        it->second = std::max(it->second, k);
+      else
+        side.insert(it, {key, k});
     }
     double total = 0.0;
     if (scaled && side.size() >= 2) {
@@ -115,7 +125,7 @@ std::vector<std::vector<double>> FetiPreconditioner::scaling_weights(bool scaled
           total += k;
       else
         for (const RowEntry& copy : row.copies)
-          total += stiffness.at({copy.subdomain, copy.dof});
+          total += stiffness(copy);
     }
     for (const RowEntry& entry : row.entries) {
       if (system_.own_index(entry.subdomain) < 0) continue;
@@ -126,7 +136,7 @@ std::vector<std::vector<double>> FetiPreconditioner::scaling_weights(bool scaled
           if (key != side_of(entry)) others += k;
         weight = others / total;
       }
-      weights[r].push_back(weight);
+      weights.push_back(weight);
     }
   }
   return weights;
@@ -172,7 +182,7 @@ FetiPreconditioner::FetiPreconditioner(const FetiSystem& system, Preconditioner 
   const DualSpace& space = system.space();
   const auto& ops = system.subdomains();
   const int count = static_cast<int>(ops.size());
-  const std::vector<std::vector<double>> weights = scaling_weights(scaled);
+  const std::vector<double> weights = scaling_weights(scaled);  // in the order read below
 
   local_.resize(count);
   std::vector<std::vector<int>> position_in_boundary(count);
@@ -212,13 +222,13 @@ FetiPreconditioner::FetiPreconditioner(const FetiSystem& system, Preconditioner 
   // B's scaled entries per own subdomain, and per local row its terms grouped by
   // subdomain in increasing order (the row's own entries come in that order already).
   row_first_.assign(space.rows() + 1, 0);
+  size_t w = 0;
   for (int r = 0; r < space.rows(); ++r) {
     row_first_[r] = static_cast<int>(terms_.size());
     const Row& row = d.rows[space.global_row(r)];
     std::vector<std::pair<const RowEntry*, double>> own;
-    size_t w = 0;
     for (const RowEntry& entry : row.entries)
-      if (system.own_index(entry.subdomain) >= 0) own.emplace_back(&entry, weights[r][w++]);
+      if (system.own_index(entry.subdomain) >= 0) own.emplace_back(&entry, weights[w++]);
     std::stable_sort(own.begin(), own.end(), [](const auto& a, const auto& b) {
       return a.first->subdomain < b.first->subdomain;
     });

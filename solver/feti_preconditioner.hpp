@@ -59,8 +59,8 @@ class FetiPreconditioner {
   // The boundary, K_bb and (Dirichlet) K_ib and the factor of K_ii of one subdomain;
   // false when K_ii is singular. b_position: per DOF its place in the boundary or -1.
   bool set_up_local(const SubdomainOperator& op, Local& local, std::vector<int>& b_position) const;
-  // Per local row and own subdomain entry: the scaling weight of that entry.
-  std::vector<std::vector<double>> scaling_weights(bool scaled) const;
+  // The scaling weights of every local row's own entries, row after row in one list.
+  std::vector<double> scaling_weights(bool scaled) const;
 
   double setup_seconds_ = 0.0;  // before the members whose construction it times
   const FetiSystem& system_;

@@ -108,3 +108,36 @@ TEST_CASE("A result file streamed with struts written as text is the document's 
       CHECK(out.str() == fetic::app::scalars_first(whole).dump(1));
     }
 }
+
+// A long array written on the threads in runs, joined in order: the same bytes as one
+// thread writes, across the runs (4,096 items) and the batches of runs (64 runs) the
+// writer holds at once; nested arrays as the result file's points are.
+TEST_CASE("JsonText's parallel array is written as its array") {
+  const std::size_t count = 266241;  // two batches, the last run short
+  std::vector<double> values(count);
+  for (std::size_t k = 0; k < count; ++k)
+    values[k] = std::sin(static_cast<double>(k)) * std::pow(10.0, static_cast<double>(k % 40) - 20);
+  const auto write = [&](bool parallel) {
+    std::ostringstream out;
+    {
+      fetic::app::JsonText text(out);
+      text.raw("{");
+      text.member("points", 1, true);
+      if (parallel)
+        text.parallel_array(count, 1, [&](fetic::app::JsonText& piece, std::size_t n, int at) {
+          piece.array(2, at, [&](std::size_t k, int) { piece.number(values[n] + double(k)); });
+        });
+      else
+        text.array(count, 1, [&](std::size_t n, int at) {
+          text.array(2, at, [&](std::size_t k, int) { text.number(values[n] + double(k)); });
+        });
+      text.newline(0);
+      text.raw("}");
+    }
+    return out.str();
+  };
+  const std::string serial = write(false), parallel = write(true);
+  CHECK(serial.size() > 8000000);
+  CHECK(parallel == serial);
+  CHECK(parallel.find("\n  [\n   0.0,\n   1.0\n  ],\n  [\n") != std::string::npos);
+}

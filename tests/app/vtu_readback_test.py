@@ -6,9 +6,11 @@ a bar scene in all three encodings, a plane scene, a load sweep and an iteration
 usage: vtu_readback_test.py FETIC SCENES_DIR WORK_DIR
 Exit 77 (skipped) when VTK's Python module is missing."""
 
+import base64
 import json
 import os
 import shutil
+import struct
 import subprocess
 import sys
 import xml.etree.ElementTree as ET
@@ -231,6 +233,25 @@ def check_frame(out, index, state, model):
     compare_contacts(read(os.path.join(out, f"contacts_{index:04d}.vtu")), state)
 
 
+def block_kinds(path):
+    """Per array of a zlib-encoded .vtu, the kinds of its zlib blocks: "stored" (deflate's
+    block type 00, what level 0 writes) or "deflated"."""
+    kinds = {}
+    for item in ET.parse(path).getroot().find("UnstructuredGrid/Piece").iter("DataArray"):
+        if item.get("format") != "binary":
+            continue
+        text = item.text.strip()
+        blocks = struct.unpack("<Q", base64.b64decode(text[:12])[:8])[0]
+        header_bytes = 8 * (3 + blocks)
+        header_text = (header_bytes + 2) // 3 * 4
+        sizes = struct.unpack(f"<{3 + blocks}Q", base64.b64decode(text[:header_text])[:header_bytes])
+        data = base64.b64decode(text[header_text:])
+        starts = [sum(sizes[3:3 + k]) for k in range(blocks)]
+        # Each block is a zlib stream: 2 header bytes, then the first deflate block's header.
+        kinds[item.get("Name")] = {"stored" if data[s + 2] & 0x06 == 0 else "deflated" for s in starts}
+    return kinds
+
+
 def main():
     # A bar scene with 100 struts and 50 contacts, in every encoding.
     for encoding in ("ascii", "binary", "zlib"):
@@ -244,10 +265,15 @@ def main():
         check_frame(out, 0, result, "bar")
         if pvd_entries(os.path.join(out, "struts.pvd")) != [(1.0, "struts_0000.vtu")]:
             fail("thesis: struts.pvd")
-    # A plane scene: quadrilaterals, plane stresses, several pairs per contact.
+    # A plane scene: quadrilaterals, plane stresses, several pairs per contact. Its
+    # stresses hardly compress and are stored (zlib level 0), the rest deflated: VTK reads
+    # both kinds of block.
     out = os.path.join(WORK, "plane")
     result = solve("plane_pair.toml", out)
     check_frame(out, 0, result, "plane")
+    kinds = block_kinds(os.path.join(out, "struts_0000.vtu"))
+    if kinds.get("stress_sxx") != {"stored"} or kinds.get("connectivity") != {"deflated"}:
+        fail(f"plane: the stresses are not stored or the cells not deflated ({kinds})")
     # A load sweep: a frame per step, ParaView's time is the load factor.
     out = os.path.join(WORK, "sweep")
     result = solve("two_bars.toml", out, "--load-steps", "0:2:5", "--vtu-format", "binary")

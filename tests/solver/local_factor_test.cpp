@@ -121,6 +121,24 @@ TEST_CASE("A compacted factor solves as CHOLMOD's factor did, in fewer bytes") {
   }
 }
 
+TEST_CASE("A compacted simplicial factor leaves out the entries that cancelled to zero") {
+  // ones(3) + diag(0, 1, 1): L = [1 0 0; 1 1 0; 1 0 1], its entry (2, 1) an exact zero
+  // that CHOLMOD keeps (A's pattern has it); the compact copy, read from CHOLMOD's arrays
+  // in place, drops it and still solves A.
+  Eigen::MatrixXd dense = Eigen::MatrixXd::Ones(3, 3);
+  dense(1, 1) = dense(2, 2) = 2.0;
+  const solver::SparseMatrix A = dense.sparseView();
+  solver::CholmodFactor factor;
+  REQUIRE(factor.factorize(A, /*to_compact=*/true) == solver::CholmodFactor::Result::Ok);
+  REQUIRE(factor.factor_nonzeros() == 6);
+  REQUIRE(factor.compact());
+  CHECK(factor.factor_nonzeros() == 5);
+  const Eigen::Vector3d b(1.0, -2.0, 0.5);
+  Eigen::Vector3d x;
+  factor.solve(b.data(), x.data());
+  CHECK((dense * x - b).norm() <= 1e-14 * b.norm());
+}
+
 TEST_CASE("A factor kept in single precision solves A to its rounding, in 40% fewer bytes") {
   const solver::SparseMatrix A = grid_matrix(40, 30);  // supernodal, condition about 800
   const int n = static_cast<int>(A.rows());
