@@ -374,7 +374,7 @@ Eigen::VectorXd CoarseProblem::apply_Gt(const Eigen::VectorXd& a) const {
 }
 
 void CoarseProblem::project(Eigen::VectorXd& v) const {
-  v -= apply_Gt(solve(apply_G(v)));
+  subtract_Gt(solve(apply_G(v)), v);  // in place: no vector over the rows made
 }
 
 Eigen::VectorXd CoarseProblem::particular(const Eigen::VectorXd& e) const {

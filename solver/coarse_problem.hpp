@@ -70,6 +70,9 @@ class CoarseProblem {
   Eigen::VectorXd apply_G(const Eigen::VectorXd& v) const;   // G^ v (replicated)
   Eigen::VectorXd apply_Gt(const Eigen::VectorXd& a) const;  // G^' a (local rows; 0 if inactive)
   void project(Eigen::VectorXd& v) const;                    // v <- P^ v
+  void subtract_Gt(const Eigen::VectorXd& a, Eigen::VectorXd& v) const {  // v -= G^' a
+    system_.subtract_Gt(a, v, &active_);
+  }
   Eigen::VectorXd particular(const Eigen::VectorXd& e) const;
   Eigen::VectorXd amplitudes(const Eigen::VectorXd& r) const;  // (G^ G^')^+ G^ r
 

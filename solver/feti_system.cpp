@@ -402,6 +402,20 @@ Eigen::VectorXd FetiSystem::apply_G(const Eigen::VectorXd& v, const std::vector<
   return own_modes_product(G_, v, mask);
 }
 
+void FetiSystem::subtract_Gt(const Eigen::VectorXd& a, Eigen::VectorXd& v,
+                             const std::vector<char>* mask) const {
+  Stopwatch watch(times_.mode_products);
+  const int rows = static_cast<int>(G_.outerSize());
+#pragma omp parallel for schedule(static) num_threads(threads_for(G_.nonZeros()))
+  for (int r = 0; r < rows; ++r) {
+    if (mask && !(*mask)[r]) continue;
+    double sum = 0.0;  // as Eigen's sparse' * dense product sums a row
+    for (SparseMatrix::InnerIterator it(G_, r); it; ++it)
+      sum += it.value() * a(it.row());
+    v(r) -= sum;
+  }
+}
+
 Eigen::VectorXd FetiSystem::apply_abs_G(const Eigen::VectorXd& v) const {
   return own_modes_product(G_abs_, v.cwiseAbs(), nullptr);
 }

@@ -120,6 +120,10 @@ class FetiSystem {
   Eigen::VectorXd e(double load_factor) const;
   // G^ v for the rows with mask[r] != 0 (all rows without a mask), replicated.
   Eigen::VectorXd apply_G(const Eigen::VectorXd& v, const std::vector<char>* mask = nullptr) const;
+  // v -= G' a on the local rows with mask[r] != 0 (all rows without a mask), in place:
+  // each row's sum as G' a forms it, so the same bits as v - G' a.
+  void subtract_Gt(const Eigen::VectorXd& a, Eigen::VectorXd& v,
+                   const std::vector<char>* mask = nullptr) const;
   // The same for |G| |v| (a scale for G v), replicated.
   Eigen::VectorXd apply_abs_G(const Eigen::VectorXd& v) const;
   // out = B u for u over the own subdomains' DOFs (as subdomain_displacements), local rows.

@@ -9,7 +9,6 @@
 
 #include "solver/boundedness.hpp"
 #include "solver/interruption.hpp"
-#include "solver/stopwatch.hpp"
 
 namespace fetic::solver {
 namespace {
@@ -61,13 +60,15 @@ void Mprgp::find_group_constraints() {
 }
 
 Eigen::VectorXd Mprgp::to_multipliers(const Eigen::VectorXd& x) const {
-  return x - coarse_.apply_Gt(coarse_.solve(system_.apply_G(x)));
+  Eigen::VectorXd multipliers = x;
+  coarse_.subtract_Gt(coarse_.solve(system_.apply_G(x)), multipliers);
+  return multipliers;
 }
 
 Eigen::VectorXd Mprgp::to_gradient(const Eigen::VectorXd& w) const {
-  const Eigen::VectorXd a = coarse_.solve(coarse_.apply_G(w));
-  Stopwatch watch(system_.times().mode_products);
-  return w - system_.G().transpose() * a;
+  Eigen::VectorXd gradient = w;
+  system_.subtract_Gt(coarse_.solve(coarse_.apply_G(w)), gradient);
+  return gradient;
 }
 
 // ||H|| by the power method on the feasible subspace (PERMON: relative change 1e-4, at
