@@ -1,10 +1,31 @@
 #include "solver/compact_factor.hpp"
 
 #include <algorithm>
+#include <cstddef>
 #include <iterator>
 #include <stdexcept>
 
 namespace fetic::solver {
+
+namespace {
+
+// The packed layout of a supernode of nc columns and m rows below them: its strict lower
+// triangle by columns (column k holds nc - 1 - k entries), then the m x nc block,
+// column-major. These three give the layout its one definition.
+constexpr std::ptrdiff_t triangle_entries(std::ptrdiff_t nc) {
+  return nc * (nc - 1) / 2;
+}
+
+constexpr std::ptrdiff_t supernode_entries(std::ptrdiff_t nc, std::ptrdiff_t m) {
+  return triangle_entries(nc) + nc * m;
+}
+
+// Where column k starts within the triangle: after columns 0..k-1's entries.
+constexpr std::ptrdiff_t triangle_column(std::ptrdiff_t nc, std::ptrdiff_t k) {
+  return k * (nc - 1) - k * (k - 1) / 2;
+}
+
+}  // namespace
 
 CompactFactor::CompactFactor(int size, const int* permutation, std::size_t nonzeros_hint,
                              bool single)
@@ -74,11 +95,12 @@ void CompactFactor::find_supernodes(const ColumnView<Row>& columns) {
     const Row* end = columns.rows + columns.end(j);
     const auto count = static_cast<std::size_t>(end - begin);
     if (j > first_.back()) {
-      const double nc = j - first_.back() + 1.0;
+      const std::ptrdiff_t nc = j - first_.back() + 1;
       merged.clear();  // row j becomes a row of the diagonal block
       const auto rest = below.begin() + (!below.empty() && below.front() == j ? 1 : 0);
       std::set_union(rest, below.end(), begin, end, std::back_inserter(merged));
-      const double stored = nc * (nc - 1.0) / 2.0 + nc * static_cast<double>(merged.size());
+      const auto stored =
+          static_cast<double>(supernode_entries(nc, static_cast<std::ptrdiff_t>(merged.size())));
       if (stored - static_cast<double>(given + count) <= kRelaxedZeros * stored) {
         below.swap(merged);
         given += count;
@@ -100,10 +122,10 @@ void CompactFactor::build_supernodes(const ColumnView<Row>& columns) {
   rows_.shrink_to_fit();
   std::size_t stored = 0;
   for (int s = 0; s < supernodes(); ++s) {
-    const std::size_t nc = static_cast<std::size_t>(first_[s + 1] - first_[s]);
-    const std::size_t m = static_cast<std::size_t>(row_start_[s + 1] - row_start_[s]);
-    stored += nc * (nc - 1) / 2 + nc * m;
-    max_rows_ = std::max(max_rows_, static_cast<int>(m));
+    const int nc = first_[s + 1] - first_[s];
+    const int m = row_start_[s + 1] - row_start_[s];
+    stored += static_cast<std::size_t>(supernode_entries(nc, m));
+    max_rows_ = std::max(max_rows_, m);
   }
   stored_below_ = stored;
   if (single_)
@@ -125,12 +147,11 @@ std::size_t CompactFactor::fill_supernode(const ColumnView<Row>& columns, int s,
   const int m = row_start_[s + 1] - row_start_[s];
   for (int r = 0; r < m; ++r)
     where[rows_[static_cast<std::size_t>(row_start_[s] + r)]] = r;
-  const std::size_t block = triangle + static_cast<std::size_t>(nc) * (nc - 1) / 2;
+  const std::size_t block = triangle + static_cast<std::size_t>(triangle_entries(nc));
   for (int k = 0; k < nc; ++k) {
     const int j = j0 + k;
-    // Column k of the triangle holds rows j + 1 .. j0 + nc - 1 (nc - 1 - k entries).
-    const std::size_t column = triangle + static_cast<std::size_t>(k) * (nc - 1) -
-                               static_cast<std::size_t>(k) * (k - 1) / 2;
+    // Column k of the triangle holds rows j + 1 .. j0 + nc - 1.
+    const std::size_t column = triangle + static_cast<std::size_t>(triangle_column(nc, k));
     for (int e = columns.begin(j); e < columns.end(j); ++e) {
       const int row = columns.rows[e];
       const std::size_t at = row < j0 + nc ? column + static_cast<std::size_t>(row - j - 1)
@@ -141,7 +162,7 @@ std::size_t CompactFactor::fill_supernode(const ColumnView<Row>& columns, int s,
         values_[at] = columns.values[e];
     }
   }
-  return block + static_cast<std::size_t>(nc) * m;
+  return triangle + static_cast<std::size_t>(supernode_entries(nc, m));
 }
 
 std::size_t CompactFactor::bytes() const {
@@ -176,8 +197,7 @@ void triangle_forward(const Value* v, int nc, const double* inverse_diagonal, do
 template <class Value>
 void triangle_backward(const Value* v, int nc, const double* inverse_diagonal, double* x) {
   for (int k = nc - 1; k >= 0; --k) {
-    const Value* column = v + static_cast<std::ptrdiff_t>(k) * (nc - 1) -
-                          static_cast<std::ptrdiff_t>(k) * (k - 1) / 2;
+    const Value* column = v + triangle_column(nc, k);
     double s = x[k];
     for (int i = k + 1; i < nc; ++i)
       s -= static_cast<double>(column[i - k - 1]) * x[i];
@@ -324,8 +344,8 @@ void CompactFactor::forward(const Value* values, double* y, int columns, double*
     const int j0 = first_[s], nc = first_[s + 1] - j0;
     const int m = row_start_[s + 1] - row_start_[s];
     const Value* triangle = next;
-    next += static_cast<std::ptrdiff_t>(nc) * (nc - 1) / 2 + static_cast<std::ptrdiff_t>(nc) * m;
-    const Value* block = triangle + static_cast<std::ptrdiff_t>(nc) * (nc - 1) / 2;
+    next += supernode_entries(nc, m);
+    const Value* block = triangle + triangle_entries(nc);
     const std::uint16_t* rows = rows_.data() + row_start_[s];
     for (int c = 0; c < columns; ++c) {
       double* yc = y + static_cast<std::ptrdiff_t>(c) * size_;
@@ -352,9 +372,9 @@ void CompactFactor::backward(const Value* values, double* y, int columns, double
   for (int s = supernodes() - 1; s >= 0; --s) {
     const int j0 = first_[s], nc = first_[s + 1] - j0;
     const int m = row_start_[s + 1] - row_start_[s];
-    end -= static_cast<std::ptrdiff_t>(nc) * (nc - 1) / 2 + static_cast<std::ptrdiff_t>(nc) * m;
+    end -= supernode_entries(nc, m);
     const Value* triangle = end;
-    const Value* block = triangle + static_cast<std::ptrdiff_t>(nc) * (nc - 1) / 2;
+    const Value* block = triangle + triangle_entries(nc);
     const std::uint16_t* rows = rows_.data() + row_start_[s];
     for (int c = 0; c < columns; ++c) {
       double* yc = y + static_cast<std::ptrdiff_t>(c) * size_;
