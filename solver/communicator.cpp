@@ -147,17 +147,26 @@ std::vector<T> all_gather_impl(const std::vector<T>& local, int size, Communicat
   return all;
 }
 
-template <class T>
-std::vector<T> gather_to_root_impl(const std::vector<T>& local, int rank, int size,
-                                   CommunicationStats& stats) {
-  Stopwatch timer(stats.gather_seconds);
+// The start of a gather to rank 0: counted in `stats`, and every process' item count
+// brought to rank 0 (the others get none).
+std::vector<int> counts_at_root(int count, std::size_t item_bytes, int rank, int size,
+                                CommunicationStats& stats) {
   ++stats.gathers;
-  stats.gathered_bytes += static_cast<std::int64_t>(local.size() * sizeof(T));
-  const int count = static_cast<int>(local.size());
+  stats.gathered_bytes += static_cast<std::int64_t>(static_cast<std::size_t>(count) * item_bytes);
   std::vector<int> counts(rank == 0 ? size : 0);
   MPI_Request request;
   MPI_Igather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, MPI_COMM_WORLD, &request);
   wait_one(request);
+  return counts;
+}
+
+template <class T>
+std::vector<T> gather_to_root_impl(const std::vector<T>& local, int rank, int size,
+                                   CommunicationStats& stats) {
+  Stopwatch timer(stats.gather_seconds);
+  const int count = static_cast<int>(local.size());
+  const std::vector<int> counts = counts_at_root(count, sizeof(T), rank, size, stats);
+  MPI_Request request;
   std::vector<T> all;
   std::vector<int> offsets;
   if (rank == 0) {
@@ -289,13 +298,9 @@ void Communicator::gather_to_root_each(
     return;
   }
   Stopwatch timer(stats_.gather_seconds);
-  ++stats_.gathers;
-  stats_.gathered_bytes += static_cast<std::int64_t>(local.size() * sizeof(double));
   const int count = static_cast<int>(local.size());
-  std::vector<int> counts(rank_ == 0 ? size_ : 0);
+  const std::vector<int> counts = counts_at_root(count, sizeof(double), rank_, size_, stats_);
   MPI_Request request;
-  MPI_Igather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, MPI_COMM_WORLD, &request);
-  wait_one(request);
   constexpr int kGatherEachTag = 1;  // exchanges use tag 0
   if (rank_ != 0) {
     MPI_Isend(local.data(), count, MPI_DOUBLE, 0, kGatherEachTag, MPI_COMM_WORLD, &request);
