@@ -396,6 +396,13 @@ void CompactFactor::backward(const Value* values, double* y, int columns, double
   }
 }
 
+std::vector<int> CompactFactor::positions() const {
+  std::vector<int> position(permutation_.size());
+  for (int k = 0; k < size_; ++k)
+    position[static_cast<std::size_t>(permutation_[static_cast<std::size_t>(k)])] = k;
+  return position;
+}
+
 void CompactFactor::solve_in_place(double* y, int columns) const {
   thread_local std::vector<double> t;
   if (t.size() < static_cast<std::size_t>(max_rows_)) t.resize(static_cast<std::size_t>(max_rows_));

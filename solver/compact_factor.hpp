@@ -71,6 +71,8 @@ class CompactFactor {
   // permuting passes and its copy.
   void solve_in_place(double* y, int columns = 1) const;
   const std::vector<int>& permutation() const { return permutation_; }
+  // Per row of A, its row in the factor's order: the inverse of permutation().
+  std::vector<int> positions() const;
 
  private:
   // The columns below the diagonal, as given to add() (Row = uint16) or as compressed

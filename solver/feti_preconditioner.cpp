@@ -36,9 +36,7 @@ using DofKey = std::pair<int, int>;  // (subdomain, subdomain-local DOF)
 // order, so that K_ib' v sums them as before: the same bits.
 void to_factor_order(SparseMatrix& K_ib, const CompactFactor& factor) {
   K_ib.makeCompressed();
-  std::vector<int> position(factor.permutation().size());
-  for (int k = 0; k < factor.size(); ++k)
-    position[factor.permutation()[k]] = k;
+  const std::vector<int> position = factor.positions();
   int* rows = K_ib.innerIndexPtr();
   for (Eigen::Index e = 0; e < K_ib.nonZeros(); ++e)
     rows[e] = position[rows[e]];

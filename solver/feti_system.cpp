@@ -131,8 +131,9 @@ std::vector<int> factor_positions(const GeneralizedInverse& K_plus,
   if (!factor) return {};
   std::vector<int> position(static_cast<std::size_t>(K_plus.size()), -1);
   const std::vector<int>& kept = K_plus.kept_dofs();
-  for (int k = 0; k < factor->size(); ++k)
-    position[kept[factor->permutation()[k]]] = k;
+  const std::vector<int> in_factor = factor->positions();
+  for (std::size_t j = 0; j < in_factor.size(); ++j)
+    position[kept[j]] = in_factor[j];
   std::vector<int> positions;
   positions.reserve(incidence.size());
   for (const Incidence& in : incidence)
