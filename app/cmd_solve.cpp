@@ -403,14 +403,10 @@ struct Sweep {
   // rank 0's outputs; the sweep itself keeps the local states for its warm starts. The
   // whole state is moved, never copied: rank 0 held it twice beside the factors
   // (docs/DISTRIBUTED.md, rank 0's peak).
-  void on_step(const solver::SweepStep& local, std::vector<solver::Snapshot>& whole_states) {
-    if (!ranks.distributed()) {
-      report_step(local);
-      return;
-    }
-    solver::SweepStep whole{local.load_factor, setup.method->gathered_snapshot(), local.history};
-    report_step(whole);
-    whole_states.push_back(std::move(whole.state));
+  // Under mpirun the step's own state becomes the whole one on rank 0 (collective).
+  void on_step(solver::SweepStep& step) {
+    if (ranks.distributed()) step.state = setup.method->gathered(std::move(step.state));
+    report_step(step);
   }
   void report_step(const solver::SweepStep& finished) {
     const solver::SweepStep* step = &finished;
@@ -433,11 +429,10 @@ struct Sweep {
       report << "load steps   " << load_factors.size() << " from " << load_factors.front() << " to "
              << load_factors.back() << ", each warm-started\n";
     Activity solving("solving");
-    std::vector<solver::Snapshot> whole_states;
     solver::SweepHooks hooks;
     hooks.before_start = [&](double t) { before_start(t); };
     hooks.on_iteration = [&](double t, const solver::Method& m) { on_iteration(t, m); };
-    hooks.on_step = [&](const solver::SweepStep& step) { on_step(step, whole_states); };
+    hooks.on_step = [&](solver::SweepStep& step) { on_step(step); };
     hooks.keep_going = [&] { return !ranks.stop_requested(); };
     const auto start = std::chrono::steady_clock::now();
     std::vector<solver::SweepStep> steps;
@@ -449,8 +444,6 @@ struct Sweep {
     }
     progress.clear();
     setup.info.solve_seconds = seconds_since(start) - outputs.writing_seconds();
-    for (size_t i = 0; i < whole_states.size() && i < steps.size(); ++i)
-      steps[i].state = std::move(whole_states[i]);
     return steps;
   }
 };

@@ -244,8 +244,7 @@ void place_pieces(const std::vector<double>& numbers, bool rotations, std::vecto
 
 }  // namespace
 
-Snapshot FetiMethod::gathered_snapshot() const {
-  Snapshot s = snapshot();
+Snapshot FetiMethod::gathered(Snapshot s) const {
   const Communicator& comm = system_.communicator();
   if (!comm.distributed()) return s;
   const Decomposition& d = system_.decomposition();

@@ -55,7 +55,7 @@ class FetiMethod : public Method {
   // pairs whose rows it holds, the working set of all pairs, its local multipliers.
   Snapshot snapshot() const override;
   // The whole state on rank 0 (collective; the same as snapshot() in one process).
-  Snapshot gathered_snapshot() const override;
+  Snapshot gathered(Snapshot local) const override;
   const FetiSystem& system() const { return system_; }
   const FetiPreconditioner& preconditioner() const { return preconditioner_; }
   // Bytes CHOLMOD holds at its peak for the subdomain, preconditioner and coarse factors.

@@ -32,8 +32,10 @@ struct SweepStep {
 };
 
 struct SweepHooks {
-  std::function<void(double)> before_start;                 // e.g. to set a reference
-  std::function<void(const SweepStep&)> on_step;            // sees each finished step
+  std::function<void(double)> before_start;  // e.g. to set a reference
+  // Sees each finished step; may replace its state (fetic solve under mpirun puts the
+  // whole state gathered on rank 0 in place of the process' own).
+  std::function<void(SweepStep&)> on_step;
   std::function<bool()> keep_going;                         // false stops the sweep
   std::function<void(double, const Method&)> on_iteration;  // after start and every step
   // sweep(): a stop between two load factors (or before the first) still starts the next

@@ -125,7 +125,11 @@ class Method {
   virtual Snapshot snapshot() const = 0;
   // The whole state on rank 0 of a distributed solve (collective: every process calls
   // it); the same as snapshot() in one process.
-  virtual Snapshot gathered_snapshot() const { return snapshot(); }
+  Snapshot gathered_snapshot() const { return gathered(snapshot()); }
+  // The same from this process' snapshot() taken already (the sweep's final state): no
+  // second reconstruction, and rank 0 moves its own pieces into the whole instead of
+  // holding them twice (its peak under mpirun, docs/DISTRIBUTED.md).
+  virtual Snapshot gathered(Snapshot local) const { return local; }
 
   Status status() const { return status_; }
   const std::string& message() const { return message_; }
