@@ -50,6 +50,8 @@ class FetiPreconditioner {
     // K_ii's lean factor, if it has one: K_ib's rows are then renumbered into its order,
     // so that M^-1 solves in place (CompactFactor::solve_in_place).
     const CompactFactor* interior_factor = nullptr;
+    // Whether its reach_first() layout covers K_ib's rows: solves on those alone.
+    bool reached_only = false;
     int offset = 0;          // of its boundary among all subdomains'
     std::vector<int> terms;  // per entry of `incidence`: its term among the rows' sums
   };

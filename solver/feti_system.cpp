@@ -187,6 +187,13 @@ void FetiSystem::factorize_subdomains(bool interior_first, bool single_factors,
     singular[i] = results[i] == CholmodFactor::Result::Ok && op.K_plus.rcond() < kSingularRcond;
     if (results[i] == CholmodFactor::Result::Ok)
       op.positions = factor_positions(op.K_plus, op.incidence);
+    if (!op.positions.empty()) {
+      // The fused pass solves on B_j's DOFs alone (the fixed ones, -1, not in the factor).
+      std::vector<int> rows;
+      for (int p : op.positions)
+        if (p >= 0) rows.push_back(p);
+      op.K_plus.reach_first(rows);
+    }
   }
   throw_if_stopped("factorizing the subdomains");
   // The lowest failing subdomain of any process is reported, by every process alike.
@@ -312,7 +319,7 @@ void FetiSystem::solve_subdomain_fused(int i, const Eigen::VectorXd* lambda, dou
       touched = touched || term != 0.0;
       if (op.positions[k] >= 0) work[static_cast<std::size_t>(op.positions[k])] += term;
     }
-  if (touched) op.K_plus.compact_factor()->solve_in_place(work.data());
+  if (touched) op.K_plus.compact_factor()->solve_reached_in_place(work.data());
   for (std::size_t k = 0; k < entries; ++k)
     boundary_y_[static_cast<std::size_t>(op.terms[k])] =
         op.positions[k] >= 0 ? work[static_cast<std::size_t>(op.positions[k])] : 0.0;
