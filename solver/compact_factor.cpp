@@ -476,6 +476,16 @@ void CompactFactor::reach_first(const std::vector<int>& rows) {
     reorder_reached_first(values_);
 }
 
+std::size_t CompactFactor::reached_bytes() const {
+  std::size_t bytes = reached_below_ * (single_ ? sizeof(float) : sizeof(double));
+  for (int s = 0; s < supernodes(); ++s)
+    if (is_reached(s))
+      bytes += static_cast<std::size_t>(row_start_[s + 1] - row_start_[s]) * sizeof(std::uint16_t) +
+               static_cast<std::size_t>(first_[s + 1] - first_[s]) * sizeof(double) +
+               2 * sizeof(int);
+  return bytes;
+}
+
 bool CompactFactor::reached(int row) const {
   if (reached_.empty()) return true;
   const auto after = std::upper_bound(first_.begin(), first_.end(), row);

@@ -87,6 +87,9 @@ class CompactFactor {
   // come out unspecified.
   void solve_reached_in_place(double* y) const;
   std::size_t reached_nonzeros() const { return reached_below_ + inverse_diagonal_.size(); }
+  // Bytes of the factor that solve_reached_in_place() reads (each pass once): the marked
+  // supernodes' entries, row lists, inverse diagonals and bounds.
+  std::size_t reached_bytes() const;
   const std::vector<int>& permutation() const { return permutation_; }
   // Per row of A, its row in the factor's order: the inverse of permutation().
   std::vector<int> positions() const;

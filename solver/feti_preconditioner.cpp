@@ -267,6 +267,21 @@ void FetiPreconditioner::add_memory(LocalMemory& m) const {
   m.workspaces += static_cast<double>(term_values_.capacity()) * sizeof(double);
 }
 
+double FetiPreconditioner::bytes_read() const {
+  double bytes = 0.0;
+  for (const Local& local : local_) {
+    bytes += 2.0 * sparse_bytes(local.K_ib) + sparse_bytes(local.K_bb);
+    if (local.interior_factor)
+      bytes += 2.0 * static_cast<double>(local.reached_only ? local.interior_factor->reached_bytes()
+                                                            : local.interior_factor->bytes());
+    else if (local.interior)
+      bytes += 2.0 * static_cast<double>(local.interior->interior_memory());
+    else
+      bytes += 2.0 * static_cast<double>(local.K_ii.memory_in_use());
+  }
+  return bytes;
+}
+
 std::size_t FetiPreconditioner::factor_memory() const {
   std::size_t total = 0;
   for (const Local& local : local_)
@@ -277,6 +292,7 @@ std::size_t FetiPreconditioner::factor_memory() const {
 void FetiPreconditioner::apply(const Eigen::VectorXd& w, const std::vector<char>* mask,
                                Eigen::VectorXd& z) const {
   Stopwatch watch(system_.times().preconditioner);
+  ++applications_;
   const int rows = static_cast<int>(w.size());
   if (kind_ == Preconditioner::None) {
     z = w;

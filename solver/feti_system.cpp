@@ -570,6 +570,16 @@ void FetiSystem::release_stiffness() {
   }
 }
 
+double FetiSystem::f_bytes_read() const {
+  double bytes = 0.0;
+  for (const SubdomainOperator& op : subdomains_) {
+    const CompactFactor* factor = op.K_plus.compact_factor();
+    bytes += 2.0 * static_cast<double>(factor && !op.positions.empty() ? factor->reached_bytes()
+                                                                       : op.K_plus.factor_memory());
+  }
+  return bytes;
+}
+
 LocalMemory FetiSystem::memory() const {
   LocalMemory m;
   for (const SubdomainOperator& op : subdomains_) {

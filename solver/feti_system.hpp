@@ -153,6 +153,9 @@ class FetiSystem {
   std::size_t factor_memory() const;
   // Bytes held now for the own subdomains, by kind (the preconditioner adds its own).
   LocalMemory memory() const;
+  // Bytes one application of F reads of the own subdomains' factors: each lean factor's
+  // reached part twice (forward, back; CompactFactor::reached_bytes), others whole.
+  double f_bytes_read() const;
   const SetupTimes& setup_times() const { return setup_times_; }
   // Frees every K_j: after the preconditioner's set-up nothing reads them (the factors
   // and the preconditioner's blocks hold what the iterations need).
