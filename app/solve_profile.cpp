@@ -60,7 +60,10 @@ std::vector<double> flatten(const ProfileRun& run) {
           b.preconditioner_setup_seconds,
           b.preconditioner_seconds - a.preconditioner_seconds,
           b.mode_product_seconds - a.mode_product_seconds,
-          b.range_projection_seconds - a.range_projection_seconds};
+          b.range_projection_seconds - a.range_projection_seconds,
+          static_cast<double>(b.preconditioner_applications - a.preconditioner_applications),
+          b.f_bytes_read,
+          b.preconditioner_bytes_read};
 }
 
 const char* const kFields[] = {"subdomains",
@@ -103,7 +106,10 @@ const char* const kFields[] = {"subdomains",
                                "setup_preconditioner_seconds",
                                "preconditioner_seconds",
                                "mode_product_seconds",
-                               "range_projection_seconds"};
+                               "range_projection_seconds",
+                               "preconditioner_applications",
+                               "f_bytes_read",
+                               "preconditioner_bytes_read"};
 
 }  // namespace
 

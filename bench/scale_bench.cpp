@@ -426,8 +426,8 @@ int run(const Args& args) {
     setup.print();
     setup.write_csv(args.csv_dir, "setup.csv");
     Table apply{
-        "1d. One application of F (the fastest of 15): the subdomain factors read twice against a "
-        "triad",
+        "1d. One application of F and of M^-1 (the fastest of 15 each): the bytes of the factors "
+        "and blocks they read against a triad",
         bytes.apply_header, bytes.apply};
     apply.print();
     apply.write_csv(args.csv_dir, "apply_F.csv");

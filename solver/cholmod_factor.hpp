@@ -51,6 +51,7 @@ class CholmodFactor {
   bool compacted() const { return compact_ != nullptr; }
   // The lean copy after compact() (solve_in_place, its permutation), else null.
   const CompactFactor* compact_factor() const { return compact_.get(); }
+  CompactFactor* compact_factor() { return compact_.get(); }  // to reach_first() it
   // Column where factorization broke down (valid after NotPositiveDefinite).
   int failed_column() const { return failed_column_; }
   // CHOLMOD's cheap estimate min(diag L) / max(diag L), squared for an LL' factor.

@@ -128,6 +128,7 @@ void CompactFactor::build_supernodes(const ColumnView<Row>& columns) {
     max_rows_ = std::max(max_rows_, m);
   }
   stored_below_ = stored;
+  reached_below_ = stored;
   if (single_)
     values32_.assign(stored, 0.0f);
   else
@@ -338,13 +339,17 @@ void pair_backward(const Value* v, int m, const std::uint16_t* rows, const doubl
 }  // namespace
 
 template <class Value>
-void CompactFactor::forward(const Value* values, double* y, int columns, double* t) const {
-  const Value* next = values;  // the supernodes' entries follow each other
+void CompactFactor::forward(const Value* values, double* y, int columns, double* t,
+                            bool reached_only) const {
+  // The supernodes' entries follow each other in two parts: the reached, then the others.
+  const Value* next[2] = {values + reached_below_, values};
   for (int s = 0; s < supernodes(); ++s) {
     const int j0 = first_[s], nc = first_[s + 1] - j0;
     const int m = row_start_[s + 1] - row_start_[s];
-    const Value* triangle = next;
-    next += supernode_entries(nc, m);
+    const bool reached = is_reached(s);
+    if (reached_only && !reached) continue;
+    const Value* triangle = next[reached];
+    next[reached] += supernode_entries(nc, m);
     const Value* block = triangle + triangle_entries(nc);
     const std::uint16_t* rows = rows_.data() + row_start_[s];
     for (int c = 0; c < columns; ++c) {
@@ -367,13 +372,17 @@ void CompactFactor::forward(const Value* values, double* y, int columns, double*
 }
 
 template <class Value>
-void CompactFactor::backward(const Value* values, double* y, int columns, double* t) const {
-  const Value* end = values + stored_below_;  // past the last supernode's entries
+void CompactFactor::backward(const Value* values, double* y, int columns, double* t,
+                             bool reached_only) const {
+  // Past the last supernode's entries of each part (the others, the reached).
+  const Value* end[2] = {values + stored_below_, values + reached_below_};
   for (int s = supernodes() - 1; s >= 0; --s) {
     const int j0 = first_[s], nc = first_[s + 1] - j0;
     const int m = row_start_[s + 1] - row_start_[s];
-    end -= supernode_entries(nc, m);
-    const Value* triangle = end;
+    const bool reached = is_reached(s);
+    if (reached_only && !reached) continue;
+    end[reached] -= supernode_entries(nc, m);
+    const Value* triangle = end[reached];
     const Value* block = triangle + triangle_entries(nc);
     const std::uint16_t* rows = rows_.data() + row_start_[s];
     for (int c = 0; c < columns; ++c) {
@@ -403,16 +412,84 @@ std::vector<int> CompactFactor::positions() const {
   return position;
 }
 
-void CompactFactor::solve_in_place(double* y, int columns) const {
+void CompactFactor::solve_parts(double* y, int columns, bool reached_only) const {
   thread_local std::vector<double> t;
   if (t.size() < static_cast<std::size_t>(max_rows_)) t.resize(static_cast<std::size_t>(max_rows_));
   if (single_) {
-    forward(values32_.data(), y, columns, t.data());
-    backward(values32_.data(), y, columns, t.data());
+    forward(values32_.data(), y, columns, t.data(), reached_only);
+    backward(values32_.data(), y, columns, t.data(), reached_only);
   } else {
-    forward(values_.data(), y, columns, t.data());
-    backward(values_.data(), y, columns, t.data());
+    forward(values_.data(), y, columns, t.data(), reached_only);
+    backward(values_.data(), y, columns, t.data(), reached_only);
   }
+}
+
+void CompactFactor::solve_in_place(double* y, int columns) const {
+  solve_parts(y, columns, false);
+}
+
+void CompactFactor::solve_reached_in_place(double* y) const {
+  solve_parts(y, 1, true);
+}
+
+// The entries from the one ordered sequence to the two parts reached_ defines.
+template <class Value>
+void CompactFactor::reorder_reached_first(std::vector<Value>& values) const {
+  std::vector<Value> parts(values.size());
+  std::size_t from = 0, next[2] = {reached_below_, 0};
+  for (int s = 0; s < supernodes(); ++s) {
+    const auto count = static_cast<std::size_t>(
+        supernode_entries(first_[s + 1] - first_[s], row_start_[s + 1] - row_start_[s]));
+    const bool reached = reached_[static_cast<std::size_t>(s)];
+    std::copy_n(values.begin() + static_cast<std::ptrdiff_t>(from), count,
+                parts.begin() + static_cast<std::ptrdiff_t>(next[reached]));
+    from += count;
+    next[reached] += count;
+  }
+  values.swap(parts);
+}
+
+void CompactFactor::reach_first(const std::vector<int>& rows) {
+  if (!reached_.empty()) throw std::logic_error("CompactFactor: reach_first() twice");
+  std::vector<int> supernode_of(static_cast<std::size_t>(size_));
+  for (int s = 0; s < supernodes(); ++s)
+    std::fill(supernode_of.begin() + first_[s], supernode_of.begin() + first_[s + 1], s);
+  std::vector<char> reached(static_cast<std::size_t>(supernodes()), 0);
+  for (int row : rows)
+    reached[static_cast<std::size_t>(supernode_of[static_cast<std::size_t>(row)])] = 1;
+  // A supernode updates the rows below it, all in later supernodes: one pass in order
+  // marks every supernode a marked one updates. Every row, not only the first: a relaxed
+  // supernode's rows need not lie on one path of the elimination tree.
+  std::size_t entries = 0;
+  for (int s = 0; s < supernodes(); ++s) {
+    if (!reached[static_cast<std::size_t>(s)]) continue;
+    entries += static_cast<std::size_t>(
+        supernode_entries(first_[s + 1] - first_[s], row_start_[s + 1] - row_start_[s]));
+    for (int k = row_start_[s]; k < row_start_[s + 1]; ++k)
+      reached[static_cast<std::size_t>(supernode_of[rows_[static_cast<std::size_t>(k)]])] = 1;
+  }
+  reached_.swap(reached);
+  reached_below_ = entries;
+  if (single_)
+    reorder_reached_first(values32_);
+  else
+    reorder_reached_first(values_);
+}
+
+std::size_t CompactFactor::reached_bytes() const {
+  std::size_t bytes = reached_below_ * (single_ ? sizeof(float) : sizeof(double));
+  for (int s = 0; s < supernodes(); ++s)
+    if (is_reached(s))
+      bytes += static_cast<std::size_t>(row_start_[s + 1] - row_start_[s]) * sizeof(std::uint16_t) +
+               static_cast<std::size_t>(first_[s + 1] - first_[s]) * sizeof(double) +
+               2 * sizeof(int);
+  return bytes;
+}
+
+bool CompactFactor::reached(int row) const {
+  if (reached_.empty()) return true;
+  const auto after = std::upper_bound(first_.begin(), first_.end(), row);
+  return reached_[static_cast<std::size_t>(after - first_.begin() - 1)] != 0;
 }
 
 void CompactFactor::solve(const double* b, double* x, int columns) const {

@@ -70,6 +70,26 @@ class CompactFactor {
   // into this order (FETI's F and the Dirichlet preconditioner) saves solve()'s two
   // permuting passes and its copy.
   void solve_in_place(double* y, int columns = 1) const;
+  // Solves whose right-hand side is zero outside the rows `rows` (in the factor's order)
+  // and which read only those rows of the solution - F's on a subdomain's boundary, the
+  // Dirichlet preconditioner's on K_ii's rows next to it - need only the supernodes
+  // holding those rows and every supernode a visited one updates (those holding its rows
+  // below its columns: its ancestors). Every other supernode's columns stay zero forward
+  // and are read by no visited one backward, so skipping them gives those rows the same
+  // bits. reach_first(rows) marks these supernodes and stores their entries first, in
+  // order, the others after: solve_reached_in_place() then streams one contiguous part
+  // (skipping scattered supernodes in place saved nothing - the hardware prefetcher read
+  // the gaps anyway). solve() and solve_in_place() still solve with all of them.
+  void reach_first(const std::vector<int>& rows);
+  // Whether row (factor order) is in a supernode reach_first() marked (all are without).
+  bool reached(int row) const;
+  // solve_in_place(y) on the marked supernodes: y's rows outside reach_first()'s `rows`
+  // come out unspecified.
+  void solve_reached_in_place(double* y) const;
+  std::size_t reached_nonzeros() const { return reached_below_ + inverse_diagonal_.size(); }
+  // Bytes of the factor that solve_reached_in_place() reads (each pass once): the marked
+  // supernodes' entries, row lists, inverse diagonals and bounds.
+  std::size_t reached_bytes() const;
   const std::vector<int>& permutation() const { return permutation_; }
   // Per row of A, its row in the factor's order: the inverse of permutation().
   std::vector<int> positions() const;
@@ -93,10 +113,15 @@ class CompactFactor {
   template <class Row>
   std::size_t fill_supernode(const ColumnView<Row>& columns, int s, std::size_t triangle,
                              std::vector<int>& where);
+  // L y' = y and L' y' = y; `reached_only`: on the supernodes reach_first() marked.
   template <class Value>
-  void forward(const Value* values, double* y, int columns, double* t) const;  // L y' = y
+  void forward(const Value* values, double* y, int columns, double* t, bool reached_only) const;
   template <class Value>
-  void backward(const Value* values, double* y, int columns, double* t) const;  // L' y' = y
+  void backward(const Value* values, double* y, int columns, double* t, bool reached_only) const;
+  void solve_parts(double* y, int columns, bool reached_only) const;
+  bool is_reached(int s) const { return reached_.empty() || reached_[static_cast<std::size_t>(s)]; }
+  template <class Value>
+  void reorder_reached_first(std::vector<Value>& values) const;
 
   int size_ = 0;
   bool single_ = false;
@@ -112,6 +137,10 @@ class CompactFactor {
   std::vector<int> row_start_;
   std::vector<std::uint16_t> rows_;
   std::size_t stored_below_ = 0;
+  // Per supernode, whether reach_first() marked it (empty: all); the marked supernodes'
+  // entries come first (reached_below_ of them), then the others', each part in order.
+  std::vector<char> reached_;
+  std::size_t reached_below_ = 0;
   int max_rows_ = 0;             // the largest m: the solves' workspace
   std::vector<double> values_;   // L's entries below the diagonal (double)
   std::vector<float> values32_;  // or as floats (single)

@@ -132,6 +132,9 @@ ProcessProfile FetiMethod::profile() const {
   preconditioner_.add_memory(p.memory);
   p.setup = system_.setup_times();
   p.preconditioner_setup_seconds = preconditioner_.setup_seconds();
+  p.preconditioner_applications = preconditioner_.applications();
+  p.f_bytes_read = system_.f_bytes_read();
+  p.preconditioner_bytes_read = preconditioner_.bytes_read();
   return p;
 }
 

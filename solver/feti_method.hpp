@@ -43,6 +43,9 @@ struct ProcessProfile {
   LocalMemory memory;             // bytes held for the own subdomains, by kind
   SetupTimes setup;               // the subdomain operators' set-up, by part
   double preconditioner_setup_seconds = 0.0;
+  long long preconditioner_applications = 0;
+  double f_bytes_read = 0.0;               // per application of F (FetiSystem::f_bytes_read)
+  double preconditioner_bytes_read = 0.0;  // per application of M^-1
 };
 
 class FetiMethod : public Method {

@@ -168,7 +168,15 @@ bool FetiPreconditioner::set_up_local(const SubdomainOperator& op, Local& local,
     local.K_ii.compact();  // only solved with from here on
     local.interior_factor = local.K_ii.compact_factor();
   }
-  if (local.interior_factor) to_factor_order(local.K_ib, *local.interior_factor);
+  if (!local.interior_factor) return true;
+  to_factor_order(local.K_ib, *local.interior_factor);
+  const int* rows = local.K_ib.innerIndexPtr();
+  const std::vector<int> coupled(rows, rows + local.K_ib.nonZeros());
+  // Its own factor is laid out here; K_j's K_ii factor was at factorization, from K's
+  // pattern, which covers K_ib's (checked: else the solves take every supernode).
+  if (CompactFactor* own = local.K_ii.compact_factor()) own->reach_first(coupled);
+  local.reached_only = std::all_of(coupled.begin(), coupled.end(),
+                                   [&](int row) { return local.interior_factor->reached(row); });
   return true;
 }
 
@@ -259,6 +267,21 @@ void FetiPreconditioner::add_memory(LocalMemory& m) const {
   m.workspaces += static_cast<double>(term_values_.capacity()) * sizeof(double);
 }
 
+double FetiPreconditioner::bytes_read() const {
+  double bytes = 0.0;
+  for (const Local& local : local_) {
+    bytes += 2.0 * sparse_bytes(local.K_ib) + sparse_bytes(local.K_bb);
+    if (local.interior_factor)
+      bytes += 2.0 * static_cast<double>(local.reached_only ? local.interior_factor->reached_bytes()
+                                                            : local.interior_factor->bytes());
+    else if (local.interior)
+      bytes += 2.0 * static_cast<double>(local.interior->interior_memory());
+    else
+      bytes += 2.0 * static_cast<double>(local.K_ii.memory_in_use());
+  }
+  return bytes;
+}
+
 std::size_t FetiPreconditioner::factor_memory() const {
   std::size_t total = 0;
   for (const Local& local : local_)
@@ -269,6 +292,7 @@ std::size_t FetiPreconditioner::factor_memory() const {
 void FetiPreconditioner::apply(const Eigen::VectorXd& w, const std::vector<char>* mask,
                                Eigen::VectorXd& z) const {
   Stopwatch watch(system_.times().preconditioner);
+  ++applications_;
   const int rows = static_cast<int>(w.size());
   if (kind_ == Preconditioner::None) {
     z = w;
@@ -294,7 +318,10 @@ void FetiPreconditioner::apply(const Eigen::VectorXd& w, const std::vector<char>
       thread_local Eigen::VectorXd in_factor_order;
       in_factor_order.resize(local.K_ib.rows());
       in_factor_order.noalias() = local.K_ib * x;
-      local.interior_factor->solve_in_place(in_factor_order.data());
+      if (local.reached_only)
+        local.interior_factor->solve_reached_in_place(in_factor_order.data());
+      else
+        local.interior_factor->solve_in_place(in_factor_order.data());
       y.noalias() -= local.K_ib.transpose() * in_factor_order;
     } else if (local.interior || local.K_ii.size() > 0) {
       // Per thread, not per application: no allocation in the iterations.

@@ -36,6 +36,10 @@ class FetiPreconditioner {
   // Adds the bytes held now for the own subdomains' blocks, by kind.
   void add_memory(LocalMemory& memory) const;
   double setup_seconds() const { return setup_seconds_; }
+  long long applications() const { return applications_; }
+  // Bytes one application reads of the own subdomains' blocks: K_ii's factors (their
+  // reached parts) forward and back, K_ib twice (K_ib x, K_ib' y), K_bb once.
+  double bytes_read() const;
   // z = M^-1 w, using and producing only rows with mask[r] != 0 (all rows without a mask).
   void apply(const Eigen::VectorXd& w, const std::vector<char>* mask, Eigen::VectorXd& z) const;
 
@@ -50,6 +54,8 @@ class FetiPreconditioner {
     // K_ii's lean factor, if it has one: K_ib's rows are then renumbered into its order,
     // so that M^-1 solves in place (CompactFactor::solve_in_place).
     const CompactFactor* interior_factor = nullptr;
+    // Whether its reach_first() layout covers K_ib's rows: solves on those alone.
+    bool reached_only = false;
     int offset = 0;          // of its boundary among all subdomains'
     std::vector<int> terms;  // per entry of `incidence`: its term among the rows' sums
   };
@@ -72,6 +78,7 @@ class FetiPreconditioner {
   // Each subdomain's S_j B_j' w at its terms of the rows' sums (in the order of terms_),
   // so that the sums read it in order.
   mutable std::vector<double> term_values_;
+  mutable long long applications_ = 0;
 };
 
 }  // namespace fetic::solver

@@ -1,6 +1,7 @@
 #include "solver/feti_system.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <map>
 #include <string>
@@ -187,6 +188,13 @@ void FetiSystem::factorize_subdomains(bool interior_first, bool single_factors,
     singular[i] = results[i] == CholmodFactor::Result::Ok && op.K_plus.rcond() < kSingularRcond;
     if (results[i] == CholmodFactor::Result::Ok)
       op.positions = factor_positions(op.K_plus, op.incidence);
+    if (!op.positions.empty()) {
+      // The fused pass solves on B_j's DOFs alone (the fixed ones, -1, not in the factor).
+      std::vector<int> rows;
+      for (int p : op.positions)
+        if (p >= 0) rows.push_back(p);
+      op.K_plus.reach_first(rows);
+    }
   }
   throw_if_stopped("factorizing the subdomains");
   // The lowest failing subdomain of any process is reported, by every process alike.
@@ -229,7 +237,7 @@ void FetiSystem::build_G() {
     }
   G_.resize(d.total_modes, space_.rows());
   G_.setFromTriplets(entries.begin(), entries.end());
-  G_abs_ = G_.cwiseAbs();
+  G_by_mode_ = G_;
 }
 
 void FetiSystem::build_redundant_groups() {
@@ -312,7 +320,7 @@ void FetiSystem::solve_subdomain_fused(int i, const Eigen::VectorXd* lambda, dou
       touched = touched || term != 0.0;
       if (op.positions[k] >= 0) work[static_cast<std::size_t>(op.positions[k])] += term;
     }
-  if (touched) op.K_plus.compact_factor()->solve_in_place(work.data());
+  if (touched) op.K_plus.compact_factor()->solve_reached_in_place(work.data());
   for (std::size_t k = 0; k < entries; ++k)
     boundary_y_[static_cast<std::size_t>(op.terms[k])] =
         op.positions[k] >= 0 ? work[static_cast<std::size_t>(op.positions[k])] : 0.0;
@@ -400,7 +408,7 @@ Eigen::VectorXd FetiSystem::e(double load_factor) const {
 }
 
 Eigen::VectorXd FetiSystem::apply_G(const Eigen::VectorXd& v, const std::vector<char>* mask) const {
-  return own_modes_product(G_, v, mask);
+  return own_modes_product(v, mask, false);
 }
 
 void FetiSystem::subtract_Gt(const Eigen::VectorXd& a, Eigen::VectorXd& v,
@@ -418,19 +426,27 @@ void FetiSystem::subtract_Gt(const Eigen::VectorXd& a, Eigen::VectorXd& v,
 }
 
 Eigen::VectorXd FetiSystem::apply_abs_G(const Eigen::VectorXd& v) const {
-  return own_modes_product(G_abs_, v.cwiseAbs(), nullptr);
+  return own_modes_product(v, nullptr, true);
 }
 
-Eigen::VectorXd FetiSystem::own_modes_product(const SparseMatrix& M, const Eigen::VectorXd& v,
-                                              const std::vector<char>* mask) const {
-  // The own subdomains' modes of M v; each sums its rows in increasing global order, the
-  // same for any number of processes (a neighbour's modes are left to its process).
+Eigen::VectorXd FetiSystem::own_modes_product(const Eigen::VectorXd& v,
+                                              const std::vector<char>* mask, bool absolute) const {
+  // The own subdomains' modes of G v; each sums its rows in increasing global order from
+  // zero, the same for any number of processes (a neighbour's modes are left to its
+  // process) and as the scatter over G's rows summed before.
   Stopwatch watch(times_.mode_products);
-  Eigen::VectorXd local = Eigen::VectorXd::Zero(decomposition_.total_modes);
-  for (int r = 0; r < M.outerSize(); ++r) {
-    if (mask && !(*mask)[r]) continue;
-    for (SparseMatrix::InnerIterator it(M, r); it; ++it)
-      local(it.row()) += it.value() * v(r);
+  const int modes = static_cast<int>(G_by_mode_.outerSize());
+  Eigen::VectorXd local(modes);
+  using ModeIterator = Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator;
+#pragma omp parallel for schedule(static) num_threads(threads_for(G_by_mode_.nonZeros()))
+  for (int mode = 0; mode < modes; ++mode) {
+    double sum = 0.0;
+    for (ModeIterator it(G_by_mode_, mode); it; ++it) {
+      const auto r = it.col();
+      if (mask && !(*mask)[static_cast<std::size_t>(r)]) continue;
+      sum += absolute ? std::abs(it.value()) * std::abs(v(r)) : it.value() * v(r);
+    }
+    local(mode) = sum;
   }
   if (!communicator().distributed()) return local;
   std::vector<double> own;
@@ -554,6 +570,16 @@ void FetiSystem::release_stiffness() {
   }
 }
 
+double FetiSystem::f_bytes_read() const {
+  double bytes = 0.0;
+  for (const SubdomainOperator& op : subdomains_) {
+    const CompactFactor* factor = op.K_plus.compact_factor();
+    bytes += 2.0 * static_cast<double>(factor && !op.positions.empty() ? factor->reached_bytes()
+                                                                       : op.K_plus.factor_memory());
+  }
+  return bytes;
+}
+
 LocalMemory FetiSystem::memory() const {
   LocalMemory m;
   for (const SubdomainOperator& op : subdomains_) {
@@ -570,7 +596,7 @@ LocalMemory FetiSystem::memory() const {
         static_cast<double>(decomposition_.subdomains[op.index].load.size()) * sizeof(double);
   m.incidence += static_cast<double>(row_parts_.capacity()) * sizeof(RowPart) +
                  static_cast<double>(part_entries_.capacity()) * sizeof(PartEntry);
-  m.rigid_modes += sparse_bytes(G_) + sparse_bytes(G_abs_);
+  m.rigid_modes += sparse_bytes(G_) + sparse_bytes(G_by_mode_);
   m.index += static_cast<double>(own_index_.capacity() + dof_offsets_.capacity()) * sizeof(int);
   m.workspaces +=
       static_cast<double>(x_.size() + y_.size() + boundary_y_.capacity()) * sizeof(double);

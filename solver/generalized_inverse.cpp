@@ -71,11 +71,30 @@ CholmodFactor::Result GeneralizedInverse::factorize(const SparseMatrix& K,
   if (interior == 0) return result;
   const SparseMatrix K_ii = lower_submatrix(K, position, interior);
   // A singular K_ii leaves has_interior_solve() false: the preconditioner reports it.
-  if (interior_factor_.factorize(K_ii, simplicial_) == CholmodFactor::Result::Ok)
-    interior_factor_.compact(single_ || single_interior_);
-  else
+  if (interior_factor_.factorize(K_ii, simplicial_) != CholmodFactor::Result::Ok) {
     interior_factor_ = CholmodFactor();
+    return result;
+  }
+  if (interior_factor_.compact(single_ || single_interior_))
+    reach_coupled_rows(K, position, *interior_factor_.compact_factor());
   return result;
+}
+
+// K_ii's factor laid out for the solves of S = K_bb - K_bi K_ii^-1 K_ib: right-hand sides
+// K_ib x, read through K_bi, both on the interior DOFs that K couples to the boundary.
+// `position`: per DOF of K its interior index, -1 on the boundary.
+void GeneralizedInverse::reach_coupled_rows(const SparseMatrix& K, const std::vector<int>& position,
+                                            CompactFactor& factor) {
+  const std::vector<int> in_factor = factor.positions();
+  std::vector<int> rows;
+  for (int col = 0; col < K.outerSize(); ++col)
+    for (SparseMatrix::InnerIterator it(K, col); it; ++it) {
+      // K's stored triangle(s), either way round: the interior end of a coupling.
+      const int row = static_cast<int>(it.row());
+      if ((position[col] < 0) == (position[row] < 0)) continue;
+      rows.push_back(in_factor[position[position[col] < 0 ? row : col]]);
+    }
+  factor.reach_first(rows);
 }
 
 CholmodFactor::Result GeneralizedInverse::factorize_kept(const SparseMatrix& K) {

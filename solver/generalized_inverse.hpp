@@ -64,6 +64,10 @@ class GeneralizedInverse {
   const CompactFactor* compact_factor() const { return factor_.compact_factor(); }
   const std::vector<int>& kept_dofs() const { return kept_; }
   const CompactFactor* compact_interior_factor() const { return interior_factor_.compact_factor(); }
+  // K's lean factor laid out for solves on `rows` (its order) alone
+  // (CompactFactor::reach_first): F's fused pass. K_ii's is laid out so at factorize(),
+  // for the interior DOFs K couples to the boundary: the Dirichlet preconditioner's.
+  void reach_first(const std::vector<int>& rows) { factor_.compact_factor()->reach_first(rows); }
   Eigen::VectorXd apply(const Eigen::VectorXd& x) const;
 
  private:
@@ -72,6 +76,8 @@ class GeneralizedInverse {
   std::vector<int> kept_;  // factorized DOFs, in order
   CholmodFactor::Result factorize_kept(const SparseMatrix& K);
   CholmodFactor::Result compacted(CholmodFactor::Result result);
+  static void reach_coupled_rows(const SparseMatrix& K, const std::vector<int>& position,
+                                 CompactFactor& factor);
   CholmodFactor factor_;
   CholmodFactor interior_factor_;  // K_ii's (empty unless asked for)
   bool single_ = false;

@@ -254,6 +254,16 @@ TEST_CASE("solve --profile: per process counts, and MPRGP's iterations by step k
                              "mode_product_seconds", "range_projection_seconds"})
       CHECK(process[part].get<double>() >= 0.0);
     CHECK(process["preconditioner_seconds"].get<double>() > 0.0);
+    CHECK(process["preconditioner_applications"].get<double>() > 0.0);
+    // Bytes read per application: at most what the factors and blocks hold, read twice.
+    CHECK(process["f_bytes_read"].get<double>() > 0.0);
+    CHECK(process["f_bytes_read"].get<double>() <=
+          2.0 * process["subdomain_factor_bytes"].get<double>());
+    CHECK(process["preconditioner_bytes_read"].get<double>() > 0.0);
+    CHECK(process["preconditioner_bytes_read"].get<double>() <=
+          2.0 * (process["subdomain_factor_bytes"].get<double>() +
+                 process["preconditioner_factor_bytes"].get<double>() +
+                 process["preconditioner_block_bytes"].get<double>()));
     // The Lanczos estimate of the longest CG run: Ritz values of an SPD operator.
     const nlohmann::json& condition = profile["condition_estimate"];
     CHECK(condition["cg_steps"].get<int>() > 0);
