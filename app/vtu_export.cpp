@@ -359,16 +359,20 @@ std::string VtuSeries::file_name(const char* dataset, int index) const {
   return name;
 }
 
-void VtuSeries::write(const solver::Snapshot& state, double time) {
+void VtuSeries::write(const solver::Snapshot& state, double time,
+                      const std::function<void(const std::string&)>& progress) {
   const int index = frames();
   const std::filesystem::path dir(directory_);
   const std::string struts = (dir / file_name("struts", index)).string();
-  ProgressLine line(progress_);
+  ProgressLine line(progress ? ProgressMode::Never : progress_);
   write_output(struts, [&](std::ostream& out) {
     write_vtu(out, struts_grid(model_, state), encoding_, [&](int written, int arrays) {
-      if (line.elapsed_seconds() > 1.0)
-        line.update("writing " + struts + ": " + std::to_string(written) + " of " +
-                    std::to_string(arrays) + " arrays");
+      const std::string text = "writing " + struts + ": " + std::to_string(written) + " of " +
+                               std::to_string(arrays) + " arrays";
+      if (progress)
+        progress(text);
+      else if (line.elapsed_seconds() > 1.0)
+        line.update(text);
     });
   });
   line.clear();

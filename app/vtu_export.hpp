@@ -12,6 +12,7 @@
 // one point; point data `rotation`; cell data `bending_moment` (middle),
 // `bending_moment_ends` and `end_rotations` (2 components: the element's two ends).
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -34,8 +35,10 @@ class VtuSeries {
  public:
   VtuSeries(std::string directory, const solver::Model& model, VtkEncoding encoding);
   // Writes the frame's two .vtu files and updates the .pvd files; `time` is the frame's
-  // time value in ParaView.
-  void write(const solver::Snapshot& state, double time);
+  // time value in ParaView. `progress`, when given, takes the progress text instead of
+  // a line of the frame's own (a frame written beside another output, SharedProgress).
+  void write(const solver::Snapshot& state, double time,
+             const std::function<void(const std::string&)>& progress = {});
   // A progress line for a frame that takes over a second to write.
   void show_progress(ProgressMode mode) { progress_ = mode; }
   int frames() const { return static_cast<int>(times_.size()); }
