@@ -53,6 +53,11 @@ class SolveOutputs {
     progress_ = mode;
     if (vtu_) vtu_->show_progress(mode);
   }
+  // The solve's method has been freed: the frame finish() writes may use more memory
+  // for less work (VtuSeries::hold_fields).
+  void method_released() {
+    if (vtu_) vtu_->hold_fields(true);
+  }
   bool writes_anything() const;
   // An output goes to standard output ("-"): the command reports on stderr then.
   bool uses_stdout() const;
