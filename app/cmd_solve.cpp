@@ -284,7 +284,8 @@ struct SetUp {
 // after the summary (docs/BENCHMARKS.md, "Outputs at 1e7"); the outputs are then also
 // written beside less memory. Under mpirun the method stays until the end: its
 // destruction could meet the collectives of the main thread.
-void take_profile(const std::vector<solver::SweepStep>& steps, SetUp& setup, bool distributed) {
+void take_profile(const std::vector<solver::SweepStep>& steps, SetUp& setup, bool distributed,
+                  SolveOutputs& outputs) {
   if (setup.dual) {
     ProfileRun& profile = setup.profile;
     profile.after_solve = setup.dual->profile();
@@ -302,6 +303,7 @@ void take_profile(const std::vector<solver::SweepStep>& steps, SetUp& setup, boo
   if (distributed) return;
   setup.dual = nullptr;
   setup.releasing = std::thread([method = std::move(setup.method)]() mutable { method.reset(); });
+  outputs.method_released();
 }
 
 int set_up(const SolveArgs& args, const solver::Model& model, const RankPolicy& ranks,
@@ -457,7 +459,7 @@ int write_outputs(const SolveArgs& args, const std::vector<solver::SweepStep>& s
                   RankPolicy& ranks, SolveOutputs& outputs, SolveMonitor& monitor,
                   PendingOutputs& pending, bool was_interrupted) {
   int status = kExitOk;
-  take_profile(steps, setup, ranks.distributed());
+  take_profile(steps, setup, ranks.distributed(), outputs);
   // Interrupted under mpirun with outputs to write: rank 0 says so before it writes.
   const int signal = was_interrupted ? ranks.signal() : 0;  // collective
   const bool announce = was_interrupted && ranks.distributed() && outputs.writes_anything();

@@ -1,8 +1,12 @@
 #include "app/json_text.hpp"
 
 #include <algorithm>
+#include <array>
+#include <bit>
 #include <charconv>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 
 #include <nlohmann/json.hpp>
 
@@ -15,16 +19,54 @@ void JsonText::raw(std::string_view text) {
   maybe_flush();
 }
 
-void JsonText::number(double value) {
+namespace {
+
+// nlohmann's own shortest round-trip formatting (the one dump() calls), so that the bytes
+// are those of dump(); null for NaN and infinities, as dump() writes them. `text` holds
+// 64 characters (nlohmann's serializer's buffer); returns the length written.
+std::size_t format_number(double value, char* text) {
   if (!std::isfinite(value)) {
-    raw("null");  // what dump() writes for them
-    return;
+    std::memcpy(text, "null", 4);
+    return 4;
   }
-  // nlohmann's own shortest round-trip formatting (the one dump() calls), so that the
-  // bytes are those of dump(); 64 characters is its serializer's buffer.
+  return static_cast<std::size_t>(nlohmann::detail::to_chars(text, text + 64, value) - text);
+}
+
+// Texts of recently formatted numbers, by their bits (direct-mapped).
+struct FormattedNumbers {
+  static constexpr int kBits = 10;
+  struct Entry {
+    std::uint64_t bits = 0;
+    std::size_t length = 0;  // 0: empty
+    char text[24];
+  };
+  std::array<Entry, std::size_t{1} << kBits> entries;
+};
+
+}  // namespace
+
+void JsonText::number(double value) {
   char text[64];
-  const char* end = nlohmann::detail::to_chars(text, text + sizeof text, value);
-  buffer_.append(text, static_cast<std::size_t>(end - text));
+  buffer_.append(text, format_number(value, text));
+  maybe_flush();
+}
+
+void JsonText::recurring_number(double value) {
+  thread_local FormattedNumbers cache;
+  const auto bits = std::bit_cast<std::uint64_t>(value);
+  auto& entry = cache.entries[(bits * 0x9E3779B97F4A7C15ull) >> (64 - FormattedNumbers::kBits)];
+  if (entry.length == 0 || entry.bits != bits) {
+    char text[64];
+    const std::size_t length = format_number(value, text);
+    if (length <= sizeof entry.text) {
+      entry.bits = bits;
+      entry.length = length;
+      std::memcpy(entry.text, text, length);
+    }
+    buffer_.append(text, length);
+  } else {
+    buffer_.append(entry.text, entry.length);
+  }
   maybe_flush();
 }
 

@@ -29,6 +29,10 @@ class JsonText {
 
   void raw(std::string_view text);
   void number(double value);
+  // The same text as number(), for values that recur (a mesh's node coordinates: a strut
+  // drawn along an axis has a few hundred distinct ones among 200,000): the text of each
+  // value is kept in a small cache per thread and copied when the value comes again.
+  void recurring_number(double value);
   void number(long long value);
   void number(int value) { number(static_cast<long long>(value)); }
   void string(std::string_view text);  // quoted and escaped as nlohmann does

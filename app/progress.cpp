@@ -54,4 +54,17 @@ void ProgressLine::clear() {
   shown_ = false;
 }
 
+SharedProgress::SharedProgress(ProgressMode mode, int writers)
+    : line_(mode), texts_(static_cast<size_t>(writers)) {}
+
+void SharedProgress::update(int writer, const std::string& text) {
+  const std::lock_guard lock(mutex_);
+  texts_.at(static_cast<size_t>(writer)) = text;
+  if (!line_.enabled() || line_.elapsed_seconds() <= 1.0 || !line_.due()) return;
+  std::string shown;
+  for (const std::string& part : texts_)
+    if (!part.empty()) shown += (shown.empty() ? "" : "; ") + part;
+  if (!shown.empty()) line_.update(shown);
+}
+
 }  // namespace fetic::app

@@ -5,7 +5,9 @@
 // logs); never with --quiet.
 
 #include <chrono>
+#include <mutex>
 #include <string>
+#include <vector>
 
 namespace fetic::app {
 
@@ -38,6 +40,23 @@ class ProgressLine {
   std::chrono::steady_clock::time_point start_;
   std::chrono::steady_clock::time_point last_{};
   bool ever_ = false;
+};
+
+// One progress line for several writers that run at the same time (the result file and
+// the ParaView frame, each on a thread of its own): each reports its own text, the line
+// shows them all ("writing r.json: 12 of 50 parts; writing v/struts_0000.vtu: 3 of 14
+// arrays, elapsed 2.1 s") once the writing has taken over a second. Thread-safe.
+class SharedProgress {
+ public:
+  explicit SharedProgress(ProgressMode mode, int writers);
+  void update(int writer, const std::string& text);
+  // The writer is done: its text leaves the line.
+  void done(int writer) { update(writer, ""); }
+
+ private:
+  std::mutex mutex_;
+  ProgressLine line_;
+  std::vector<std::string> texts_;
 };
 
 }  // namespace fetic::app

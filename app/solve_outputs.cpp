@@ -6,6 +6,9 @@
 #include "app/state_json.hpp"
 #include "solver/stopwatch.hpp"
 
+#include <exception>
+#include <thread>
+
 namespace fetic::app {
 
 void add_solve_output_options(CLI::App* command, SolveOutputArgs& args) {
@@ -40,7 +43,7 @@ void add_solve_output_options(CLI::App* command, SolveOutputArgs& args) {
 
 SolveOutputs::SolveOutputs(const SolveOutputArgs& args, const solver::Model& model,
                            const std::vector<double>& load_factors)
-    : args_(args), model_(model) {
+    : args_(args), model_(model), load_steps_(load_factors.size()) {
   if (args.csv_nodes.empty()) {
     nodes_ = contact_end_nodes(model);
   } else {
@@ -85,62 +88,91 @@ void SolveOutputs::iteration(const solver::Method& method) {
 
 void SolveOutputs::step(const solver::SweepStep& step) {
   if (!vtu_ || args_.vtu_every_iteration) return;
+  const double time = time_is_load_factor_ ? step.load_factor : vtu_->frames();
+  if (++steps_seen_ == load_steps_) {
+    last_frame_time_ = time;  // written by finish(), from steps.back()
+    return;
+  }
   const solver::Stopwatch watch(writing_seconds_);
-  vtu_->write(step.state, time_is_load_factor_ ? step.load_factor : vtu_->frames());
+  vtu_->write(step.state, time);
 }
 
 void SolveOutputs::finish(const std::vector<solver::SweepStep>& steps, const RunInfo& info,
                           bool sweeping) {
   if (steps.empty()) return;
-  const solver::SweepStep& last = steps.back();
-  if (!args_.json.empty()) {
-    // Streamed (app/json_stream.hpp): the final state's struts and every step are made
-    // as they are written.
-    StreamedParts parts;
-    nlohmann::ordered_json result = result_json(model_, last.state, last.history, info, &parts);
-    if (sweeping) {
-      const int maker = static_cast<int>(parts.makers.size());
-      parts.makers.push_back([&](int k) {
-        const solver::SweepStep& step = steps[static_cast<size_t>(k)];
-        nlohmann::ordered_json entry;
-        add_state(entry, model_, step.state);
-        entry["history"] = history_json(step.history);
-        return entry;
-      });
-      nlohmann::ordered_json list = nlohmann::ordered_json::array();
-      for (size_t k = 0; k < steps.size(); ++k)
-        list.push_back(deferred(maker, static_cast<int>(k)));
-      result["steps"] = std::move(list);
-    }
-    ProgressLine line(progress_);
-    int made = 0;
-    const int total = static_cast<int>(model_.struts.size() + (sweeping ? steps.size() : 0));
-    const auto count_part = [&] {
-      if (line.elapsed_seconds() > 1.0)
-        line.update("writing " + args_.json + ": " + std::to_string(made) + " of " +
-                    std::to_string(total) + " parts");
-      ++made;
-    };
-    for (ElementMaker& maker : parts.makers)
-      maker = [&, make = std::move(maker)](int k) {
-        count_part();
-        return make(k);
-      };
-    for (ElementWriter& writer : parts.writers)
-      writer = [&, write = std::move(writer)](JsonText& text, int k, int depth) {
-        count_part();
-        write(text, k, depth);
-      };
-    write_output(args_.json, [&](std::ostream& out) {
-      write_streamed(out, result, parts);
-      out << '\n';
+  SharedProgress progress(progress_, 2);
+  std::exception_ptr frame_error;
+  std::thread frame;
+  if (last_frame_time_)
+    frame = std::thread([&, time = *last_frame_time_] {
+      try {
+        vtu_->write(steps.back().state, time,
+                    [&](const std::string& text) { progress.update(1, text); });
+      } catch (...) {
+        frame_error = std::current_exception();
+      }
+      progress.done(1);
     });
+  last_frame_time_.reset();
+  try {
+    write_result_file(steps, info, sweeping, progress);
+  } catch (...) {
+    if (frame.joinable()) frame.join();
+    throw;
   }
+  if (frame.joinable()) frame.join();
+  if (frame_error) std::rethrow_exception(frame_error);
   if (!args_.csv.empty())
     write_output(args_.csv, [&](std::ostream& out) { write_history_csv(out, steps); });
   if (!args_.csv_steps.empty())
     write_output(args_.csv_steps,
                  [&](std::ostream& out) { write_steps_csv(out, model_, steps, nodes_); });
+}
+
+void SolveOutputs::write_result_file(const std::vector<solver::SweepStep>& steps,
+                                     const RunInfo& info, bool sweeping, SharedProgress& progress) {
+  if (args_.json.empty()) return;
+  const solver::SweepStep& last = steps.back();
+  // Streamed (app/json_stream.hpp): the final state's struts and every step are made
+  // as they are written.
+  StreamedParts parts;
+  nlohmann::ordered_json result = result_json(model_, last.state, last.history, info, &parts);
+  if (sweeping) {
+    const int maker = static_cast<int>(parts.makers.size());
+    parts.makers.push_back([&](int k) {
+      const solver::SweepStep& step = steps[static_cast<size_t>(k)];
+      nlohmann::ordered_json entry;
+      add_state(entry, model_, step.state);
+      entry["history"] = history_json(step.history);
+      return entry;
+    });
+    nlohmann::ordered_json list = nlohmann::ordered_json::array();
+    for (size_t k = 0; k < steps.size(); ++k)
+      list.push_back(deferred(maker, static_cast<int>(k)));
+    result["steps"] = std::move(list);
+  }
+  int made = 0;
+  const int total = static_cast<int>(model_.struts.size() + (sweeping ? steps.size() : 0));
+  const auto count_part = [&] {
+    progress.update(0, "writing " + args_.json + ": " + std::to_string(made) + " of " +
+                           std::to_string(total) + " parts");
+    ++made;
+  };
+  for (ElementMaker& maker : parts.makers)
+    maker = [&, make = std::move(maker)](int k) {
+      count_part();
+      return make(k);
+    };
+  for (ElementWriter& writer : parts.writers)
+    writer = [&, write = std::move(writer)](JsonText& text, int k, int depth) {
+      count_part();
+      write(text, k, depth);
+    };
+  write_output(args_.json, [&](std::ostream& out) {
+    write_streamed(out, result, parts);
+    out << '\n';
+  });
+  progress.done(0);
 }
 
 }  // namespace fetic::app

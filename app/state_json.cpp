@@ -50,9 +50,13 @@ void write_strut(JsonText& text, const solver::Model& model, int s,
   const solver::StrutMesh& mesh = model.struts[static_cast<size_t>(s)];
   const std::vector<solver::Vec2> u = results.displacements(s);
   const solver::StrutElements elements = results.elements(s);
-  const auto points = [&](const std::vector<solver::Vec2>& list, int inner) {
+  // The nodes' coordinates recur (JsonText::recurring_number), the displacements hardly.
+  const auto points = [&](const std::vector<solver::Vec2>& list, int inner, bool recurring) {
     text.parallel_array(mesh.nodes.size(), inner, [&](JsonText& out, size_t n, int at) {
-      out.array(2, at, [&](size_t k, int) { out.number(list[n][static_cast<int>(k)]); });
+      out.array(2, at, [&](size_t k, int) {
+        const double value = list[n][static_cast<int>(k)];
+        recurring ? out.recurring_number(value) : out.number(value);
+      });
     });
   };
   const auto numbers = [&](const auto& list, int inner) {
@@ -64,9 +68,9 @@ void write_strut(JsonText& text, const solver::Model& model, int s,
   text.member("name", inner, true);
   text.string(model.strut_names[static_cast<size_t>(s)]);
   text.member("nodes", inner, false);
-  points(mesh.nodes, inner);
+  points(mesh.nodes, inner, true);
   text.member("displacements", inner, false);
-  points(u, inner);
+  points(u, inner, false);
   text.member("elements", inner, false);
   const auto per = static_cast<size_t>(elements.nodes_per_element);
   text.parallel_array(

@@ -139,8 +139,12 @@ VtkStreamedArray per_strut(std::string name, int components, std::size_t values,
 
 // What the struts' arrays are made from, shared by their makers.
 struct StrutSource {
-  StrutSource(const solver::Model& of_model, const solver::Snapshot& of_state)
-      : model(of_model), state(of_state), results(of_model, of_state), numbers(of_model) {
+  StrutSource(const solver::Model& of_model, const solver::Snapshot& of_state, bool hold)
+      : model(of_model),
+        state(of_state),
+        results(of_model, of_state),
+        numbers(of_model),
+        hold_fields(hold) {
     for (size_t s = 0; s < model.struts.size(); ++s) {
       const solver::StrutElements topology = results.topology(static_cast<int>(s));
       elements.push_back(topology.element_count());
@@ -153,6 +157,29 @@ struct StrutSource {
         fields.push_back(field.name);
       stress_fields = topology.stress.size();
     }
+    held.resize(fields.size(), std::vector<std::vector<double>>(model.struts.size()));
+    holds.resize(fields.size(), std::vector<char>(model.struts.size(), 0));
+  }
+  // Cell field f (stress_* then the resultants) of strut s. Recovering a strut's elements
+  // makes all its fields at once, and the arrays ask for them one field after the other:
+  // with hold_fields the first asks once and the strut's later fields are held until their
+  // arrays take them (up to 5 values per element: 190 MB at 1e7 unknowns, so only for a
+  // frame written where that memory is free); without, each array recovers them again.
+  std::vector<double> field(size_t f, int s) {
+    const auto at = static_cast<size_t>(s);
+    if (holds[f][at]) {
+      holds[f][at] = 0;
+      return std::move(held[f][at]);
+    }
+    solver::StrutElements e = results.elements(s);
+    const auto values = [&](size_t g) -> std::vector<double>& {
+      return g < stress_fields ? e.stress[g].values : e.resultants[g - stress_fields].values;
+    };
+    for (size_t g = f + 1; hold_fields && g < fields.size(); ++g) {
+      held[g][at] = std::move(values(g));
+      holds[g][at] = 1;
+    }
+    return std::move(values(f));
   }
   // Strut s's values of the nodes that make a point.
   template <typename T, typename Value>
@@ -171,6 +198,9 @@ struct StrutSource {
   std::size_t cells = 0, corners = 0;  // elements, their nodes
   std::vector<std::string> fields;     // stress_* then the resultants, as every strut has them
   size_t stress_fields = 0;
+  bool hold_fields = false;
+  std::vector<std::vector<std::vector<double>>> held;  // [field][strut], see field()
+  std::vector<std::vector<char>> holds;                // [field][strut]: held[f][s] is there
 };
 
 // Frame struts: per element the rotations and bending moments at both of its ends (node
@@ -220,12 +250,8 @@ void add_cell_data(const std::shared_ptr<StrutSource>& source, VtkStreamedGrid& 
       }));
   for (size_t f = 0; f < source->fields.size(); ++f)
     grid.cell_data.push_back(per_strut<double>(
-        source->fields[f], 1, cells, struts, [source, f](int s, std::vector<double>& out) {
-          const solver::StrutElements e = source->results.elements(s);
-          const size_t stress = source->stress_fields;
-          const auto& values = f < stress ? e.stress[f].values : e.resultants[f - stress].values;
-          out.assign(values.begin(), values.end());
-        }));
+        source->fields[f], 1, cells, struts,
+        [source, f](int s, std::vector<double>& out) { out = source->field(f, s); }));
 }
 
 void add_cells(const std::shared_ptr<StrutSource>& source, VtkStreamedGrid& grid) {
@@ -255,8 +281,9 @@ void add_cells(const std::shared_ptr<StrutSource>& source, VtkStreamedGrid& grid
 
 }  // namespace
 
-VtkStreamedGrid struts_grid(const solver::Model& model, const solver::Snapshot& state) {
-  auto source = std::make_shared<StrutSource>(model, state);
+VtkStreamedGrid struts_grid(const solver::Model& model, const solver::Snapshot& state,
+                            bool hold_fields) {
+  auto source = std::make_shared<StrutSource>(model, state, hold_fields);
   const size_t struts = model.struts.size();
   VtkStreamedGrid grid;
   grid.points = static_cast<std::size_t>(source->numbers.points());
@@ -359,17 +386,22 @@ std::string VtuSeries::file_name(const char* dataset, int index) const {
   return name;
 }
 
-void VtuSeries::write(const solver::Snapshot& state, double time) {
+void VtuSeries::write(const solver::Snapshot& state, double time,
+                      const std::function<void(const std::string&)>& progress) {
   const int index = frames();
   const std::filesystem::path dir(directory_);
   const std::string struts = (dir / file_name("struts", index)).string();
-  ProgressLine line(progress_);
+  ProgressLine line(progress ? ProgressMode::Never : progress_);
   write_output(struts, [&](std::ostream& out) {
-    write_vtu(out, struts_grid(model_, state), encoding_, [&](int written, int arrays) {
-      if (line.elapsed_seconds() > 1.0)
-        line.update("writing " + struts + ": " + std::to_string(written) + " of " +
-                    std::to_string(arrays) + " arrays");
-    });
+    write_vtu(out, struts_grid(model_, state, hold_fields_), encoding_,
+              [&](int written, int arrays) {
+                const std::string text = "writing " + struts + ": " + std::to_string(written) +
+                                         " of " + std::to_string(arrays) + " arrays";
+                if (progress)
+                  progress(text);
+                else if (line.elapsed_seconds() > 1.0)
+                  line.update(text);
+              });
   });
   line.clear();
   write_output((dir / file_name("contacts", index)).string(),

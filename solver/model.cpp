@@ -4,14 +4,21 @@
 #include <map>
 
 #include "scenes/scene_geometry.hpp"
+#include "solver/threads.hpp"
 
 namespace fetic::solver {
 namespace {
 
+// component_coefficients(mesh, f) is the load itself: e1.f for a bar, (fx, fy) for plane
+// (frames have their own loads, add_frame_loads). Added here without making it as a
+// vector: one allocation per element corner was most of assembling a 1e7-unknown model.
 void add_force(const StrutMesh& mesh, Eigen::VectorXd& load, int node, const Vec2& force) {
-  const Eigen::VectorXd c = component_coefficients(mesh, force);
-  // component_coefficients(mesh, f) is the load itself: e1.f for a bar, (fx, fy) for plane.
-  load.segment(node * mesh.dofs_per_node, mesh.dofs_per_node) += c;
+  if (mesh.dofs_per_node == 1) {
+    load(node) += mesh.e1.dot(force);
+    return;
+  }
+  load(2 * node) += force.x();
+  load(2 * node + 1) += force.y();
 }
 
 // Frame model: point forces and moments at nodes; a per-length load q as consistent
@@ -174,6 +181,38 @@ Eigen::VectorXd strut_load(const scenes::Scene& scene, const StrutMesh& mesh) {
   return load;
 }
 
+namespace {
+
+// Each strut's mesh, load and clamped nodes, on the process' threads (each strut alone,
+// so the values do not depend on the threads): this serial pass was about 1.3 s of a
+// 1e7-unknown run (docs/BENCHMARKS.md, "Outside set-up and solve").
+void build_struts(const scenes::Scene& scene, Model& model) {
+  const int strut_count = static_cast<int>(scene.struts.size());
+  model.struts.resize(static_cast<size_t>(strut_count));
+  model.loads.resize(static_cast<size_t>(strut_count));
+  model.clamped_nodes.resize(static_cast<size_t>(strut_count));
+  long long nodes = 0;
+  for (const scenes::Strut& strut : scene.struts)
+    nodes += (strut.elements + 1LL) * (std::max(strut.elements_across, 0) + 1LL);
+  const int threads = threads_for(nodes);
+#pragma omp parallel for num_threads(threads) schedule(dynamic)
+  for (int s = 0; s < strut_count; ++s) {
+    const scenes::Strut& strut = scene.struts[s];
+    StrutMesh& mesh = model.struts[static_cast<size_t>(s)];
+    mesh = build_strut_mesh(scene, s);
+    model.loads[static_cast<size_t>(s)] = strut_load(scene, mesh);
+    std::vector<int>& clamped = model.clamped_nodes[static_cast<size_t>(s)];
+    for (scenes::StrutEnd end : {scenes::StrutEnd::From, scenes::StrutEnd::To})
+      if (strut.fixed(end))
+        for (int node : mesh.end_face(end))
+          clamped.push_back(node);
+    std::sort(clamped.begin(), clamped.end());
+    clamped.erase(std::unique(clamped.begin(), clamped.end()), clamped.end());
+  }
+}
+
+}  // namespace
+
 Model build_model(const scenes::Scene& scene) {
   Model model;
   model.kind = scene.model;
@@ -181,21 +220,9 @@ Model build_model(const scenes::Scene& scene) {
   model.title = scene.title;
   model.units = scene.units;
   model.scene_loads = scene.loads;
-  const int strut_count = static_cast<int>(scene.struts.size());
-  for (int s = 0; s < strut_count; ++s) {
-    const scenes::Strut& strut = scene.struts[s];
+  build_struts(scene, model);
+  for (const scenes::Strut& strut : scene.struts) {
     model.strut_names.push_back(strut.name);
-    model.struts.push_back(build_strut_mesh(scene, s));
-    const StrutMesh& mesh = model.struts.back();
-    model.loads.push_back(strut_load(scene, mesh));
-    std::vector<int> clamped;
-    for (scenes::StrutEnd end : {scenes::StrutEnd::From, scenes::StrutEnd::To})
-      if (strut.fixed(end))
-        for (int node : mesh.end_face(end))
-          clamped.push_back(node);
-    std::sort(clamped.begin(), clamped.end());
-    clamped.erase(std::unique(clamped.begin(), clamped.end()), clamped.end());
-    model.clamped_nodes.push_back(std::move(clamped));
     model.end_supports.push_back({strut.fixed(scenes::StrutEnd::From)    ? Support::Clamped
                                   : strut.pinned(scenes::StrutEnd::From) ? Support::Pinned
                                                                          : Support::None,

@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <sstream>
+#include <vector>
 
 #include "app/json_layout.hpp"
 #include "app/json_stream.hpp"
@@ -77,6 +78,24 @@ TEST_CASE("JsonText writes numbers as dump() writes them") {
     }
     CHECK(out.str() == Json(value).dump());
   }
+}
+
+// recurring_number keeps recent texts by the value's bits: the same text as dump() when a
+// value comes again, when another value takes its place in the cache (4,000 values in a
+// cache of 1,024), for -0.0 beside 0.0, and for non-finite values.
+TEST_CASE("JsonText writes recurring numbers as dump() writes them") {
+  std::vector<double> values = {0.0, -0.0, 1.0, 1e-5, 5e-324, std::nan(""), INFINITY, -INFINITY};
+  for (int k = 0; k < 4000; ++k)
+    values.push_back(0.1 * k - 1.0 / 3);
+  for (int pass = 0; pass < 3; ++pass)
+    for (const double value : values) {
+      std::ostringstream out;
+      {
+        fetic::app::JsonText text(out);
+        text.recurring_number(value);
+      }
+      CHECK(out.str() == Json(value).dump());
+    }
 }
 
 // The result file of a solve with its struts written as text (write_strut) against the
