@@ -435,16 +435,19 @@ void CompactFactor::solve_reached_in_place(double* y) const {
 // The entries from the one ordered sequence to the two parts reached_ defines.
 template <class Value>
 void CompactFactor::reorder_reached_first(std::vector<Value>& values) const {
-  std::vector<Value> parts(values.size());
-  std::size_t from = 0, next[2] = {reached_below_, 0};
-  for (int s = 0; s < supernodes(); ++s) {
-    const auto count = static_cast<std::size_t>(
-        supernode_entries(first_[s + 1] - first_[s], row_start_[s + 1] - row_start_[s]));
-    const bool reached = reached_[static_cast<std::size_t>(s)];
-    std::copy_n(values.begin() + static_cast<std::ptrdiff_t>(from), count,
-                parts.begin() + static_cast<std::ptrdiff_t>(next[reached]));
-    from += count;
-    next[reached] += count;
+  // Appended, the reached part first: no zero-filling pass over the new storage.
+  std::vector<Value> parts;
+  parts.reserve(values.size());
+  for (const bool part : {true, false}) {
+    std::size_t from = 0;
+    for (int s = 0; s < supernodes(); ++s) {
+      const auto count = static_cast<std::size_t>(
+          supernode_entries(first_[s + 1] - first_[s], row_start_[s + 1] - row_start_[s]));
+      if ((reached_[static_cast<std::size_t>(s)] != 0) == part)
+        parts.insert(parts.end(), values.begin() + static_cast<std::ptrdiff_t>(from),
+                     values.begin() + static_cast<std::ptrdiff_t>(from + count));
+      from += count;
+    }
   }
   values.swap(parts);
 }

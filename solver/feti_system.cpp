@@ -1,7 +1,6 @@
 #include "solver/feti_system.hpp"
 
 #include <algorithm>
-#include <cmath>
 #include <limits>
 #include <map>
 #include <string>
@@ -237,7 +236,7 @@ void FetiSystem::build_G() {
     }
   G_.resize(d.total_modes, space_.rows());
   G_.setFromTriplets(entries.begin(), entries.end());
-  G_by_mode_ = G_;
+  G_abs_ = G_.cwiseAbs();
 }
 
 void FetiSystem::build_redundant_groups() {
@@ -408,7 +407,7 @@ Eigen::VectorXd FetiSystem::e(double load_factor) const {
 }
 
 Eigen::VectorXd FetiSystem::apply_G(const Eigen::VectorXd& v, const std::vector<char>* mask) const {
-  return own_modes_product(v, mask, false);
+  return own_modes_product(G_, v, mask);
 }
 
 void FetiSystem::subtract_Gt(const Eigen::VectorXd& a, Eigen::VectorXd& v,
@@ -426,27 +425,19 @@ void FetiSystem::subtract_Gt(const Eigen::VectorXd& a, Eigen::VectorXd& v,
 }
 
 Eigen::VectorXd FetiSystem::apply_abs_G(const Eigen::VectorXd& v) const {
-  return own_modes_product(v, nullptr, true);
+  return own_modes_product(G_abs_, v.cwiseAbs(), nullptr);
 }
 
-Eigen::VectorXd FetiSystem::own_modes_product(const Eigen::VectorXd& v,
-                                              const std::vector<char>* mask, bool absolute) const {
-  // The own subdomains' modes of G v; each sums its rows in increasing global order from
-  // zero, the same for any number of processes (a neighbour's modes are left to its
-  // process) and as the scatter over G's rows summed before.
+Eigen::VectorXd FetiSystem::own_modes_product(const SparseMatrix& M, const Eigen::VectorXd& v,
+                                              const std::vector<char>* mask) const {
+  // The own subdomains' modes of M v; each sums its rows in increasing global order, the
+  // same for any number of processes (a neighbour's modes are left to its process).
   Stopwatch watch(times_.mode_products);
-  const int modes = static_cast<int>(G_by_mode_.outerSize());
-  Eigen::VectorXd local(modes);
-  using ModeIterator = Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator;
-#pragma omp parallel for schedule(static) num_threads(threads_for(G_by_mode_.nonZeros()))
-  for (int mode = 0; mode < modes; ++mode) {
-    double sum = 0.0;
-    for (ModeIterator it(G_by_mode_, mode); it; ++it) {
-      const auto r = it.col();
-      if (mask && !(*mask)[static_cast<std::size_t>(r)]) continue;
-      sum += absolute ? std::abs(it.value()) * std::abs(v(r)) : it.value() * v(r);
-    }
-    local(mode) = sum;
+  Eigen::VectorXd local = Eigen::VectorXd::Zero(decomposition_.total_modes);
+  for (int r = 0; r < M.outerSize(); ++r) {
+    if (mask && !(*mask)[r]) continue;
+    for (SparseMatrix::InnerIterator it(M, r); it; ++it)
+      local(it.row()) += it.value() * v(r);
   }
   if (!communicator().distributed()) return local;
   std::vector<double> own;
@@ -596,7 +587,7 @@ LocalMemory FetiSystem::memory() const {
         static_cast<double>(decomposition_.subdomains[op.index].load.size()) * sizeof(double);
   m.incidence += static_cast<double>(row_parts_.capacity()) * sizeof(RowPart) +
                  static_cast<double>(part_entries_.capacity()) * sizeof(PartEntry);
-  m.rigid_modes += sparse_bytes(G_) + sparse_bytes(G_by_mode_);
+  m.rigid_modes += sparse_bytes(G_) + sparse_bytes(G_abs_);
   m.index += static_cast<double>(own_index_.capacity() + dof_offsets_.capacity()) * sizeof(int);
   m.workspaces +=
       static_cast<double>(x_.size() + y_.size() + boundary_y_.capacity()) * sizeof(double);

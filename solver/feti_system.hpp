@@ -174,9 +174,9 @@ class FetiSystem {
   void gather_rows(Eigen::VectorXd& out) const;
   void build_incidence();
   void factorize_subdomains(bool interior_first, bool single_factors, bool single_interior);
-  // G v (|G| |v| when `absolute`) over the own subdomains' modes, replicated.
-  Eigen::VectorXd own_modes_product(const Eigen::VectorXd& v, const std::vector<char>* mask,
-                                    bool absolute) const;
+  // M v over the own subdomains' modes (M: modes x local rows, like G), replicated.
+  Eigen::VectorXd own_modes_product(const SparseMatrix& M, const Eigen::VectorXd& v,
+                                    const std::vector<char>* mask) const;
   // out_r = sum over the own entries of row r of value * values(entry), all processes.
   void sum_rows(const Eigen::VectorXd& values, Eigen::VectorXd& out) const;
   void build_G();
@@ -212,9 +212,7 @@ class FetiSystem {
   bool groups_disjoint_ = true;  // no local row in two groups
   Eigen::VectorXd c_;
   SparseMatrix G_;
-  // G again, by mode: G v as one sum per mode (both cores; G_ by row made it one serial
-  // scatter). It replaced a copy of |G| (apply_abs_G takes the absolute values as it goes).
-  Eigen::SparseMatrix<double, Eigen::RowMajor> G_by_mode_;
+  SparseMatrix G_abs_;
   mutable Eigen::VectorXd x_, y_;           // workspaces over the own subdomains' DOFs
   mutable std::vector<double> boundary_y_;  // Y at B's entries, per term of part_entries_
   mutable OperatorTimes times_;

@@ -28,8 +28,7 @@ struct LocalMemory {
 
 // Bytes of a compressed sparse matrix's arrays, as allocated (an Eigen matrix assigned a
 // smaller one keeps its storage).
-template <class Sparse>  // SparseMatrix, or a row-major one
-double sparse_bytes(const Sparse& A) {
+inline double sparse_bytes(const SparseMatrix& A) {
   return static_cast<double>(A.data().allocatedSize()) * (sizeof(double) + sizeof(int)) +
          (static_cast<double>(A.outerSize()) + 1.0) * sizeof(int);
 }
