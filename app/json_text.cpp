@@ -81,14 +81,37 @@ void JsonText::string(std::string_view text) {
   raw(nlohmann::ordered_json(std::string(text)).dump());
 }
 
+namespace {
+
+// A separator, a line break and the indentation that follow every item of an array: one
+// copy from here instead of a character, a fill and a comma apiece (the result file of a
+// 1e7-unknown solve has 73 million such lines).
+constexpr std::string_view kLineStart =
+    ",\n                                                                ";
+constexpr int kMostIndent = static_cast<int>(kLineStart.size()) - 2;
+
+}  // namespace
+
 void JsonText::newline(int depth) {
+  if (depth <= kMostIndent) {
+    buffer_.append(kLineStart.substr(1, static_cast<std::size_t>(depth) + 1));
+    return;
+  }
   buffer_.push_back('\n');
   buffer_.append(static_cast<std::size_t>(depth), ' ');
 }
 
-void JsonText::member(std::string_view key, int depth, bool first) {
-  if (!first) buffer_.push_back(',');
+void JsonText::next_item(bool comma, int depth) {
+  if (comma && depth <= kMostIndent) {
+    buffer_.append(kLineStart.substr(0, static_cast<std::size_t>(depth) + 2));
+    return;
+  }
+  if (comma) buffer_.push_back(',');
   newline(depth);
+}
+
+void JsonText::member(std::string_view key, int depth, bool first) {
+  next_item(!first, depth);
   string(key);
   raw(": ");
 }
@@ -106,8 +129,7 @@ void JsonText::parallel_items(std::size_t count, int depth, ItemWriter item, voi
       JsonText text(std::move(runs_[r]));
       const std::size_t end = std::min(last, first + (r + 1) * kRun);
       for (std::size_t k = first + r * kRun; k < end; ++k) {
-        if (k > 0) text.raw(",");
-        text.newline(depth + 1);
+        text.next_item(k > 0, depth + 1);
         item(context, text, k, depth + 1);
       }
       runs_[r] = text.take();

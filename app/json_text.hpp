@@ -37,6 +37,8 @@ class JsonText {
   void number(int value) { number(static_cast<long long>(value)); }
   void string(std::string_view text);  // quoted and escaped as nlohmann does
   void newline(int depth);             // a line break and `depth` spaces
+  // What comes before an array's item: a comma unless it is the first, then newline(depth).
+  void next_item(bool comma, int depth);
 
   // `[`, then item(k, depth + 1) for k < count on lines of their own, then `]`: as dump(1).
   template <class Item>
@@ -47,8 +49,7 @@ class JsonText {
     }
     raw("[");
     for (std::size_t k = 0; k < count; ++k) {
-      if (k > 0) raw(",");
-      newline(depth + 1);
+      next_item(k > 0, depth + 1);
       item(k, depth + 1);
     }
     newline(depth);

@@ -4,6 +4,7 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <functional>
 #include <sstream>
 #include <vector>
 
@@ -78,6 +79,27 @@ TEST_CASE("JsonText writes numbers as dump() writes them") {
     }
     CHECK(out.str() == Json(value).dump());
   }
+}
+
+// Lines start from a fixed text of 64 spaces; deeper ones are indented one space at a time.
+TEST_CASE("JsonText indents arrays nested deeper than its indentation text as dump(1)") {
+  Json nested = 1.5;
+  for (int depth = 0; depth < 70; ++depth)
+    nested = Json::array({nested, depth});
+  std::ostringstream out;
+  {
+    fetic::app::JsonText text(out);
+    std::function<void(const Json&, int)> write = [&](const Json& value, int depth) {
+      if (value.is_array())
+        text.array(value.size(), depth, [&](size_t k, int inner) { write(value[k], inner); });
+      else if (value.is_number_integer())
+        text.number(value.get<int>());
+      else
+        text.number(value.get<double>());
+    };
+    write(nested, 0);
+  }
+  CHECK(out.str() == nested.dump(1));
 }
 
 // recurring_number keeps recent texts by the value's bits: the same text as dump() when a
