@@ -282,8 +282,7 @@ struct SetUp {
 // is then freed on another thread while the outputs are written: the subdomain factors
 // are most of the process (6.5 GB of the 1e7 scene), and freeing them took about a second
 // after the summary (docs/BENCHMARKS.md, "Outputs at 1e7"); the outputs are then also
-// written beside less memory. Under mpirun the method stays until the end: its
-// destruction could meet the collectives of the main thread.
+// written beside less memory.
 void take_profile(const std::vector<solver::SweepStep>& steps, SetUp& setup, bool distributed,
                   SolveOutputs& outputs) {
   if (setup.dual) {
@@ -300,9 +299,14 @@ void take_profile(const std::vector<solver::SweepStep>& steps, SetUp& setup, boo
     profile.condition = setup.dual->condition_estimate();
     setup.profiled = true;
   }
-  if (distributed) return;
   setup.dual = nullptr;
-  setup.releasing = std::thread([method = std::move(setup.method)]() mutable { method.reset(); });
+  // Under mpirun every process frees its method here, on the main thread (its destruction
+  // sends nothing): rank 0 would otherwise write the outputs beside its factors, which set
+  // its peak (docs/DISTRIBUTED.md, rank 0's peak).
+  if (distributed)
+    setup.method.reset();
+  else
+    setup.releasing = std::thread([method = std::move(setup.method)]() mutable { method.reset(); });
   outputs.method_released();
 }
 
@@ -401,11 +405,9 @@ struct Sweep {
                   history.empty() ? 0 : history.back().active_set);
     progress.update(line);
   }
-  // Distributed, each step's whole state (the pieces of every process) is gathered for
-  // rank 0's outputs; the sweep itself keeps the local states for its warm starts. The
-  // whole state is moved, never copied: rank 0 held it twice beside the factors
-  // (docs/DISTRIBUTED.md, rank 0's peak).
-  // Under mpirun the step's own state becomes the whole one on rank 0 (collective).
+  // Distributed, each step's own state is replaced by the whole one (the pieces of every
+  // process), gathered on rank 0 for its outputs (collective). It is moved, never copied:
+  // rank 0 held it twice beside the factors (docs/DISTRIBUTED.md, rank 0's peak).
   void on_step(solver::SweepStep& step) {
     if (ranks.distributed()) step.state = setup.method->gathered(std::move(step.state));
     report_step(step);
