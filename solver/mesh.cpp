@@ -47,10 +47,13 @@ StrutMesh build_strut_mesh(const scenes::Scene& scene, int strut_index) {
   return mesh;
 }
 
+Eigen::Vector3d component_coefficients3(const StrutMesh& mesh, const Vec2& direction) {
+  if (mesh.dofs_per_node == 1) return {mesh.e1.dot(direction), 0.0, 0.0};
+  return {direction.x(), direction.y(), 0.0};
+}
+
 Eigen::VectorXd component_coefficients(const StrutMesh& mesh, const Vec2& direction) {
-  if (mesh.dofs_per_node == 1) return Eigen::VectorXd::Constant(1, mesh.e1.dot(direction));
-  if (mesh.dofs_per_node == 3) return Eigen::Vector3d(direction.x(), direction.y(), 0.0);
-  return direction;
+  return component_coefficients3(mesh, direction).head(mesh.dofs_per_node);
 }
 
 Vec2 node_displacement(const StrutMesh& mesh, const double* node_dofs) {

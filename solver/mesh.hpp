@@ -49,6 +49,9 @@ StrutMesh build_strut_mesh(const scenes::Scene& scene, int strut);
 // Bar: one coefficient (e1 . direction); plane: (direction.x, direction.y); frame:
 // (direction.x, direction.y, 0).
 Eigen::VectorXd component_coefficients(const StrutMesh& mesh, const Vec2& direction);
+// The same in the first dofs_per_node entries of a fixed-size vector, which allocates
+// nothing (a node force in the load: one per element corner when a model is built).
+Eigen::Vector3d component_coefficients3(const StrutMesh& mesh, const Vec2& direction);
 
 // Displacement vector (ux, uy) of node `node` from the strut's DOF values `dofs`
 // (indexed node * dofs_per_node + component).

@@ -9,16 +9,12 @@
 namespace fetic::solver {
 namespace {
 
-// component_coefficients(mesh, f) is the load itself: e1.f for a bar, (fx, fy) for plane
-// (frames have their own loads, add_frame_loads). Added here without making it as a
-// vector: one allocation per element corner was most of assembling a 1e7-unknown model.
+// component_coefficients(mesh, f) is the load itself: e1.f for a bar, (fx, fy) for plane.
+// Its fixed-size form: one vector allocated per element corner was most of assembling a
+// 1e7-unknown model.
 void add_force(const StrutMesh& mesh, Eigen::VectorXd& load, int node, const Vec2& force) {
-  if (mesh.dofs_per_node == 1) {
-    load(node) += mesh.e1.dot(force);
-    return;
-  }
-  load(2 * node) += force.x();
-  load(2 * node + 1) += force.y();
+  const int n = mesh.dofs_per_node;
+  load.segment(node * n, n) += component_coefficients3(mesh, force).head(n);
 }
 
 // Frame model: point forces and moments at nodes; a per-length load q as consistent
