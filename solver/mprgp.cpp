@@ -29,7 +29,7 @@ Mprgp::Mprgp(const Model& model, const SolveOptions& options, const Communicator
   for (int k = 0; k < space().rows(); ++k)
     equality_rows[k] = !space().is_contact(k);
   coarse_.set_active_rows(equality_rows);
-  face_.emplace(system_, coarse_.unheld());
+  face_.emplace(coarse_);
   find_group_constraints();
   estimate_operator_norm();
   inner_.set_norm(norm_A_);
