@@ -9,11 +9,13 @@
 #include <atomic>
 #include <cerrno>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <future>
 #include <iostream>
 #include <memory>
 #include <mutex>
+#include <new>
 #include <set>
 #include <vector>
 
@@ -145,18 +147,66 @@ std::string write_all(int fd, const char* data, size_t size, bool& interrupted_o
   return "";
 }
 
+// Whole buffers written to a file this process created go past the page cache (O_DIRECT)
+// where the file system takes that: on this machine's VM the kernel's copy of a buffered
+// write into the page cache (copy_folio_from_iter) took about 2.6 s of system CPU per GB,
+// first touching fresh page-cache pages - 5 CPU-s of the 2.1 GB a 1e7 solve writes
+// (docs/BENCHMARKS.md, "Outside set-up and solve") - against 0.2 s per GB direct. Every
+// direct write is a whole aligned buffer at an aligned offset; the first write that is
+// not (the last, partial buffer) or that does not complete in one call (a file system
+// without O_DIRECT says EINVAL, a full disk writes short) turns the flag off for the rest
+// of the file and is written, or written again, the ordinary way - so the bytes and every
+// error are those of buffered writes.
+class DirectWrites {
+ public:
+  // Only a regular file this process opened itself (never standard output: the flag
+  // would change the shell's open file too).
+  DirectWrites(int fd, bool own_file) : fd_(fd) {
+    struct stat info {};
+    if (!own_file || ::fstat(fd, &info) != 0 || !S_ISREG(info.st_mode)) return;
+    const int flags = ::fcntl(fd, F_GETFL);
+    on_ = flags >= 0 && ::fcntl(fd, F_SETFL, flags | O_DIRECT) == 0;
+  }
+  // Writes `size` bytes: directly when they are a whole buffer, otherwise (and after any
+  // failure) through write_all.
+  std::string write(const char* data, size_t size, bool whole_buffer, bool& interrupted_out) {
+    if (on_ && whole_buffer) {
+      const ssize_t n = ::write(fd_, data, size);
+      if (n == static_cast<ssize_t>(size)) return "";
+      stop();
+      if (n > 0) {  // written short: the rest the ordinary way
+        data += n;
+        size -= static_cast<size_t>(n);
+      }
+    } else {
+      stop();
+    }
+    return write_all(fd_, data, size, interrupted_out);
+  }
+
+ private:
+  void stop() {
+    if (!on_) return;
+    on_ = false;
+    const int flags = ::fcntl(fd_, F_GETFL);
+    if (flags >= 0) (void)::fcntl(fd_, F_SETFL, flags & ~O_DIRECT);
+  }
+  int fd_;
+  bool on_ = false;
+};
+
 // An std::streambuf over a file descriptor that keeps the first failure. A full buffer is
-// written by another thread while the next one fills (two buffers of 1 MiB): the kernel's
-// copy into the page cache (copy_folio_from_iter, about 0.5 GB/s on this machine's VM)
-// then overlaps the formatting and compressing of the next bytes instead of following it
-// - 3 s of the 7.5 s that writing the 1.6 GB result file of a 1e7-unknown solve took
-// (docs/BENCHMARKS.md, "Outputs at 1e7"). Bytes arrive in order: one write at a time.
+// written by another thread while the next one fills (two buffers of 1 MiB, aligned for
+// DirectWrites): writing then overlaps the formatting and compressing of the next bytes
+// instead of following it (docs/BENCHMARKS.md, "Outputs at 1e7"). Bytes arrive in order:
+// one write at a time.
 class FdBuffer : public std::streambuf {
  public:
   // The buffers are not cleared: a small output makes only the pages it fills resident.
-  explicit FdBuffer(int fd) : fd_(fd) {
-    for (std::unique_ptr<char[]>& buffer : buffers_)
-      buffer.reset(new char[kSize]);
+  FdBuffer(int fd, bool own_file) : direct_(fd, own_file) {
+    for (std::unique_ptr<char[], Free>& buffer : buffers_)
+      buffer.reset(static_cast<char*>(std::aligned_alloc(kAlignment, kSize)));
+    if (!buffers_[0] || !buffers_[1]) throw std::bad_alloc();
     setp(buffers_[0].get(), buffers_[0].get() + kSize);
   }
   ~FdBuffer() override { wait(); }
@@ -183,6 +233,10 @@ class FdBuffer : public std::streambuf {
 
  private:
   static constexpr size_t kSize = size_t{1} << 20;
+  static constexpr size_t kAlignment = 4096;  // O_DIRECT's, for any block size up to it
+  struct Free {
+    void operator()(char* buffer) const { std::free(buffer); }
+  };
 
   // Waits for the write in flight; its failure becomes error_.
   void wait() {
@@ -199,13 +253,13 @@ class FdBuffer : public std::streambuf {
     if (!error_.empty()) return false;
     if (filled > 0)
       writing_ = std::async(std::launch::async, [this, data, filled] {
-        error_ = write_all(fd_, data, filled, interrupted_);
+        error_ = direct_.write(data, filled, filled == kSize, interrupted_);
       });
     return true;
   }
 
-  int fd_;
-  std::array<std::unique_ptr<char[]>, 2> buffers_;
+  DirectWrites direct_;
+  std::array<std::unique_ptr<char[], Free>, 2> buffers_;
   int current_ = 0;
   std::future<void> writing_;  // the write of the other buffer, while it runs
   std::string error_;          // written by the writer thread, read after wait()
@@ -534,7 +588,7 @@ void write_output(const std::string& path, std::string_view bytes) {
 
 void write_output(const std::string& path, const std::function<void(std::ostream&)>& write) {
   write_through(path, [&](int fd) {
-    FdBuffer buffer(fd);
+    FdBuffer buffer(fd, fd != 1);
     std::ostream out(&buffer);
     write(out);
     out.flush();

@@ -1,7 +1,8 @@
 // Output targets (app/output_file.hpp), end to end through the commands: a device node,
 // a FIFO or stdout is written directly and keeps being what it is; a symbolic link is
-// followed; a lost byte is status 5, never 0. Device nodes are private ones made with
-// mknod in a temporary folder (root only; skipped otherwise): never the real /dev.
+// followed; a lost byte is status 5, never 0; a file of many buffers arrives whole. Device nodes
+// are private ones made with mknod in a temporary folder (root only; skipped otherwise): never the
+// real /dev.
 
 #include <catch2/catch.hpp>
 
@@ -16,6 +17,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "app/output_file.hpp"
 #include "tests/support/process.hpp"
 #include "tests/support/skip.hpp"
 
@@ -234,4 +236,26 @@ TEST_CASE("a regular file is replaced whole, no temporary file remains", "[outpu
   for ([[maybe_unused]] const auto& entry : fs::directory_iterator(dir.path()))
     ++files;
   CHECK(files == 1);
+}
+
+// Whole 1 MiB buffers of a regular file go past the page cache (O_DIRECT), the partial
+// last one - or any written after a flush left the file at an unaligned offset - the
+// ordinary way (app/output_file.cpp, DirectWrites): every byte must arrive, in order.
+TEST_CASE("a file of several buffers, flushed mid-buffer or not, has every byte in order",
+          "[output]") {
+  TempDir dir;
+  const std::string path = dir / "big.txt";
+  for (const bool flush_between : {false, true}) {
+    INFO("flushed mid-buffer: " << flush_between);
+    std::string expected;
+    fetic::app::write_output(path, [&](std::ostream& out) {
+      for (int line = 0; line < 400000; ++line) {  // 4.9 MB, lines of unequal lengths
+        const std::string text = std::to_string(line * 7919LL) + (line % 3 ? " a\n" : " bcd\n");
+        out << text;
+        expected += text;
+        if (flush_between && line == 150000) out.flush();  // after a whole buffer
+      }
+    });
+    CHECK(read_text(path) == expected);
+  }
 }
