@@ -80,22 +80,26 @@ void CompactFactor::finish() {
 // at most kRelaxedZeros explicit zeros. Nested patterns (fundamental supernodes) add none.
 template <class Row>
 void CompactFactor::find_supernodes(const ColumnView<Row>& columns) {
-  first_.assign(1, 0);
-  row_start_.assign(1, 0);
-  rows_.clear();
+  // Found in arrays reused from one factor to the next, then copied at their final size:
+  // the kept ones are in huge pages, where a grown array's old copies would stay.
+  thread_local std::vector<int> first, row_start;
+  thread_local std::vector<std::uint16_t> rows;
+  first.assign(1, 0);
+  row_start.assign(1, 0);
+  rows.clear();
   std::vector<int> below, merged;  // the run's rows below its last column
   std::size_t given = 0;           // entries given in the run's columns
   const auto close = [&](int end) {
-    first_.push_back(end);
-    rows_.insert(rows_.end(), below.begin(), below.end());
-    row_start_.push_back(static_cast<int>(rows_.size()));
+    first.push_back(end);
+    rows.insert(rows.end(), below.begin(), below.end());
+    row_start.push_back(static_cast<int>(rows.size()));
   };
   for (int j = 0; j < size_; ++j) {
     const Row* begin = columns.rows + columns.begin(j);
     const Row* end = columns.rows + columns.end(j);
     const auto count = static_cast<std::size_t>(end - begin);
-    if (j > first_.back()) {
-      const std::ptrdiff_t nc = j - first_.back() + 1;
+    if (j > first.back()) {
+      const std::ptrdiff_t nc = j - first.back() + 1;
       merged.clear();  // row j becomes a row of the diagonal block
       const auto rest = below.begin() + (!below.empty() && below.front() == j ? 1 : 0);
       std::set_union(rest, below.end(), begin, end, std::back_inserter(merged));
@@ -112,14 +116,14 @@ void CompactFactor::find_supernodes(const ColumnView<Row>& columns) {
     given = count;
   }
   close(size_);
+  first_.assign(first.begin(), first.end());
+  row_start_.assign(row_start.begin(), row_start.end());
+  rows_.assign(rows.begin(), rows.end());
 }
 
 template <class Row>
 void CompactFactor::build_supernodes(const ColumnView<Row>& columns) {
   find_supernodes(columns);
-  first_.shrink_to_fit();  // held for the whole solve: no spare capacity
-  row_start_.shrink_to_fit();
-  rows_.shrink_to_fit();
   std::size_t stored = 0;
   for (int s = 0; s < supernodes(); ++s) {
     const int nc = first_[s + 1] - first_[s];

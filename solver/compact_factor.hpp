@@ -128,16 +128,17 @@ class CompactFactor {
   int size_ = 0;
   bool single_ = false;
   std::vector<int> permutation_;  // P: row k of P A P' is row permutation_[k] of A
-  std::vector<double> inverse_diagonal_;
+  // Kept for the whole solve, allocated once at their size: in huge pages as values_.
+  huge_pages::Vector<double> inverse_diagonal_;
   // The columns as given, until finish().
   std::vector<int> column_start_;
   std::vector<std::uint16_t> column_rows_;
   std::vector<double> column_values_;
   // The supernodes: s holds columns first_[s] .. first_[s + 1] - 1, its rows below them
   // rows_[row_start_[s] ..], its entries (triangle, then block) after those of s - 1.
-  std::vector<int> first_;
-  std::vector<int> row_start_;
-  std::vector<std::uint16_t> rows_;
+  huge_pages::Vector<int> first_;
+  huge_pages::Vector<int> row_start_;
+  huge_pages::Vector<std::uint16_t> rows_;
   std::size_t stored_below_ = 0;
   // Per supernode, whether reach_first() marked it (empty: all); the marked supernodes'
   // entries come first (reached_below_ of them), then the others', each part in order.
