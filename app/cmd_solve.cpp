@@ -294,6 +294,7 @@ void take_profile(const std::vector<solver::SweepStep>& steps, SetUp& setup, boo
     if (const auto* mprgp = dynamic_cast<const solver::Mprgp*>(setup.dual)) {
       profile.mprgp_steps = mprgp->counts();
       profile.setup_f_applications = mprgp->setup_f_applications();
+      profile.setup_norm_estimate_seconds = mprgp->norm_estimate_seconds();
       profile.contact_coarse_columns = mprgp->contact_columns();
     }
     profile.condition = setup.dual->condition_estimate();

@@ -63,7 +63,8 @@ std::vector<double> flatten(const ProfileRun& run) {
           b.range_projection_seconds - a.range_projection_seconds,
           static_cast<double>(b.preconditioner_applications - a.preconditioner_applications),
           b.f_bytes_read,
-          b.preconditioner_bytes_read};
+          b.preconditioner_bytes_read,
+          b.coarse_setup_seconds};
 }
 
 const char* const kFields[] = {"subdomains",
@@ -109,7 +110,8 @@ const char* const kFields[] = {"subdomains",
                                "range_projection_seconds",
                                "preconditioner_applications",
                                "f_bytes_read",
-                               "preconditioner_bytes_read"};
+                               "preconditioner_bytes_read",
+                               "setup_coarse_problem_seconds"};
 
 }  // namespace
 
@@ -133,7 +135,10 @@ void write_solve_profile(const std::string& path, const solver::Communicator& pr
                               {"expansion", run.mprgp_steps->expansion},
                               {"proportioning", run.mprgp_steps->proportioning},
                               {"outer", run.mprgp_steps->outer}};
-  if (run.mprgp_steps) profile["setup_f_applications"] = run.setup_f_applications;
+  if (run.mprgp_steps) {
+    profile["setup_f_applications"] = run.setup_f_applications;
+    profile["setup_norm_estimate_seconds"] = run.setup_norm_estimate_seconds;
+  }
   if (run.contact_coarse_columns > 0)
     profile["contact_coarse_columns"] = run.contact_coarse_columns;
   if (run.condition.steps > 0)

@@ -140,6 +140,7 @@ class CoarseProblem {
   };
   OwnPattern own_pattern(const SubdomainOperator& op, const Subdomain& sub) const;
   static void join_pattern(const OwnPattern& part, Pattern& into, std::vector<int>& pattern);
+  void reserve_products(Pattern& pattern) const;
   std::shared_ptr<const Pattern> pattern_;
   std::vector<double> own_values_;
   SparseMatrix matrix_;  // lower triangle of G^ G^', fixed pattern

@@ -6,6 +6,8 @@
 #include <utility>
 #include <vector>
 
+#include "solver/stopwatch.hpp"
+
 namespace fetic::solver {
 
 FetiMethod::FetiMethod(MethodKind kind, const Model& model, const SolveOptions& options,
@@ -16,7 +18,10 @@ FetiMethod::FetiMethod(MethodKind kind, const Model& model, const SolveOptions& 
               options.corner_clusters, options.single_factors, options.single_interior_factors,
               options.edge_averages),
       preconditioner_(system_, options.preconditioner, options.scaling),
-      coarse_(system_),
+      coarse_([this] {
+        Stopwatch watch(coarse_setup_seconds_);
+        return CoarseProblem(system_);
+      }()),
       Gt_(system_.G().transpose()) {
   system_.release_stiffness();
 }
@@ -132,6 +137,7 @@ ProcessProfile FetiMethod::profile() const {
   preconditioner_.add_memory(p.memory);
   p.setup = system_.setup_times();
   p.preconditioner_setup_seconds = preconditioner_.setup_seconds();
+  p.coarse_setup_seconds = coarse_setup_seconds_;
   p.preconditioner_applications = preconditioner_.applications();
   p.f_bytes_read = system_.f_bytes_read();
   p.preconditioner_bytes_read = preconditioner_.bytes_read();

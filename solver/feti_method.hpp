@@ -43,6 +43,7 @@ struct ProcessProfile {
   LocalMemory memory;             // bytes held for the own subdomains, by kind
   SetupTimes setup;               // the subdomain operators' set-up, by part
   double preconditioner_setup_seconds = 0.0;
+  double coarse_setup_seconds = 0.0;  // the coarse problem's pattern (CoarseProblem)
   long long preconditioner_applications = 0;
   double f_bytes_read = 0.0;               // per application of F (FetiSystem::f_bytes_read)
   double preconditioner_bytes_read = 0.0;  // per application of M^-1
@@ -124,6 +125,7 @@ class FetiMethod : public Method {
   ConditionRecord condition_;  // pcpg_step's coefficients
   FetiSystem system_;
   FetiPreconditioner preconditioner_;
+  double coarse_setup_seconds_ = 0.0;  // before coarse_, whose construction it times
   CoarseProblem coarse_;
   SparseMatrix Gt_;  // G' (local rows x modes): a column per mode, the rows it reaches
   Eigen::VectorXd d_;

@@ -229,10 +229,11 @@ FetiPreconditioner::FetiPreconditioner(const FetiSystem& system, Preconditioner 
   // subdomain in increasing order (the row's own entries come in that order already).
   row_first_.assign(space.rows() + 1, 0);
   size_t w = 0;
+  std::vector<std::pair<const RowEntry*, double>> own;  // one row's (not an allocation per row)
   for (int r = 0; r < space.rows(); ++r) {
     row_first_[r] = static_cast<int>(terms_.size());
     const Row& row = d.rows[space.global_row(r)];
-    std::vector<std::pair<const RowEntry*, double>> own;
+    own.clear();
     for (const RowEntry& entry : row.entries)
       if (system.own_index(entry.subdomain) >= 0) own.emplace_back(&entry, weights[w++]);
     std::stable_sort(own.begin(), own.end(), [](const auto& a, const auto& b) {

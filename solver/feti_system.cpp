@@ -96,9 +96,10 @@ void FetiSystem::build_incidence() {
 
   // B's entries per own subdomain, and per local row the own entries grouped by subdomain.
   row_parts_.resize(space_.rows());
+  std::vector<const RowEntry*> entries;  // one row's own entries (not an allocation per row)
   for (int r = 0; r < space_.rows(); ++r) {
     const Row& row = d.rows[space_.global_row(r)];
-    std::vector<const RowEntry*> entries;
+    entries.clear();
     for (const RowEntry& entry : row.entries)
       if (own_index_[entry.subdomain] >= 0) entries.push_back(&entry);
     std::stable_sort(entries.begin(), entries.end(), [](const RowEntry* a, const RowEntry* b) {

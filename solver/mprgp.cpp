@@ -10,6 +10,7 @@
 #include "solver/boundedness.hpp"
 #include "solver/interruption.hpp"
 #include "solver/largest_eigenvalue.hpp"
+#include "solver/stopwatch.hpp"
 
 namespace fetic::solver {
 namespace {
@@ -78,6 +79,7 @@ Eigen::VectorXd Mprgp::to_gradient(const Eigen::VectorXd& w) const {
 // starts alike. The estimate is the largest Ritz value plus its residual: from above, so
 // that alpha_bar = alpha_factor / ||A|| stays below 2 / ||A|| (docs/METHODS.md, "MPRGP").
 void Mprgp::estimate_operator_norm() {
+  Stopwatch watch(norm_seconds_);
   const int rows = space().rows();
   Eigen::VectorXd v(rows);
   for (int k = 0; k < rows; ++k) {

@@ -59,6 +59,7 @@ class Mprgp final : public FetiMethod, private MprgpProblem {
   // estimate's, Lanczos, and, for FETI-DP, one per batch of columns of the contact faces' coarse
   // space).
   double operator_norm() const { return norm_H_; }
+  double norm_estimate_seconds() const { return norm_seconds_; }
   int setup_f_applications() const {
     return norm_products_ + (contact_coarse_ ? contact_coarse_->applications() : 0);
   }
@@ -99,6 +100,7 @@ class Mprgp final : public FetiMethod, private MprgpProblem {
   std::optional<ContactCoarseSpace> contact_coarse_;
   double norm_H_ = 0.0, norm_A_ = 0.0, rho_ = 0.0;
   int norm_products_ = 0;
+  double norm_seconds_ = 0.0;
   // Balance of the groups held only by contacts: C = [G'z] and Q_C.
   GroupBalance groups_;
   MprgpCore inner_{*this, parameters_};
