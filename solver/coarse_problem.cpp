@@ -27,6 +27,15 @@ CoarseProblem::CoarseProblem(const FetiSystem& system) : system_(system) {
   if (system.model().frame()) frame_motions_ = std::make_shared<const FreeMotionSpace>(system);
 }
 
+CoarseProblem::CoarseProblem(const CoarseProblem& other, SamePattern)
+    : system_(other.system_),
+      active_(other.active_.size(), 1),
+      contact_active_(other.contact_active_.size(), 1),
+      pattern_(other.pattern_),
+      own_values_(other.pattern_->own_values, 0.0),
+      matrix_(other.matrix_),
+      frame_motions_(other.frame_motions_) {}
+
 // One own subdomain's block rows of G G': its entries (a, b), sorted and each once, and
 // per local row it touches the products g_a g_b, their values numbered from 0.
 CoarseProblem::OwnPattern CoarseProblem::own_pattern(const SubdomainOperator& op,
@@ -69,22 +78,22 @@ CoarseProblem::OwnPattern CoarseProblem::own_pattern(const SubdomainOperator& op
 }
 
 // Appends one own subdomain's part: its values after those before, its products and rows.
-void CoarseProblem::join_pattern(const OwnPattern& part, std::vector<int>& pattern) {
-  const int value_offset = static_cast<int>(own_values_.size());
-  const int product_offset = static_cast<int>(products_.size());
+void CoarseProblem::join_pattern(const OwnPattern& part, Pattern& into, std::vector<int>& pattern) {
+  const int value_offset = static_cast<int>(into.own_values);
+  const int product_offset = static_cast<int>(into.products.size());
   for (const auto& [a, b] : part.entries) {
     pattern.push_back(a);
     pattern.push_back(b);
   }
-  own_values_.resize(own_values_.size() + part.entries.size(), 0.0);
+  into.own_values += part.entries.size();
   for (Product product : part.products) {
     product.value += value_offset;
-    products_.push_back(product);
+    into.products.push_back(product);
   }
   for (RowProducts rp : part.rows) {
     rp.first += product_offset;
     rp.end += product_offset;
-    row_products_.push_back(rp);
+    into.row_products.push_back(rp);
   }
 }
 
@@ -104,6 +113,7 @@ void CoarseProblem::build_pattern() {
   // unknowns).
   constexpr int kBlock = 128;
   std::vector<OwnPattern> parts(static_cast<size_t>(std::min(count, kBlock)));
+  auto built = std::make_shared<Pattern>();
   std::vector<int> pattern;  // (a, b) pairs of this process' values, in value order
   for (int first = 0; first < count; first += kBlock) {
     const int last = std::min(count, first + kBlock);
@@ -117,7 +127,7 @@ void CoarseProblem::build_pattern() {
     }
     throw_if_stopped("assembling the coarse problem");
     for (int i = first; i < last; ++i) {
-      join_pattern(parts[i - first], pattern);
+      join_pattern(parts[i - first], *built, pattern);
       parts[i - first] = OwnPattern();
     }
   }
@@ -131,16 +141,18 @@ void CoarseProblem::build_pattern() {
   matrix_.resize(n, n);
   matrix_.setFromTriplets(lower.begin(), lower.end());
   matrix_.makeCompressed();
-  value_slot_.assign(all.size() / 2, -1);
+  built->value_slot.assign(all.size() / 2, -1);
   for (size_t k = 0; k + 1 < all.size(); k += 2) {
     const int a = all[k], b = all[k + 1];
     if (a < b) continue;
     // Position of (a, b) in column b of the compressed lower triangle.
     const int* begin = matrix_.innerIndexPtr() + matrix_.outerIndexPtr()[b];
     const int* end = matrix_.innerIndexPtr() + matrix_.outerIndexPtr()[b + 1];
-    value_slot_[k / 2] =
+    built->value_slot[k / 2] =
         static_cast<int>(std::lower_bound(begin, end, a) - matrix_.innerIndexPtr());
   }
+  own_values_.assign(built->own_values, 0.0);
+  pattern_ = std::move(built);
 }
 
 bool CoarseProblem::row_active(int global_row) const {
@@ -224,17 +236,20 @@ bool CoarseProblem::update_factor(const std::vector<int>& own_changes, std::size
 void CoarseProblem::factorize() {
   Stopwatch watch(system_.times().coarse);
   const SparseMatrix& G = system_.G();
+  const Pattern& pattern = *pattern_;
   std::fill(own_values_.begin(), own_values_.end(), 0.0);
-  for (const RowProducts& rp : row_products_) {
+  for (const RowProducts& rp : pattern.row_products) {
     if (!active_[rp.row]) continue;
     const double* column = G.valuePtr() + G.outerIndexPtr()[rp.row];
-    for (int p = rp.first; p < rp.end; ++p)
-      own_values_[products_[p].value] += column[products_[p].a] * column[products_[p].b];
+    for (int p = rp.first; p < rp.end; ++p) {
+      const Product& product = pattern.products[p];
+      own_values_[product.value] += column[product.a] * column[product.b];
+    }
   }
   const std::vector<double> all = system_.communicator().all_gather(own_values_);
   std::fill(matrix_.valuePtr(), matrix_.valuePtr() + matrix_.nonZeros(), 0.0);
   for (size_t k = 0; k < all.size(); ++k)
-    if (value_slot_[k] >= 0) matrix_.valuePtr()[value_slot_[k]] = all[k];
+    if (pattern.value_slot[k] >= 0) matrix_.valuePtr()[pattern.value_slot[k]] = all[k];
   ++factorizations_;
   factorized_ = true;
 

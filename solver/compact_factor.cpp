@@ -434,22 +434,26 @@ void CompactFactor::solve_reached_in_place(double* y) const {
 
 // The entries from the one ordered sequence to the two parts reached_ defines.
 template <class Value>
-void CompactFactor::reorder_reached_first(std::vector<Value>& values) const {
-  // Appended, the reached part first: no zero-filling pass over the new storage.
-  std::vector<Value> parts;
-  parts.reserve(values.size());
+void CompactFactor::reorder_reached_first(huge_pages::Vector<Value>& values) const {
+  // Rewritten in place from a copy on the ordinary heap (reused from one factor to the
+  // next): a second array in huge pages would stay mapped beside the first until the
+  // whole chunk is freed.
+  thread_local std::vector<Value> copy;
+  copy.assign(values.begin(), values.end());
+  std::size_t to = 0;
   for (const bool part : {true, false}) {
     std::size_t from = 0;
     for (int s = 0; s < supernodes(); ++s) {
       const auto count = static_cast<std::size_t>(
           supernode_entries(first_[s + 1] - first_[s], row_start_[s + 1] - row_start_[s]));
-      if ((reached_[static_cast<std::size_t>(s)] != 0) == part)
-        parts.insert(parts.end(), values.begin() + static_cast<std::ptrdiff_t>(from),
-                     values.begin() + static_cast<std::ptrdiff_t>(from + count));
+      if ((reached_[static_cast<std::size_t>(s)] != 0) == part) {
+        std::copy_n(copy.begin() + static_cast<std::ptrdiff_t>(from), count,
+                    values.begin() + static_cast<std::ptrdiff_t>(to));
+        to += count;
+      }
       from += count;
     }
   }
-  values.swap(parts);
 }
 
 void CompactFactor::reach_first(const std::vector<int>& rows) {

@@ -24,6 +24,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "solver/huge_pages.hpp"
+
 namespace fetic::solver {
 
 class CompactFactor {
@@ -121,7 +123,7 @@ class CompactFactor {
   void solve_parts(double* y, int columns, bool reached_only) const;
   bool is_reached(int s) const { return reached_.empty() || reached_[static_cast<std::size_t>(s)]; }
   template <class Value>
-  void reorder_reached_first(std::vector<Value>& values) const;
+  void reorder_reached_first(huge_pages::Vector<Value>& values) const;
 
   int size_ = 0;
   bool single_ = false;
@@ -141,9 +143,11 @@ class CompactFactor {
   // entries come first (reached_below_ of them), then the others', each part in order.
   std::vector<char> reached_;
   std::size_t reached_below_ = 0;
-  int max_rows_ = 0;             // the largest m: the solves' workspace
-  std::vector<double> values_;   // L's entries below the diagonal (double)
-  std::vector<float> values32_;  // or as floats (single)
+  int max_rows_ = 0;  // the largest m: the solves' workspace
+  // L's entries below the diagonal (double), or as floats (single): most of a FETI
+  // solve's resident bytes, allocated once at their size, in huge pages (huge_pages.hpp).
+  huge_pages::Vector<double> values_;
+  huge_pages::Vector<float> values32_;
 };
 
 }  // namespace fetic::solver

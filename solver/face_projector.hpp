@@ -30,11 +30,11 @@ namespace fetic::solver {
 
 class FaceProjector {
  public:
-  // `equality_unheld`: the groups the equality rows leave free (CoarseProblem::unheld() of
-  // the equality rows' coarse problem).
-  FaceProjector(const FetiSystem& system, std::vector<UnheldGroup> equality_unheld)
-      : coarse_(system) {
-    coarse_.pin_always(std::move(equality_unheld));
+  // `equality`: the equality rows' coarse problem, whose pattern it shares; it pins the
+  // groups those rows leave free (equality.unheld()).
+  explicit FaceProjector(const CoarseProblem& equality)
+      : coarse_(equality, CoarseProblem::SamePattern{}) {
+    coarse_.pin_always(equality.unheld());
   }
 
   // The face: per local row, nonzero for the equality rows and the free contact rows.

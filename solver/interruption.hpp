@@ -1,6 +1,6 @@
 #pragma once
 // Set-up steps that can take seconds on a large scene (assembly, the subdomain
-// factorizations, the coarse problem, the preconditioner, the power method) ask between
+// factorizations, the coarse problem, the preconditioner, the estimate of ||H||) ask between
 // pieces of work whether the program has been asked to stop, so that Ctrl-C ends the run
 // within a fraction of a second. The solver knows no signals: the app installs the
 // question (app/interrupt.cpp). Inside OpenMP loops ask stop_requested() and skip the

@@ -9,6 +9,7 @@
 
 #include "solver/boundedness.hpp"
 #include "solver/interruption.hpp"
+#include "solver/largest_eigenvalue.hpp"
 
 namespace fetic::solver {
 namespace {
@@ -29,7 +30,7 @@ Mprgp::Mprgp(const Model& model, const SolveOptions& options, const Communicator
   for (int k = 0; k < space().rows(); ++k)
     equality_rows[k] = !space().is_contact(k);
   coarse_.set_active_rows(equality_rows);
-  face_.emplace(system_, coarse_.unheld());
+  face_.emplace(coarse_);
   find_group_constraints();
   estimate_operator_norm();
   inner_.set_norm(norm_A_);
@@ -71,13 +72,14 @@ Eigen::VectorXd Mprgp::to_gradient(const Eigen::VectorXd& w) const {
   return gradient;
 }
 
-// ||H|| by the power method on the feasible subspace (PERMON: relative change 1e-4, at
-// most 50 steps), from a fixed pseudo-random start so that no symmetry of the scene
-// hides the largest eigenvalue. A row's start is drawn from its global index (splitmix64),
-// so that every process count starts alike. The estimate approaches ||H|| from below.
+// ||H|| by Lanczos on the feasible subspace (largest_eigenvalue.hpp), from a fixed
+// pseudo-random start so that no symmetry of the scene hides the largest eigenvalue. A
+// row's start is drawn from its global index (splitmix64), so that every process count
+// starts alike. The estimate is the largest Ritz value plus its residual: from above, so
+// that alpha_bar = alpha_factor / ||A|| stays below 2 / ||A|| (docs/METHODS.md, "MPRGP").
 void Mprgp::estimate_operator_norm() {
   const int rows = space().rows();
-  Eigen::VectorXd v(rows), w, ftv, qv;
+  Eigen::VectorXd v(rows);
   for (int k = 0; k < rows; ++k) {
     std::uint64_t state =
         0x9E3779B97F4A7C15ull * (static_cast<std::uint64_t>(space().global_row(k)) + 1);
@@ -89,22 +91,19 @@ void Mprgp::estimate_operator_norm() {
   system_.project_onto_range_of_B(v);
   coarse_.project(v);
   rho_ = 0.0;
-  double estimate = 0.0;
   const long long before = system_.f_applications();
-  for (int step = 0; step < parameters_.power_iterations; ++step) {
-    throw_if_stopped("estimating the operator's norm (power method)");
-    const double size = space().norm(v);
-    if (!(size > 0.0)) break;
-    v /= size;
-    apply_A(v, w, ftv, qv);
-    const double next = space().norm(w);
-    const bool settled = std::abs(next - estimate) <= parameters_.power_tolerance * next;
-    estimate = next;
-    v = w;
-    if (settled) break;
-  }
-  power_steps_ = static_cast<int>(system_.f_applications() - before);
-  norm_H_ = estimate > 0.0 ? estimate : 1.0;
+  LanczosOperator op;
+  op.apply = [this](const Eigen::VectorXd& x, Eigen::VectorXd& out) {
+    Eigen::VectorXd ftx, qx;
+    apply_A(x, out, ftx, qx);
+  };
+  op.dot = [this](const Eigen::VectorXd& a, const Eigen::VectorXd& b) { return space().dot(a, b); };
+  op.before_product = [] { throw_if_stopped("estimating the operator's norm (Lanczos)"); };
+  LanczosStop stop{parameters_.norm_tolerance, parameters_.norm_min_products,
+                   parameters_.norm_products};
+  const EigenvalueEstimate estimate = largest_eigenvalue(op, v, stop);
+  norm_products_ = static_cast<int>(system_.f_applications() - before);
+  norm_H_ = estimate.upper() > 0.0 ? estimate.upper() : 1.0;
   norm_A_ = norm_H_;
   if (!groups_.empty()) {
     rho_ = parameters_.rho_factor * norm_H_;

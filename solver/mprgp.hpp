@@ -55,11 +55,12 @@ class Mprgp final : public FetiMethod, private MprgpProblem {
   // The contact rows off their bound (collective: gathers the flags of all processes).
   std::vector<char> working_set() const override;
 
-  // ||H|| as estimated at set-up, and the applications of F the set-up took (the power
-  // method's and, for FETI-DP, one per batch of columns of the contact faces' coarse space).
+  // ||H|| as estimated at set-up, and the applications of F the set-up took (the
+  // estimate's, Lanczos, and, for FETI-DP, one per batch of columns of the contact faces' coarse
+  // space).
   double operator_norm() const { return norm_H_; }
   int setup_f_applications() const {
-    return power_steps_ + (contact_coarse_ ? contact_coarse_->applications() : 0);
+    return norm_products_ + (contact_coarse_ ? contact_coarse_->applications() : 0);
   }
   // Columns of FETI-DP's coarse space of the contact faces (0: none).
   int contact_columns() const { return contact_coarse_ ? contact_coarse_->columns() : 0; }
@@ -97,7 +98,7 @@ class Mprgp final : public FetiMethod, private MprgpProblem {
   // only between clusters without modes).
   std::optional<ContactCoarseSpace> contact_coarse_;
   double norm_H_ = 0.0, norm_A_ = 0.0, rho_ = 0.0;
-  int power_steps_ = 0;
+  int norm_products_ = 0;
   // Balance of the groups held only by contacts: C = [G'z] and Q_C.
   GroupBalance groups_;
   MprgpCore inner_{*this, parameters_};

@@ -135,8 +135,8 @@ std::optional<MprgpCore::Breakdown> MprgpCore::conjugate_gradient_or_expansion()
 // Expansion. First the whole CG step with the rows it would take below their bound put
 // on it (ESPRESO's "mixed" step): kept when L decreased, which it mostly does, and it
 // changes many rows at once. Else Dostal's: to the first bound, then a projected gradient
-// step of fixed length alpha_bar, halved for good should it not decrease L (the power
-// method's estimate of ||A|| was too low for 2 / ||A||).
+// step of fixed length alpha_bar, halved for good should it not decrease L (the
+// estimate of ||A|| was too low for 2 / ||A||).
 void MprgpCore::expand(double a_cg, double a_feasible, const Eigen::VectorXd& Ap) {
   ++steps_.expansion;
   const double before = lagrangian();

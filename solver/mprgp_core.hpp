@@ -29,13 +29,17 @@ struct MprgpParameters {
   double gamma = 10.0;
   double settled_gamma = 1.0;
   int settle_steps = 3;
-  double alpha_factor = 1.9;      // expansion step alpha_bar = alpha_factor / ||A||, < 2
-  double rho_factor = 10.0;       // SMALBE penalty rho = rho_factor ||H|| for the groups
-  double m_factor = 100.0;        // initial M = m_factor ||A|| (PERMON)
-  double m_divisor = 2.0;         // M /= m_divisor when the Lagrangian grows too little
-  double eta_factor = 0.1;        // eta = eta_factor ||b|| (PERMON)
-  double power_tolerance = 1e-3;  // power method for ||H||: relative change
-  int power_iterations = 10;      // and its cap
+  double alpha_factor = 1.9;  // expansion step alpha_bar = alpha_factor / ||A||, < 2
+  double rho_factor = 10.0;   // SMALBE penalty rho = rho_factor ||H|| for the groups
+  double m_factor = 100.0;    // initial M = m_factor ||A|| (PERMON)
+  double m_divisor = 2.0;     // M /= m_divisor when the Lagrangian grows too little
+  double eta_factor = 0.1;    // eta = eta_factor ||b|| (PERMON)
+  // Lanczos for ||H|| (largest_eigenvalue.hpp): stops when the Ritz value's residual is
+  // within norm_tolerance of it (not before norm_min_products applications of F), else
+  // after norm_products. 5%: alpha_factor's margin below 2.
+  double norm_tolerance = 0.05;
+  int norm_min_products = 3;
+  int norm_products = 10;
 };
 
 // What the core needs of the problem it runs on.

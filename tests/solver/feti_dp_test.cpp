@@ -277,7 +277,7 @@ TEST_CASE(
   // coarse space (5,010 applications of F for 5,000 bar contacts). Independent contacts
   // share applications now (solver/contact_batches.hpp): generated plane pairs, 2 x 2
   // boxes a strut, each contact crossing two pairs of boxes (4 columns); the set-up is the
-  // power method (at most power_iterations) and one application per column of one contact.
+  // estimate of ||H|| (at most norm_products) and one application per column of one contact.
   const solver::MprgpParameters parameters;
   for (int pairs : {2, 40}) {
     scenes::GenerateOptions generate;
@@ -292,7 +292,7 @@ TEST_CASE(
     solver::Mprgp method(model, options, solver::Communicator::self(), parameters);
     INFO(pairs << " pairs: " << method.setup_f_applications() << " applications of F at set-up");
     CHECK(method.contact_columns() == 4 * pairs);
-    CHECK(method.setup_f_applications() <= parameters.power_iterations + 4);
+    CHECK(method.setup_f_applications() <= parameters.norm_products + 4);
     method.start(1.0);
     solver::run_to_end(method);
     CHECK(method.status() == solver::Status::Converged);
