@@ -147,44 +147,49 @@ std::string write_all(int fd, const char* data, size_t size, bool& interrupted_o
   return "";
 }
 
-// Whole buffers written to a file this process created go past the page cache (O_DIRECT)
-// where the file system takes that: on this machine's VM the kernel's copy of a buffered
-// write into the page cache (copy_folio_from_iter) took about 2.6 s of system CPU per GB,
-// first touching fresh page-cache pages - 5 CPU-s of the 2.1 GB a 1e7 solve writes
-// (docs/BENCHMARKS.md, "Outside set-up and solve") - against 0.2 s per GB direct. Every
-// direct write is a whole aligned buffer at an aligned offset; the first write that is
-// not (the last, partial buffer) or that does not complete in one call (a file system
-// without O_DIRECT says EINVAL, a full disk writes short) turns the flag off for the rest
-// of the file and is written, or written again, the ordinary way - so the bytes and every
-// error are those of buffered writes.
+// Whole buffers written to a large file this process created go past the page cache
+// (O_DIRECT) where the file system takes that: on this machine's VM the kernel's copy of a
+// buffered write into the page cache (copy_folio_from_iter) took about 2.6 s of system
+// CPU per GB, first touching fresh page-cache pages - 5 CPU-s of the 2.1 GB a 1e7 solve
+// writes (docs/BENCHMARKS.md, "Outside set-up and solve") - against 0.2 s per GB direct.
+// Only from the kDirectAfter-th whole buffer on: the outputs of ordinary size never
+// change their way of writing. Every direct write is a whole aligned buffer at an aligned
+// offset (all before it were whole buffers too); the first write that is not (the last,
+// partial buffer, or any after a flush) or that does not complete in one call (a file
+// system without O_DIRECT says EINVAL, a full disk writes short) turns the flag off for
+// the rest of the file and is written, or written again, the ordinary way - so the bytes
+// and every error are those of buffered writes.
 class DirectWrites {
  public:
+  static constexpr int kDirectAfter = 8;  // whole buffers written the ordinary way first
   // Only a regular file this process opened itself (never standard output: the flag
   // would change the shell's open file too).
-  DirectWrites(int fd, bool own_file) : fd_(fd) {
-    struct stat info {};
-    if (!own_file || ::fstat(fd, &info) != 0 || !S_ISREG(info.st_mode)) return;
-    const int flags = ::fcntl(fd, F_GETFL);
-    on_ = flags >= 0 && ::fcntl(fd, F_SETFL, flags | O_DIRECT) == 0;
-  }
+  DirectWrites(int fd, bool own_file) : fd_(fd), allowed_(own_file) {}
   // Writes `size` bytes: directly when they are a whole buffer, otherwise (and after any
   // failure) through write_all.
   std::string write(const char* data, size_t size, bool whole_buffer, bool& interrupted_out) {
+    if (!whole_buffer) allowed_ = false;
+    if (allowed_ && !on_ && ++whole_buffers_ > kDirectAfter) start();
     if (on_ && whole_buffer) {
       const ssize_t n = ::write(fd_, data, size);
       if (n == static_cast<ssize_t>(size)) return "";
-      stop();
       if (n > 0) {  // written short: the rest the ordinary way
         data += n;
         size -= static_cast<size_t>(n);
       }
-    } else {
-      stop();
     }
+    stop();
     return write_all(fd_, data, size, interrupted_out);
   }
 
  private:
+  void start() {
+    allowed_ = false;  // tried once
+    struct stat info {};
+    if (::fstat(fd_, &info) != 0 || !S_ISREG(info.st_mode)) return;
+    const int flags = ::fcntl(fd_, F_GETFL);
+    on_ = flags >= 0 && ::fcntl(fd_, F_SETFL, flags | O_DIRECT) == 0;
+  }
   void stop() {
     if (!on_) return;
     on_ = false;
@@ -192,7 +197,9 @@ class DirectWrites {
     if (flags >= 0) (void)::fcntl(fd_, F_SETFL, flags & ~O_DIRECT);
   }
   int fd_;
+  bool allowed_;  // may still start: a file of our own, nothing but whole buffers so far
   bool on_ = false;
+  int whole_buffers_ = 0;
 };
 
 // An std::streambuf over a file descriptor that keeps the first failure. A full buffer is
