@@ -203,7 +203,7 @@ int run_bench(const BenchArgs& args) {
          << " solves per row. solve/AS, total/AS: time relative to the active-set method on "
             "the same scene, measured in this run (total = set-up + solve). warm/cold: "
             "iterations of a re-solve after a 5% load change, warm-started against cold. F: "
-            "applications of the FETI operator F in the solve (MPRGP's power method for "
+            "applications of the FETI operator F in the solve (MPRGP's Lanczos estimate of "
             "||F|| runs once, in the set-up). "
             "'!' marks a solve that did not converge.\n\n"
          << table(rows);

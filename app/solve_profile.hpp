@@ -25,8 +25,8 @@ struct ProfileRun {
   std::optional<solver::Mprgp::Counts> mprgp_steps;
   // Lanczos estimate of the preconditioned dual operator's condition (the last solve).
   solver::ConditionEstimate condition;
-  // MPRGP's set-up: applications of F (power method, FETI-DP's contact coarse space) and
-  // the columns of FETI-DP's coarse space of the contact faces.
+  // MPRGP's set-up: applications of F (the Lanczos estimate of ||F||, FETI-DP's contact
+  // coarse space) and the columns of FETI-DP's coarse space of the contact faces.
   int setup_f_applications = 0;
   double setup_norm_estimate_seconds = 0.0;  // MPRGP's Lanczos estimate of ||H||
   int contact_coarse_columns = 0;

@@ -78,8 +78,8 @@ void set_headers(BytesTables& t) {
                      "work",
                      "loads",
                      "total"};
-  t.setup_header = {"scene",       "set-up s",       "decomposition",          "B_j",
-                    "K_j factors", "preconditioner", "coarse and power method"};
+  t.setup_header = {"scene",       "set-up s",       "decomposition",           "B_j",
+                    "K_j factors", "preconditioner", "coarse and norm estimate"};
   t.apply_header = {"scene",       "F ms",     "factor MB read (F)", "GB/s (F)", "M ms",
                     "MB read (M)", "GB/s (M)", "triad GB/s",         "ratio (F)"};
 }

@@ -123,7 +123,7 @@ struct Table {
 struct FetiRun {
   int iterations = 0;
   long long f_applications = 0;  // in the solve
-  int setup_f_applications = 0;  // MPRGP's power method for ||F||
+  int setup_f_applications = 0;  // MPRGP's Lanczos estimate of ||F||
   // Applications of F up to the iteration that last changed the working set's size: the
   // cost of finding the contact zone, the rest is the conjugate gradients on its face.
   long long f_to_settle = 0;
@@ -243,7 +243,7 @@ Table comparison_table(const std::vector<scenes::GenerateOptions>& sizes, long l
   Table table{
       "1. FETI-C and MPRGP (Dirichlet) against the direct floor, the active-set method and "
       "Ipopt (times in seconds, set-up + solve; it / F: iterations / applications of F, "
-      "MPRGP's set-up power method included; ratios = other / FETI-C; error = relative "
+      "MPRGP's set-up estimate of ||F|| included; ratios = other / FETI-C; error = relative "
       "displacement error against the floor)",
       {"scene", "unknowns", "subdomains", "contact pairs", "FETI-C it / F", "FETI-C s",
        "MPRGP it / F", "MPRGP s", "floor s", "FETI-C/floor", "MPRGP/floor", "active-set s",
@@ -304,7 +304,7 @@ Table comparison_table(const std::vector<scenes::GenerateOptions>& sizes, long l
   return table;
 }
 
-// Iterations / applications of F per method and preconditioner; MPRGP's power method
+// Iterations / applications of F per method and preconditioner; MPRGP's estimate of ||F||
 // (set-up, once per model) in its own column. `dirichlet_only`: the largest scenes, where
 // the slower preconditioners would take too long to be useful.
 // `adjust` changes each generated scene before it is solved (the pressed-flat variant).
