@@ -63,6 +63,26 @@ CompactFactor::CompactFactor(int size, const int* permutation, const Columns& co
   build_supernodes(ColumnView<int>{columns.start, columns.rows, columns.values, 1});
 }
 
+CompactFactor::CompactFactor(int size, const int* permutation, const Supernodes& supernodes,
+                             bool single)
+    : size_(size), single_(single), permutation_(permutation, permutation + size) {
+  if (size > kMaxSize) throw std::logic_error("CompactFactor: order above 65536");
+  const auto count = static_cast<std::size_t>(supernodes.count);
+  if (supernodes.count < 0 || supernodes.first[0] != 0 || supernodes.first[count] != size)
+    throw std::logic_error("CompactFactor: supernodes do not cover the columns");
+  first_.assign(supernodes.first, supernodes.first + count + 1);
+  row_start_.assign(supernodes.row_start, supernodes.row_start + count + 1);
+  rows_.assign(supernodes.rows, supernodes.rows + supernodes.row_start[count]);
+  const std::size_t stored = size_supernodes();
+  if (single_)
+    values32_.assign(supernodes.values, supernodes.values + stored);
+  else
+    values_.assign(supernodes.values, supernodes.values + stored);
+  inverse_diagonal_.resize(static_cast<std::size_t>(size));
+  for (int j = 0; j < size; ++j)
+    inverse_diagonal_[static_cast<std::size_t>(j)] = 1.0 / supernodes.diagonal[j];
+}
+
 void CompactFactor::finish() {
   column_start_.push_back(static_cast<int>(column_rows_.size()));
   if (static_cast<int>(inverse_diagonal_.size()) != size_)
@@ -121,9 +141,9 @@ void CompactFactor::find_supernodes(const ColumnView<Row>& columns) {
   rows_.assign(rows.begin(), rows.end());
 }
 
-template <class Row>
-void CompactFactor::build_supernodes(const ColumnView<Row>& columns) {
-  find_supernodes(columns);
+// The entries the supernodes store below the diagonal (stored_below_, reached_below_)
+// and the largest m (max_rows_), from first_ and row_start_.
+std::size_t CompactFactor::size_supernodes() {
   std::size_t stored = 0;
   for (int s = 0; s < supernodes(); ++s) {
     const int nc = first_[s + 1] - first_[s];
@@ -133,6 +153,13 @@ void CompactFactor::build_supernodes(const ColumnView<Row>& columns) {
   }
   stored_below_ = stored;
   reached_below_ = stored;
+  return stored;
+}
+
+template <class Row>
+void CompactFactor::build_supernodes(const ColumnView<Row>& columns) {
+  find_supernodes(columns);
+  const std::size_t stored = size_supernodes();
   if (single_)
     values32_.assign(stored, 0.0f);
   else
