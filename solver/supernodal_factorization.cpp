@@ -4,6 +4,8 @@
 #include <cmath>
 #include <iterator>
 
+#include <Eigen/Core>
+
 namespace fetic::solver {
 
 namespace {
@@ -233,36 +235,66 @@ int SupernodalFactorization::numeric(const Permuted& C) {
 
 namespace {
 
+// The update of a supernode of NC columns (a node's two DOFs in a plane model: most
+// of them), its columns' products summed in registers and subtracted in one pass.
+template <int NC>
+void subtract_narrow_update(const double* block, int m, const int* target, int p, int q, double* w,
+                            int ld) {
+  for (int c = p; c < q; ++c) {
+    double a[NC];
+    for (int k = 0; k < NC; ++k)
+      a[k] = block[static_cast<std::ptrdiff_t>(k) * m + c];
+    double* out = w + static_cast<std::ptrdiff_t>(target[c]) * ld;
+    for (int r = c; r < m; ++r) {
+      double sum = 0.0;
+      for (int k = 0; k < NC; ++k)
+        sum += block[static_cast<std::ptrdiff_t>(k) * m + r] * a[k];
+      out[target[r]] -= sum;
+    }
+  }
+}
+
 // One earlier supernode's update of the current one: L_K's rows from `p` on (those from
 // p to q - 1 are the current columns) times L_K's rows p .. q - 1, transposed, subtracted
 // from the dense workspace w (leading dimension ld) through `map` (row of L -> row of w,
-// the current columns 0 .. nc - 1 first). The products are formed a column at a time as
-// dense loops over the block's rows (they vectorize), then scattered.
+// the current columns 0 .. nc - 1 first). A wide supernode's products are formed a column
+// at a time as dense loops over its block's rows (they vectorize), then scattered.
 void subtract_update(const double* block, int m, int nc, const int* rows, int p, int q,
                      const int* map, double* w, int ld) {
   thread_local std::vector<int> target;
-  thread_local std::vector<double> t;
   target.resize(static_cast<std::size_t>(m));
-  t.resize(static_cast<std::size_t>(m));
   for (int r = p; r < m; ++r)
     target[r] = map[rows[r]];
-  for (int c = p; c < q; ++c) {
-    std::fill(t.begin() + c, t.begin() + m, 0.0);
-    for (int k = 0; k < nc; ++k) {
-      const double* column = block + static_cast<std::ptrdiff_t>(k) * m;
-      const double a = column[c];
-      for (int r = c; r < m; ++r)
-        t[r] += column[r] * a;
-    }
-    double* out = w + static_cast<std::ptrdiff_t>(target[c]) * ld;
-    for (int r = c; r < m; ++r)
-      out[target[r]] -= t[r];
+  switch (nc) {
+    case 1:
+      return subtract_narrow_update<1>(block, m, target.data(), p, q, w, ld);
+    case 2:
+      return subtract_narrow_update<2>(block, m, target.data(), p, q, w, ld);
+    case 3:
+      return subtract_narrow_update<3>(block, m, target.data(), p, q, w, ld);
+    case 4:
+      return subtract_narrow_update<4>(block, m, target.data(), p, q, w, ld);
+    default:
+      break;
+  }
+  // Wider: the rows' products by Eigen's register-blocked matrix product, then scattered.
+  using Rows = Eigen::Map<const Eigen::MatrixXd, 0, Eigen::OuterStride<>>;
+  const Rows below(block + p, m - p, nc, Eigen::OuterStride<>(m));
+  const Rows columns(block + p, q - p, nc, Eigen::OuterStride<>(m));
+  thread_local Eigen::MatrixXd product;
+  product.resize(m - p, q - p);
+  product.noalias() = below * columns.transpose();
+  for (int c = 0; c < q - p; ++c) {
+    double* out = w + static_cast<std::ptrdiff_t>(target[p + c]) * ld;
+    const double* from = product.data() + static_cast<std::ptrdiff_t>(c) * (m - p);
+    for (int r = c; r < m - p; ++r)
+      out[target[p + r]] -= from[r];
   }
 }
 
 // The dense Cholesky factor of the ld x nc trapezoid w (leading dimension ld): its top
-// nc x nc block's L_11 and the rows below times L_11'^-1. Returns -1, or the column whose
-// pivot was not positive.
+// nc x nc block's L_11 column by column, then the rows below times L_11'^-1 (Eigen's
+// blocked triangular solve). Returns -1, or the column whose pivot was not positive.
 int factorize_dense(double* w, int ld, int nc) {
   for (int k = 0; k < nc; ++k) {
     double* column = w + static_cast<std::ptrdiff_t>(k) * ld;
@@ -270,15 +302,19 @@ int factorize_dense(double* w, int ld, int nc) {
     if (!(pivot > 0.0)) return k;  // NaN too
     const double diagonal = std::sqrt(pivot);
     column[k] = diagonal;
-    for (int r = k + 1; r < ld; ++r)
+    for (int r = k + 1; r < nc; ++r)
       column[r] /= diagonal;
     for (int c = k + 1; c < nc; ++c) {
       double* later = w + static_cast<std::ptrdiff_t>(c) * ld;
       const double f = column[c];
-      for (int r = c; r < ld; ++r)
+      for (int r = c; r < nc; ++r)
         later[r] -= column[r] * f;
     }
   }
+  if (ld == nc) return -1;
+  Eigen::Map<Eigen::MatrixXd, 0, Eigen::OuterStride<>> W(w, ld, nc, Eigen::OuterStride<>(ld));
+  W.topRows(nc).triangularView<Eigen::Lower>().transpose().solveInPlace<Eigen::OnTheRight>(
+      W.bottomRows(ld - nc));
   return -1;
 }
 
