@@ -69,27 +69,24 @@ CholmodFactor::Result CholmodFactor::factorize(const SparseMatrix& A, bool to_co
   size_ = static_cast<int>(A.rows());
   failed_column_ = -1;
   if (size_ == 0) return Result::Ok;
+  if (to_compact && size_ <= kSimplicialUpTo) return factorize_supernodal(A);
   cholmod_sparse view = view_of(A);
   cholmod_common& c = impl_->common;
-  const bool supernodal = to_compact && size_ <= kSimplicialUpTo;
-  if (supernodal) c.supernodal = CHOLMOD_SIMPLICIAL;  // its analysis alone: no supernodes
   impl_->factor = cholmod_analyze(&view, &c);
   // CHOLMOD running out of memory is std::bad_alloc like any other allocation: the
   // commands report it as such (status 7), not as a singular or failed factorization.
   if (!impl_->factor && c.status == CHOLMOD_OUT_OF_MEMORY) throw std::bad_alloc();
   if (!impl_->factor) return Result::Failed;
-  return supernodal ? factorize_supernodal(A) : numeric(A);
+  return numeric(A);
 }
 
-// P A P' = L L' on the ordering CHOLMOD's analysis chose, by SupernodalFactorization
-// into CompactFactor's layout; CHOLMOD's symbolic factor and workspace go right after.
+// P A P' = L L' by SupernodalFactorization into CompactFactor's layout, on AMD's ordering
+// postordered (CHOLMOD's analysis of a small matrix chooses the same; its transposes,
+// copies and counts took a third of the time of the factorization itself).
 CholmodFactor::Result CholmodFactor::factorize_supernodal(const SparseMatrix& A) {
-  cholmod_common& c = impl_->common;
   auto factor = std::make_unique<SupernodalFactorization>();
-  const int failed = factor->factorize(A, static_cast<const int*>(impl_->factor->Perm));
-  compact_peak_ = c.memory_usage + factor->bytes();
-  cholmod_free_factor(&impl_->factor, &c);
-  cholmod_free_work(&c);
+  const int failed = factor->factorize(A);
+  compact_peak_ = factor->bytes();
   if (failed >= 0) {
     failed_column_ = failed;
     return Result::NotPositiveDefinite;

@@ -29,9 +29,9 @@ class CholmodFactor {
   // std::bad_alloc when CHOLMOD runs out of memory (OutOfMemory is never returned).
   // `to_compact`: the factor is only going to be compact()ed, so a small one (at most
   // kSimplicialUpTo rows) is factorized by SupernodalFactorization straight into
-  // CompactFactor's layout, on CHOLMOD's ordering (its analysis); CHOLMOD's own numeric
-  // factorizations and the copy of their columns took about twice as long at the ~1,100
-  // rows of a FETI subdomain (docs/BENCHMARKS.md). Such a factor must be compact()ed
+  // CompactFactor's layout, on AMD's ordering as CHOLMOD's analysis would choose it;
+  // CHOLMOD's analysis, numeric factorization and the copy of its columns took longer at
+  // the ~1,100 rows of a FETI subdomain (docs/BENCHMARKS.md). Such a factor must be compact()ed
   // before solve(); refactorize() factorizes it anew, update() throws.
   Result factorize(const SparseMatrix& A, bool to_compact = false);
   static constexpr int kSimplicialUpTo = 5000;

@@ -3,6 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <iterator>
+#include <new>
+#include <stdexcept>
+
+#include <amd.h>
 
 #include <Eigen/Core>
 
@@ -27,7 +31,43 @@ struct SupernodalFactorization::Permuted {
   std::vector<int> upper_start, upper_rows;
 
   void assign(const SparseMatrix& A, const int* permutation);
+  // `from` with its rows and columns renumbered: k becomes inverse[k] (old[k'] = k' 's
+  // old number), an order in which each entry stays on its side of the diagonal.
+  void relabel(const Permuted& from, const std::vector<int>& old, const std::vector<int>& inverse);
 };
+
+namespace {
+
+// One triangle's columns renumbered (Permuted::relabel).
+void relabel_columns(const std::vector<int>& start, const std::vector<int>& rows,
+                     const std::vector<int>& old, const std::vector<int>& inverse,
+                     std::vector<int>& new_start, std::vector<int>& new_rows,
+                     const double* values = nullptr, std::vector<double>* new_values = nullptr) {
+  const std::size_t n = old.size();
+  new_start.resize(n + 1);
+  new_rows.resize(rows.size());
+  if (new_values) new_values->resize(rows.size());
+  int at = 0;
+  for (std::size_t k = 0; k < n; ++k) {
+    new_start[k] = at;
+    const int j = old[k];
+    for (int e = start[j]; e < start[j + 1]; ++e, ++at) {
+      new_rows[at] = inverse[rows[e]];
+      if (new_values) (*new_values)[at] = values[e];
+    }
+  }
+  new_start[n] = at;
+}
+
+}  // namespace
+
+void SupernodalFactorization::Permuted::relabel(const Permuted& from, const std::vector<int>& old,
+                                                const std::vector<int>& inverse) {
+  n = from.n;
+  relabel_columns(from.lower_start, from.lower_rows, old, inverse, lower_start, lower_rows,
+                  from.lower_values.data(), &lower_values);
+  relabel_columns(from.upper_start, from.upper_rows, old, inverse, upper_start, upper_rows);
+}
 
 void SupernodalFactorization::Permuted::assign(const SparseMatrix& A, const int* permutation) {
   n = static_cast<int>(A.rows());
@@ -72,17 +112,13 @@ void SupernodalFactorization::Permuted::assign(const SparseMatrix& A, const int*
 
 namespace {
 
-// The elimination tree of P A P' (Liu's algorithm, with path compression) and the
-// entries below the diagonal of each column of L, counted over the row subtrees: row k
-// of L holds the columns on the tree paths from the entries of A's row k up to k.
-void tree_and_counts(const std::vector<int>& upper_start, const std::vector<int>& upper_rows, int n,
-                     std::vector<int>& parent, std::vector<int>& count) {
-  thread_local std::vector<int> ancestor, mark;
+// The elimination tree of P A P' (Liu's algorithm, with path compression).
+void elimination_tree(const std::vector<int>& upper_start, const std::vector<int>& upper_rows,
+                      int n, std::vector<int>& parent) {
+  thread_local std::vector<int> ancestor;
   parent.assign(static_cast<std::size_t>(n), -1);
-  count.assign(static_cast<std::size_t>(n), 0);
   ancestor.assign(static_cast<std::size_t>(n), -1);
-  mark.assign(static_cast<std::size_t>(n), -1);
-  for (int k = 0; k < n; ++k) {
+  for (int k = 0; k < n; ++k)
     for (int e = upper_start[k]; e < upper_start[k + 1]; ++e)
       for (int i = upper_rows[e]; i != -1 && i < k;) {
         const int next = ancestor[i];
@@ -90,6 +126,17 @@ void tree_and_counts(const std::vector<int>& upper_start, const std::vector<int>
         if (next == -1) parent[i] = k;
         i = next;
       }
+}
+
+// The entries below the diagonal of each column of L, counted over the row subtrees: row
+// k of L holds the columns on the tree paths from the entries of A's row k up to k.
+void column_counts(const std::vector<int>& upper_start, const std::vector<int>& upper_rows,
+                   const std::vector<int>& parent, std::vector<int>& count) {
+  const auto n = parent.size();
+  thread_local std::vector<int> mark;
+  count.assign(n, 0);
+  mark.assign(n, -1);
+  for (int k = 0; k < static_cast<int>(n); ++k) {
     mark[k] = k;
     for (int e = upper_start[k]; e < upper_start[k + 1]; ++e)
       for (int i = upper_rows[e]; mark[i] != k; i = parent[i]) {
@@ -99,20 +146,85 @@ void tree_and_counts(const std::vector<int>& upper_start, const std::vector<int>
   }
 }
 
+// A postorder of the forest `parent` (children in increasing order, by depth-first search):
+// row k of the postordered matrix is row post[k] of the given one. Each subtree's columns
+// become consecutive, so chains of the tree become runs of columns (supernodes).
+void postorder(const std::vector<int>& parent, std::vector<int>& post) {
+  const int n = static_cast<int>(parent.size());
+  thread_local std::vector<int> head, next, stack;
+  head.assign(parent.size(), -1);
+  next.resize(parent.size());
+  for (int j = n - 1; j >= 0; --j)
+    if (parent[j] != -1) {
+      next[j] = head[parent[j]];
+      head[parent[j]] = j;
+    }
+  post.clear();
+  stack.clear();
+  for (int root = 0; root < n; ++root) {
+    if (parent[root] != -1) continue;
+    stack.push_back(root);
+    while (!stack.empty()) {
+      const int top = stack.back(), child = head[top];
+      if (child == -1) {
+        stack.pop_back();
+        post.push_back(top);
+      } else {
+        head[top] = next[child];
+        stack.push_back(child);
+      }
+    }
+  }
+}
+
 }  // namespace
+
+int SupernodalFactorization::factorize(const SparseMatrix& A) {
+  const int n = static_cast<int>(A.rows());
+  thread_local std::vector<int> order, parent, post;
+  order.resize(static_cast<std::size_t>(n));
+  if (n > 0) {
+    const int status =
+        amd_order(n, A.outerIndexPtr(), A.innerIndexPtr(), order.data(), nullptr, nullptr);
+    if (status == AMD_OUT_OF_MEMORY) throw std::bad_alloc();
+    if (status != AMD_OK && status != AMD_OK_BUT_JUMBLED)
+      throw std::logic_error("SupernodalFactorization: AMD refused the matrix");
+  }
+  thread_local Permuted ordered, C;
+  ordered.assign(A, order.data());
+  elimination_tree(ordered.upper_start, ordered.upper_rows, n, parent);
+  postorder(parent, post);
+  // The postorder relabels the matrix and its tree: no second pass over A, no second tree.
+  size_ = n;
+  permutation_.resize(static_cast<std::size_t>(n));
+  thread_local std::vector<int> inverse, relabelled;
+  inverse.resize(static_cast<std::size_t>(n));
+  for (int k = 0; k < n; ++k) {
+    permutation_[static_cast<std::size_t>(k)] = order[static_cast<std::size_t>(post[k])];
+    inverse[static_cast<std::size_t>(post[k])] = k;
+  }
+  C.relabel(ordered, post, inverse);
+  relabelled.resize(static_cast<std::size_t>(n));
+  for (int j = 0; j < n; ++j)
+    relabelled[inverse[j]] = parent[j] < 0 ? -1 : inverse[parent[j]];
+  analyse(C, relabelled);
+  return numeric(C);
+}
 
 int SupernodalFactorization::factorize(const SparseMatrix& A, const int* permutation) {
   size_ = static_cast<int>(A.rows());
   permutation_.assign(permutation, permutation + size_);
   thread_local Permuted C;
+  thread_local std::vector<int> parent;
   C.assign(A, permutation);
-  analyse(C);
+  elimination_tree(C.upper_start, C.upper_rows, size_, parent);
+  analyse(C, parent);
   return numeric(C);
 }
 
-void SupernodalFactorization::analyse(const Permuted& C) {
-  thread_local std::vector<int> parent, count;
-  tree_and_counts(C.upper_start, C.upper_rows, size_, parent, count);
+void SupernodalFactorization::analyse(const Permuted& C, const std::vector<int>& parent) {
+  thread_local std::vector<int> count;
+  column_counts(C.upper_start, C.upper_rows, parent, count);
   find_fundamental(parent, count);
   relax(C, count);
   offset_.resize(first_.size());

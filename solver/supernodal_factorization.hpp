@@ -35,6 +35,10 @@ class SupernodalFactorization {
   // (row k of P A P' is row permutation[k] of A). Returns -1, or the column of P A P'
   // whose pivot was not positive (CHOLMOD's `minor`): L is then incomplete.
   int factorize(const SparseMatrix& A, const int* permutation);
+  // The same on AMD's ordering of A (as CHOLMOD's analysis calls it: default controls),
+  // postordered by the elimination tree as CHOLMOD postorders it.
+  int factorize(const SparseMatrix& A);
+  const std::vector<int>& permutation() const { return permutation_; }
 
   int size() const { return size_; }
   // Stored entries of L: the diagonal and the supernodes' (their zeros included).
@@ -49,7 +53,7 @@ class SupernodalFactorization {
 
  private:
   struct Permuted;
-  void analyse(const Permuted& C);
+  void analyse(const Permuted& C, const std::vector<int>& parent);
   void find_fundamental(const std::vector<int>& parent, const std::vector<int>& count);
   void relax(const Permuted& C, const std::vector<int>& count);
   int numeric(const Permuted& C);

@@ -88,9 +88,9 @@ solver::SparseMatrix plane_subdomain() {
   return K;
 }
 
-// CHOLMOD's own simplicial LL' of A (the ordering CholmodFactor's analysis chooses):
-// the column of P A P' where it stopped (its `minor`), A.rows() when A is definite.
-int cholmod_ll_minor(const solver::SparseMatrix& A) {
+// CHOLMOD's own simplicial LL' of A: the row of A whose column of P A P' it stopped at
+// (Perm[minor]), -1 when A is definite.
+int cholmod_ll_failed_row(const solver::SparseMatrix& A) {
   cholmod_common common;
   cholmod_start(&common);
   common.print = 0;
@@ -103,11 +103,12 @@ int cholmod_ll_minor(const solver::SparseMatrix& A) {
   std::copy_n(A.valuePtr(), nonzeros, static_cast<double*>(B->x));
   cholmod_factor* L = cholmod_analyze(B, &common);
   cholmod_factorize(B, L, &common);
-  const int minor = static_cast<int>(L->minor);
+  const auto minor = static_cast<std::size_t>(L->minor);
+  const int row = minor < n ? static_cast<const int*>(L->Perm)[minor] : -1;
   cholmod_free_factor(&L, &common);
   cholmod_free_sparse(&B, &common);
   cholmod_finish(&common);
-  return minor;
+  return row;
 }
 
 Eigen::MatrixXd random_columns(int n, int columns, std::mt19937& random) {
@@ -164,40 +165,46 @@ TEST_CASE("The supernodal factorization solves as CHOLMOD's factor of random SPD
       check_against_cholmod(name, A, single);
 }
 
-TEST_CASE("The supernodal factorization fails at the column CHOLMOD's LL' fails at") {
-  // A negative diagonal entry (the pivot of its column is the first not positive, whatever
-  // the order: the pivots before it do not see it), and a grid Laplacian shifted below
-  // its smallest eigenvalue (indefinite through the fill, at no one entry).
-  std::vector<solver::SparseMatrix> matrices;
+TEST_CASE("The supernodal factorization fails at the row CHOLMOD's LL' fails at") {
+  // A negative diagonal entry: the pivot of its column is the first not positive, whatever
+  // the order (the pivots before it do not see it).
   for (const int dof : {0, 37, 59}) {
-    matrices.push_back(grid_matrix(10, 6));
-    matrices.back().coeffRef(dof, dof) = -1.0;
-  }
-  matrices.push_back(grid_matrix(12, 10, 3.7));
-  for (const solver::SparseMatrix& A : matrices) {
-    const int minor = cholmod_ll_minor(A);
-    CAPTURE(minor);
-    REQUIRE(minor < A.rows());
+    CAPTURE(dof);
+    solver::SparseMatrix A = grid_matrix(10, 6);
+    A.coeffRef(dof, dof) = -1.0;
+    REQUIRE(cholmod_ll_failed_row(A) == dof);
+    solver::SupernodalFactorization direct;
+    const int column = direct.factorize(A);
+    REQUIRE(column >= 0);
+    CHECK(direct.permutation()[static_cast<std::size_t>(column)] == dof);
     solver::CholmodFactor factor;
     REQUIRE(factor.factorize(A, true) == solver::CholmodFactor::Result::NotPositiveDefinite);
-    CHECK(factor.failed_column() == minor);
+    CHECK(factor.failed_column() == column);
     CHECK_THROWS(factor.solve(nullptr, nullptr));  // no factor to solve with
   }
 }
 
 TEST_CASE("The supernodal factorization fails where the leading block stops being definite") {
-  // Under a random ordering: P A P' 's leading k x k block is positive definite and its
-  // leading (k + 1) x (k + 1) one is not (Eigen's dense LLT), k the column reported.
+  // A grid Laplacian shifted below its smallest eigenvalue (indefinite through the fill,
+  // at no one entry), under AMD's ordering and random ones: P A P''s leading k x k block
+  // is positive definite and its leading (k + 1) x (k + 1) one is not (Eigen's dense
+  // LLT), k the column reported.
   std::mt19937 random(23);
   const solver::SparseMatrix A = grid_matrix(9, 8, 3.7);
   const int n = static_cast<int>(A.rows());
   const Eigen::MatrixXd dense = Eigen::MatrixXd(A);
-  for (int trial = 0; trial < 4; ++trial) {
-    std::vector<int> permutation(static_cast<std::size_t>(n));
-    std::iota(permutation.begin(), permutation.end(), 0);
-    std::shuffle(permutation.begin(), permutation.end(), random);
+  for (int trial = 0; trial < 5; ++trial) {
     solver::SupernodalFactorization factor;
-    const int k = factor.factorize(A, permutation.data());
+    std::vector<int> permutation(static_cast<std::size_t>(n));
+    int k = -1;
+    if (trial == 0) {
+      k = factor.factorize(A);
+      permutation = factor.permutation();
+    } else {
+      std::iota(permutation.begin(), permutation.end(), 0);
+      std::shuffle(permutation.begin(), permutation.end(), random);
+      k = factor.factorize(A, permutation.data());
+    }
     CAPTURE(trial, k);
     REQUIRE(k >= 0);
     Eigen::MatrixXd lead(k + 1, k + 1);
