@@ -1,6 +1,8 @@
 #include "solver/feti_system.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <functional>
 #include <limits>
 #include <map>
 #include <string>
@@ -213,31 +215,84 @@ void FetiSystem::factorize_subdomains(bool interior_first, bool single_factors,
   if (!message.empty()) throw SolverError(message);
 }
 
+namespace {
+
+// Column r of G, B's row r times the rigid motions of the subdomains it touches: per entry
+// of the row, R's nonzeros at its DOF times its value, as (mode, value) sorted by mode and
+// each mode once, its terms summed in the row's order - as setFromTriplets() sums them.
+void column_of_G(const Row& row, const Decomposition& d,
+                 const std::function<const Eigen::MatrixXd&(int)>& modes_of,
+                 std::vector<std::pair<int, double>>& column) {
+  column.clear();
+  for (const RowEntry& entry : row.entries) {
+    const Subdomain& sub = d.subdomains[entry.subdomain];
+    const Eigen::MatrixXd& R = modes_of(entry.subdomain);
+    for (int m = 0; m < sub.mode_count; ++m)
+      if (R(entry.dof, m) != 0.0)
+        column.emplace_back(sub.mode_offset + m, R(entry.dof, m) * entry.value);
+  }
+  std::stable_sort(column.begin(), column.end(),
+                   [](const auto& a, const auto& b) { return a.first < b.first; });
+  std::size_t kept = 0;
+  for (std::size_t k = 0; k < column.size(); ++k) {
+    if (kept > 0 && column[kept - 1].first == column[k].first)
+      column[kept - 1].second = column[kept - 1].second + column[k].second;
+    else
+      column[kept++] = column[k];
+  }
+  column.resize(kept);
+}
+
+}  // namespace
+
+// G and |G| column by column on both cores: counted, then written straight into their
+// compressed arrays (the triplets and their sort were a serial pass over every row).
 void FetiSystem::build_G() {
   const Decomposition& d = decomposition_;
   std::map<int, Eigen::MatrixXd> remote_modes;  // rigid motions of neighbours' subdomains
-  auto modes_of = [&](int subdomain) -> const Eigen::MatrixXd& {
+  if (communicator().distributed())
+    for (int r = 0; r < space_.rows(); ++r)
+      for (const RowEntry& entry : d.rows[space_.global_row(r)].entries)
+        if (own_index_[entry.subdomain] < 0 && !remote_modes.count(entry.subdomain))
+          remote_modes.emplace(entry.subdomain,
+                               subdomain_modes(model_, d.subdomains[entry.subdomain]));
+  const std::function<const Eigen::MatrixXd&(int)> modes_of =
+      [&](int subdomain) -> const Eigen::MatrixXd& {
     const int i = own_index_[subdomain];
-    if (i >= 0) return subdomains_[i].R;
-    auto found = remote_modes.find(subdomain);
-    if (found == remote_modes.end()) {
-      const Subdomain& sub = d.subdomains[subdomain];
-      found = remote_modes.emplace(subdomain, subdomain_modes(model_, sub)).first;
-    }
-    return found->second;
+    return i >= 0 ? subdomains_[i].R : remote_modes.at(subdomain);
   };
-  std::vector<Eigen::Triplet<double>> entries;
-  for (int r = 0; r < space_.rows(); ++r)
-    for (const RowEntry& entry : d.rows[space_.global_row(r)].entries) {
-      const Subdomain& sub = d.subdomains[entry.subdomain];
-      const Eigen::MatrixXd& R = modes_of(entry.subdomain);
-      for (int m = 0; m < sub.mode_count; ++m)
-        if (R(entry.dof, m) != 0.0)
-          entries.emplace_back(sub.mode_offset + m, r, R(entry.dof, m) * entry.value);
+  const int rows = space_.rows();
+  G_.resize(d.total_modes, rows);
+  int* first = G_.outerIndexPtr();
+  const int threads = threads_for(8LL * rows);
+#pragma omp parallel num_threads(threads)
+  {
+    std::vector<std::pair<int, double>> column;
+#pragma omp for schedule(static)
+    for (int r = 0; r < rows; ++r) {
+      column_of_G(d.rows[space_.global_row(r)], d, modes_of, column);
+      first[r + 1] = static_cast<int>(column.size());
     }
-  G_.resize(d.total_modes, space_.rows());
-  G_.setFromTriplets(entries.begin(), entries.end());
-  G_abs_ = G_.cwiseAbs();
+#pragma omp single
+    {
+      for (int r = 0; r < rows; ++r)
+        first[r + 1] += first[r];
+      G_.resizeNonZeros(first[rows]);
+      G_abs_.resize(d.total_modes, rows);  // the same pattern, its values' magnitudes
+      G_abs_.resizeNonZeros(first[rows]);
+      std::copy(first, first + rows + 1, G_abs_.outerIndexPtr());
+    }
+#pragma omp for schedule(static)
+    for (int r = 0; r < rows; ++r) {
+      column_of_G(d.rows[space_.global_row(r)], d, modes_of, column);
+      for (std::size_t k = 0; k < column.size(); ++k) {
+        const int at = first[r] + static_cast<int>(k);
+        G_.innerIndexPtr()[at] = G_abs_.innerIndexPtr()[at] = column[k].first;
+        G_.valuePtr()[at] = column[k].second;
+        G_abs_.valuePtr()[at] = std::abs(column[k].second);
+      }
+    }
+  }
 }
 
 void FetiSystem::build_redundant_groups() {
