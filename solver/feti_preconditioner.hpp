@@ -17,6 +17,7 @@
 // subdomains; the diagonal stiffness of a neighbour's DOF, which the scaling needs, is
 // asked of its process once, at set-up.
 
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -65,8 +66,14 @@ class FetiPreconditioner {
   // The boundary, K_bb and (Dirichlet) K_ib and the factor of K_ii of one subdomain;
   // false when K_ii is singular. b_position: per DOF its place in the boundary or -1.
   bool set_up_local(const SubdomainOperator& op, Local& local, std::vector<int>& b_position) const;
-  // The scaling weights of every local row's own entries, row after row in one list.
+  // The scaling weights of every local row's own entries, at their terms
+  // (FetiSystem::first_term).
   std::vector<double> scaling_weights(bool scaled) const;
+  using DofKey = std::pair<int, int>;  // (subdomain, subdomain-local DOF)
+  template <class Stiffness>
+  static void row_weights(const Row& row, bool scaled, const Stiffness& stiffness,
+                          std::vector<std::pair<DofKey, double>>& side, const std::vector<int>& own,
+                          double* weight);
 
   double setup_seconds_ = 0.0;  // before the members whose construction it times
   const FetiSystem& system_;

@@ -7,6 +7,8 @@
 #include <map>
 #include <string>
 
+#include <omp.h>
+
 #include "solver/corners.hpp"
 #include "solver/interruption.hpp"
 #include "solver/primal_problem.hpp"
@@ -80,6 +82,18 @@ FetiSystem::FetiSystem(const Model& model, const Communicator& communicator, boo
   build_redundant_groups();
 }
 
+void FetiSystem::own_entries_in_order(const Row& row, std::vector<int>& out) const {
+  out.clear();
+  for (int e = 0; e < static_cast<int>(row.entries.size()); ++e) {
+    if (own_index_[row.entries[e].subdomain] < 0) continue;
+    // Insertion, stable: a row has a few entries (std::stable_sort allocated per row).
+    auto at = out.end();
+    while (at != out.begin() && row.entries[*(at - 1)].subdomain > row.entries[e].subdomain)
+      --at;
+    out.insert(at, e);
+  }
+}
+
 void FetiSystem::build_incidence() {
   Stopwatch watch(setup_times_.incidence);
   const Decomposition& d = decomposition_;
@@ -95,33 +109,83 @@ void FetiSystem::build_incidence() {
     dof_offsets_[i] = dofs;
     dofs += d.subdomains[own[i]].dof_count;
   }
-
-  // B's entries per own subdomain, and per local row the own entries grouped by subdomain.
-  row_parts_.resize(space_.rows());
-  std::vector<const RowEntry*> entries;  // one row's own entries (not an allocation per row)
-  for (int r = 0; r < space_.rows(); ++r) {
-    const Row& row = d.rows[space_.global_row(r)];
-    entries.clear();
-    for (const RowEntry& entry : row.entries)
-      if (own_index_[entry.subdomain] >= 0) entries.push_back(&entry);
-    std::stable_sort(entries.begin(), entries.end(), [](const RowEntry* a, const RowEntry* b) {
-      return a->subdomain < b->subdomain;
-    });
-    row_parts_[r].first = static_cast<int>(part_entries_.size());
-    int previous = -1;
-    for (const RowEntry* entry : entries) {
-      const int i = own_index_[entry->subdomain];
-      subdomains_[i].incidence.push_back({r, entry->dof, entry->value});
-      subdomains_[i].terms.push_back(static_cast<int>(part_entries_.size()));
-      part_entries_.push_back({dof_offsets_[i] + entry->dof, entry->value,
-                               previous >= 0 && entry->subdomain != previous});
-      previous = entry->subdomain;
-    }
-    row_parts_[r].end = static_cast<int>(part_entries_.size());
-  }
+  fill_terms_and_incidence();
   x_.resize(dofs);
   y_.resize(dofs);
   boundary_y_.resize(part_entries_.size());
+}
+
+// B's entries per own subdomain, and per local row the own entries grouped by subdomain,
+// on both cores: each thread takes a block of rows, counts its rows' terms and its
+// entries per subdomain, then writes them where the counts before it end - the order a
+// serial pass row after row gives (which was 0.75 s of CPU at 1e7).
+void FetiSystem::fill_terms_and_incidence() {
+  const Decomposition& d = decomposition_;
+  const int rows = space_.rows();
+  const int count = static_cast<int>(subdomains_.size());
+  row_parts_.resize(static_cast<std::size_t>(rows));
+  std::vector<std::vector<int>> before;  // per thread, per own subdomain: entries before it
+#pragma omp parallel num_threads(threads_for(4LL * rows))
+  {
+    const int team = omp_get_num_threads(), t = omp_get_thread_num();
+    const int begin = static_cast<int>(1LL * rows * t / team);
+    const int end = static_cast<int>(1LL * rows * (t + 1) / team);
+    std::vector<int> order;
+    for (int r = begin; r < end; ++r) {
+      own_entries_in_order(d.rows[space_.global_row(r)], order);
+      row_parts_[r].end = static_cast<int>(order.size());
+    }
+#pragma omp barrier
+#pragma omp single
+    {
+      int at = 0;
+      for (RowPart& part : row_parts_) {
+        part.first = at;
+        at += part.end;
+        part.end = at;
+      }
+      part_entries_.resize(static_cast<std::size_t>(at));
+      before.assign(static_cast<std::size_t>(team), std::vector<int>(count, 0));
+    }
+    std::vector<int>& mine = before[t];
+    for (int r = begin; r < end; ++r) {
+      const Row& row = d.rows[space_.global_row(r)];
+      own_entries_in_order(row, order);
+      int term = row_parts_[r].first, previous = -1;
+      for (int e : order) {
+        const RowEntry& entry = row.entries[e];
+        const int i = own_index_[entry.subdomain];
+        part_entries_[term++] = {dof_offsets_[i] + entry.dof, entry.value,
+                                 previous >= 0 && entry.subdomain != previous};
+        previous = entry.subdomain;
+        ++mine[i];
+      }
+    }
+#pragma omp barrier
+#pragma omp for schedule(static)
+    for (int i = 0; i < count; ++i) {
+      int total = 0;
+      for (std::vector<int>& counts : before) {
+        const int n = counts[i];
+        counts[i] = total;
+        total += n;
+      }
+      subdomains_[i].incidence.resize(static_cast<std::size_t>(total));
+      subdomains_[i].terms.resize(static_cast<std::size_t>(total));
+    }
+    for (int r = begin; r < end; ++r) {
+      const Row& row = d.rows[space_.global_row(r)];
+      own_entries_in_order(row, order);
+      int term = row_parts_[r].first;
+      for (int e : order) {
+        const RowEntry& entry = row.entries[e];
+        SubdomainOperator& op = subdomains_[own_index_[entry.subdomain]];
+        const int k = mine[own_index_[entry.subdomain]]++;
+        op.incidence[k] = {r, entry.dof, entry.value};
+        op.terms[k] = term++;
+      }
+    }
+  }
 }
 
 namespace {
@@ -231,8 +295,10 @@ void column_of_G(const Row& row, const Decomposition& d,
       if (R(entry.dof, m) != 0.0)
         column.emplace_back(sub.mode_offset + m, R(entry.dof, m) * entry.value);
   }
-  std::stable_sort(column.begin(), column.end(),
-                   [](const auto& a, const auto& b) { return a.first < b.first; });
+  // Insertion, stable (std::stable_sort allocated per column): a column has a few terms.
+  for (std::size_t k = 1; k < column.size(); ++k)
+    for (std::size_t j = k; j > 0 && column[j - 1].first > column[j].first; --j)
+      std::swap(column[j - 1], column[j]);
   std::size_t kept = 0;
   for (std::size_t k = 0; k < column.size(); ++k) {
     if (kept > 0 && column[kept - 1].first == column[k].first)
