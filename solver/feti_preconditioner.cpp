@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <limits>
 #include <map>
+#include <memory>
 #include <set>
 #include <string>
 #include <utility>
@@ -186,9 +187,10 @@ bool FetiPreconditioner::set_up_local(const SubdomainOperator& op, Local& local,
     local.interior_factor = op.K_plus.compact_interior_factor();
   } else {
     const SparseMatrix K_ii = extract(op.K, i_position, ni, i_position, ni);
-    if (local.K_ii.factorize(K_ii, true) != CholmodFactor::Result::Ok) return false;
-    local.K_ii.compact();  // only solved with from here on
-    local.interior_factor = local.K_ii.compact_factor();
+    local.K_ii = std::make_unique<CholmodFactor>();
+    if (local.K_ii->factorize(K_ii, true) != CholmodFactor::Result::Ok) return false;
+    local.K_ii->compact();  // only solved with from here on
+    local.interior_factor = local.K_ii->compact_factor();
   }
   if (!local.interior_factor) return true;
   to_factor_order(local.K_ib, *local.interior_factor);
@@ -196,7 +198,8 @@ bool FetiPreconditioner::set_up_local(const SubdomainOperator& op, Local& local,
   const std::vector<int> coupled(rows, rows + local.K_ib.nonZeros());
   // Its own factor is laid out here; K_j's K_ii factor was at factorization, from K's
   // pattern, which covers K_ib's (checked: else the solves take every supernode).
-  if (CompactFactor* own = local.K_ii.compact_factor()) own->reach_first(coupled);
+  if (CompactFactor* own = local.K_ii ? local.K_ii->compact_factor() : nullptr)
+    own->reach_first(coupled);
   local.reached_only = std::all_of(coupled.begin(), coupled.end(),
                                    [&](int row) { return local.interior_factor->reached(row); });
   return true;
@@ -235,7 +238,7 @@ FetiPreconditioner::FetiPreconditioner(const FetiSystem& system, Preconditioner 
       if (d.subdomains[ops[i].index].parts.empty())
         failed = std::min(failed, ops[i].index);
       else
-        local_[i].K_ii = CholmodFactor();
+        local_[i].K_ii.reset();
     }
     local_[i].offset = offset;
     offset += static_cast<int>(local_[i].boundary.size());
@@ -276,7 +279,7 @@ FetiPreconditioner::FetiPreconditioner(const FetiSystem& system, Preconditioner 
 
 void FetiPreconditioner::add_memory(LocalMemory& m) const {
   for (const Local& local : local_) {
-    m.preconditioner_factor += static_cast<double>(local.K_ii.memory_in_use());
+    m.preconditioner_factor += static_cast<double>(local.K_ii ? local.K_ii->memory_in_use() : 0);
     m.preconditioner_blocks += sparse_bytes(local.K_bb) + sparse_bytes(local.K_ib);
     m.index += static_cast<double>(local.boundary.capacity()) * sizeof(int);
     m.incidence += static_cast<double>(local.incidence.capacity()) * sizeof(Incidence) +
@@ -297,7 +300,7 @@ double FetiPreconditioner::bytes_read() const {
     else if (local.interior)
       bytes += 2.0 * static_cast<double>(local.interior->interior_memory());
     else
-      bytes += 2.0 * static_cast<double>(local.K_ii.memory_in_use());
+      bytes += 2.0 * static_cast<double>(local.K_ii ? local.K_ii->memory_in_use() : 0);
   }
   return bytes;
 }
@@ -305,7 +308,7 @@ double FetiPreconditioner::bytes_read() const {
 std::size_t FetiPreconditioner::factor_memory() const {
   std::size_t total = 0;
   for (const Local& local : local_)
-    total += local.K_ii.peak_memory();
+    total += local.K_ii ? local.K_ii->peak_memory() : 0;
   return total;
 }
 
@@ -343,7 +346,7 @@ void FetiPreconditioner::apply(const Eigen::VectorXd& w, const std::vector<char>
       else
         local.interior_factor->solve_in_place(in_factor_order.data());
       y.noalias() -= local.K_ib.transpose() * in_factor_order;
-    } else if (local.interior || local.K_ii.size() > 0) {
+    } else if (local.interior || (local.K_ii && local.K_ii->size() > 0)) {
       // Per thread, not per application: no allocation in the iterations.
       thread_local Eigen::VectorXd interior_rhs, interior;
       interior_rhs.resize(local.K_ib.rows());
@@ -352,7 +355,7 @@ void FetiPreconditioner::apply(const Eigen::VectorXd& w, const std::vector<char>
       if (local.interior)
         local.interior->interior_solve(interior_rhs.data(), interior.data());
       else
-        local.K_ii.solve(interior_rhs.data(), interior.data());
+        local.K_ii->solve(interior_rhs.data(), interior.data());
       y.noalias() -= local.K_ib.transpose() * interior;
     }
     for (std::size_t k = 0; k < local.incidence.size(); ++k)
