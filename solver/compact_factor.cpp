@@ -199,15 +199,47 @@ void triangle_forward(const Value* v, int nc, const double* inverse_diagonal, do
   }
 }
 
-// x = L_11'^-1 x.
+// x = L_11'^-1 x, column k's dot product with the x below it summed in order.
 template <class Value>
-void triangle_backward(const Value* v, int nc, const double* inverse_diagonal, double* x) {
+void triangle_backward_in_order(const Value* v, int nc, const double* inverse_diagonal, double* x) {
   for (int k = nc - 1; k >= 0; --k) {
     const Value* column = v + triangle_column(nc, k);
     double s = x[k];
     for (int i = k + 1; i < nc; ++i)
       s -= static_cast<double>(column[i - k - 1]) * x[i];
     x[k] = s * inverse_diagonal[k];
+  }
+}
+
+// The same as four partial sums. In order, each subtraction waits on the one before: on
+// the top supernodes of a plane model (dense triangles of 40-70 columns, 10-20% of the
+// entries) that chain was the back solve's critical path and the largest part of
+// M^-1's (docs/BENCHMARKS.md, "Prefetching the factors"). Only there: it rounds otherwise,
+// and the small supernodes of the ill-conditioned frame scenes keep their bits (in
+// partial sums on every supernode frame_scaffold took 91 MPRGP iterations, not 89).
+constexpr int kPartialSumsFrom = 16;  // supernode columns
+
+template <class Value>
+void triangle_backward(const Value* v, int nc, const double* inverse_diagonal, double* x) {
+  if (nc < kPartialSumsFrom) {
+    triangle_backward_in_order(v, nc, inverse_diagonal, x);
+    return;
+  }
+  for (int k = nc - 1; k >= 0; --k) {
+    const Value* column = v + triangle_column(nc, k);  // rows k + 1 .. nc - 1
+    const double* below = x + k + 1;
+    const int n = nc - k - 1;
+    double s0 = 0.0, s1 = 0.0, s2 = 0.0, s3 = 0.0;
+    int i = 0;
+    for (; i + 4 <= n; i += 4) {
+      s0 += static_cast<double>(column[i]) * below[i];
+      s1 += static_cast<double>(column[i + 1]) * below[i + 1];
+      s2 += static_cast<double>(column[i + 2]) * below[i + 2];
+      s3 += static_cast<double>(column[i + 3]) * below[i + 3];
+    }
+    for (; i < n; ++i)
+      s0 += static_cast<double>(column[i]) * below[i];
+    x[k] = (x[k] - ((s0 + s1) + (s2 + s3))) * inverse_diagonal[k];
   }
 }
 
