@@ -146,11 +146,13 @@ struct StrutSource {
         numbers(of_model),
         hold_fields(hold) {
     for (size_t s = 0; s < model.struts.size(); ++s) {
-      const solver::StrutElements topology = results.topology(static_cast<int>(s));
-      elements.push_back(topology.element_count());
-      cells += static_cast<std::size_t>(topology.element_count());
-      corners += topology.connectivity.size();
+      const solver::StrutElements shape = results.shape(static_cast<int>(s));
+      elements.push_back(shape.element_count());
+      nodes_per_element.push_back(shape.nodes_per_element);
+      cells += static_cast<std::size_t>(shape.element_count());
+      corners += shape.connectivity.size();
       if (s > 0) continue;
+      const solver::StrutElements topology = results.topology(0);
       for (const solver::NamedValues& field : topology.stress)
         fields.push_back("stress_" + field.name);
       for (const solver::NamedValues& field : topology.resultants)
@@ -195,6 +197,7 @@ struct StrutSource {
   solver::StrutResults results;
   PointNumbers numbers;
   std::vector<int> elements;           // per strut
+  std::vector<int> nodes_per_element;  // per strut
   std::size_t cells = 0, corners = 0;  // elements, their nodes
   std::vector<std::string> fields;     // stress_* then the resultants, as every strut has them
   size_t stress_fields = 0;
@@ -245,7 +248,7 @@ void add_cell_data(const std::shared_ptr<StrutSource>& source, VtkStreamedGrid& 
       }));
   grid.cell_data.push_back(
       per_strut<std::int32_t>("subdomain", 1, cells, struts, [source](int s, auto& out) {
-        const std::vector<int> subdomains = source->results.topology(s).subdomain;
+        const std::vector<int> subdomains = source->results.shape(s).subdomain;
         out.assign(subdomains.begin(), subdomains.end());
       }));
   for (size_t f = 0; f < source->fields.size(); ++f)
@@ -260,21 +263,21 @@ void add_cells(const std::shared_ptr<StrutSource>& source, VtkStreamedGrid& grid
       "connectivity", 1, source->corners, struts, [source](int s, auto& out) {
         std::vector<char> makes;
         const std::vector<std::int64_t> point = source->numbers.strut_points(s, makes);
-        for (int node : source->results.topology(s).connectivity)
+        for (int node : source->results.shape(s).connectivity)
           out.push_back(point[static_cast<size_t>(node)]);
       });
   auto end = std::make_shared<std::int64_t>(0);  // the running offset
   grid.offsets =
       per_strut<std::int64_t>("offsets", 1, source->cells, struts, [source, end](int s, auto& out) {
         if (s == 0) *end = 0;
-        const solver::StrutElements e = source->results.topology(s);
-        for (int k = 0; k < e.element_count(); ++k)
-          out.push_back(*end += e.nodes_per_element);
+        const auto at = static_cast<size_t>(s);
+        for (int k = 0; k < source->elements[at]; ++k)
+          out.push_back(*end += source->nodes_per_element[at]);
       });
   grid.types =
       per_strut<std::uint8_t>("types", 1, source->cells, struts, [source](int s, auto& out) {
         const std::uint8_t type =
-            source->results.topology(s).nodes_per_element == 4 ? kVtkQuad : kVtkLine;
+            source->nodes_per_element[static_cast<size_t>(s)] == 4 ? kVtkQuad : kVtkLine;
         out.assign(static_cast<size_t>(source->elements[static_cast<size_t>(s)]), type);
       });
 }
