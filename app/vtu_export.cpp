@@ -14,6 +14,7 @@
 #include "app/version.hpp"
 #include "scenes/units.hpp"
 #include "solver/element_results.hpp"
+#include "solver/huge_pages.hpp"
 
 namespace fetic::app {
 namespace {
@@ -159,7 +160,7 @@ struct StrutSource {
         fields.push_back(field.name);
       stress_fields = topology.stress.size();
     }
-    held.resize(fields.size(), std::vector<std::vector<double>>(model.struts.size()));
+    held.resize(fields.size(), std::vector<Held>(model.struts.size()));
     holds.resize(fields.size(), std::vector<char>(model.struts.size(), 0));
   }
   // Cell field f (stress_* then the resultants) of strut s. Recovering a strut's elements
@@ -167,21 +168,27 @@ struct StrutSource {
   // with hold_fields the first asks once and the strut's later fields are held until their
   // arrays take them (up to 5 values per element: 190 MB at 1e7 unknowns, so only for a
   // frame written where that memory is free); without, each array recovers them again.
-  std::vector<double> field(size_t f, int s) {
+  // The held values are copies in huge pages (solver/huge_pages.hpp): they are the frame's
+  // only fresh memory of that size (the recovered strut's arrays, freed after the copy,
+  // serve the next strut), and 4 KiB pages first touched cost 10-30 us each on this VM.
+  // Into `out` (its room reused from strut to strut).
+  void field(size_t f, int s, std::vector<double>& out) {
     const auto at = static_cast<size_t>(s);
     if (holds[f][at]) {
       holds[f][at] = 0;
-      return std::move(held[f][at]);
+      out.assign(held[f][at].begin(), held[f][at].end());
+      Held().swap(held[f][at]);
+      return;
     }
     solver::StrutElements e = results.elements(s);
     const auto values = [&](size_t g) -> std::vector<double>& {
       return g < stress_fields ? e.stress[g].values : e.resultants[g - stress_fields].values;
     };
     for (size_t g = f + 1; hold_fields && g < fields.size(); ++g) {
-      held[g][at] = std::move(values(g));
+      held[g][at].assign(values(g).begin(), values(g).end());
       holds[g][at] = 1;
     }
-    return std::move(values(f));
+    out.swap(values(f));
   }
   // Strut s's values of the nodes that make a point.
   template <typename T, typename Value>
@@ -202,8 +209,9 @@ struct StrutSource {
   std::vector<std::string> fields;     // stress_* then the resultants, as every strut has them
   size_t stress_fields = 0;
   bool hold_fields = false;
-  std::vector<std::vector<std::vector<double>>> held;  // [field][strut], see field()
-  std::vector<std::vector<char>> holds;                // [field][strut]: held[f][s] is there
+  using Held = solver::huge_pages::Vector<double>;
+  std::vector<std::vector<Held>> held;   // [field][strut], see field()
+  std::vector<std::vector<char>> holds;  // [field][strut]: held[f][s] is there
 };
 
 // Frame struts: per element the rotations and bending moments at both of its ends (node
@@ -254,7 +262,7 @@ void add_cell_data(const std::shared_ptr<StrutSource>& source, VtkStreamedGrid& 
   for (size_t f = 0; f < source->fields.size(); ++f)
     grid.cell_data.push_back(per_strut<double>(
         source->fields[f], 1, cells, struts,
-        [source, f](int s, std::vector<double>& out) { out = source->field(f, s); }));
+        [source, f](int s, std::vector<double>& out) { source->field(f, s, out); }));
 }
 
 void add_cells(const std::shared_ptr<StrutSource>& source, VtkStreamedGrid& grid) {
