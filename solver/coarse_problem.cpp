@@ -36,131 +36,137 @@ CoarseProblem::CoarseProblem(const CoarseProblem& other, SamePattern)
       matrix_(other.matrix_),
       frame_motions_(other.frame_motions_) {}
 
-// One own subdomain's block rows of G G': its entries (a, b), sorted and each once, and
-// per local row it touches the products g_a g_b, their values numbered from 0.
-CoarseProblem::OwnPattern CoarseProblem::own_pattern(const SubdomainOperator& op,
-                                                     const Subdomain& sub) const {
-  const SparseMatrix& G = system_.G();
-  const auto own_mode = [&](int mode) {
-    return mode >= sub.mode_offset && mode < sub.mode_offset + sub.mode_count;
-  };
+namespace {
+
+// The local rows B_j touches, each once (its incidence is by row).
+std::vector<int> rows_of(const SubdomainOperator& op) {
   std::vector<int> rows;
   for (const Incidence& in : op.incidence)
-    rows.push_back(in.row);
-  rows.erase(std::unique(rows.begin(), rows.end()), rows.end());  // incidence is by row
-  OwnPattern part;
-  for (int r : rows)
+    if (rows.empty() || rows.back() != in.row) rows.push_back(in.row);
+  return rows;
+}
+
+bool own_mode(const Subdomain& sub, Eigen::Index mode) {
+  return mode >= sub.mode_offset && mode < sub.mode_offset + sub.mode_count;
+}
+
+}  // namespace
+
+// One own subdomain's block rows of G G': its entries (a, b), sorted and each once.
+std::vector<std::pair<int, int>> CoarseProblem::own_entries(const SubdomainOperator& op,
+                                                            const Subdomain& sub) const {
+  const SparseMatrix& G = system_.G();
+  std::vector<std::pair<int, int>> entries;
+  for (int r : rows_of(op))
     for (SparseMatrix::InnerIterator a(G, r); a; ++a) {
-      if (!own_mode(static_cast<int>(a.row()))) continue;
+      if (!own_mode(sub, a.row())) continue;
       for (SparseMatrix::InnerIterator b(G, r); b; ++b)
-        part.entries.emplace_back(static_cast<int>(a.row()), static_cast<int>(b.row()));
+        entries.emplace_back(static_cast<int>(a.row()), static_cast<int>(b.row()));
     }
-  std::sort(part.entries.begin(), part.entries.end());
-  part.entries.erase(std::unique(part.entries.begin(), part.entries.end()), part.entries.end());
-  for (int r : rows) {
+  std::sort(entries.begin(), entries.end());
+  entries.erase(std::unique(entries.begin(), entries.end()), entries.end());
+  return entries;
+}
+
+// Per local row the subdomain touches, its products g_a g_b, written from `product` and
+// `row` on; their values numbered from `first_value` in the order of `entries`.
+void CoarseProblem::write_products(const SubdomainOperator& op, const Subdomain& sub,
+                                   const std::vector<std::pair<int, int>>& entries, int first_value,
+                                   Product* product, RowProducts* row, int first_product) const {
+  const SparseMatrix& G = system_.G();
+  int next = first_product;
+  for (int r : rows_of(op)) {
     RowProducts rp;
     rp.row = r;
-    rp.first = static_cast<int>(part.products.size());
+    rp.first = next;
     int ia = 0;
     for (SparseMatrix::InnerIterator a(G, r); a; ++a, ++ia) {
-      if (!own_mode(static_cast<int>(a.row()))) continue;
+      if (!own_mode(sub, a.row())) continue;
       int ib = 0;
       for (SparseMatrix::InnerIterator b(G, r); b; ++b, ++ib) {
         const std::pair<int, int> ab{static_cast<int>(a.row()), static_cast<int>(b.row())};
-        const auto at = std::lower_bound(part.entries.begin(), part.entries.end(), ab);
-        part.products.push_back({static_cast<int>(at - part.entries.begin()), ia, ib});
+        const auto at = std::lower_bound(entries.begin(), entries.end(), ab);
+        *product++ = {first_value + static_cast<int>(at - entries.begin()), ia, ib};
+        ++next;
       }
     }
-    rp.end = static_cast<int>(part.products.size());
-    part.rows.push_back(rp);
-  }
-  return part;
-}
-
-// Appends one own subdomain's part: its values after those before, its products and rows.
-void CoarseProblem::join_pattern(const OwnPattern& part, Pattern& into, std::vector<int>& pattern) {
-  const int value_offset = static_cast<int>(into.own_values);
-  const int product_offset = static_cast<int>(into.products.size());
-  for (const auto& [a, b] : part.entries) {
-    pattern.push_back(a);
-    pattern.push_back(b);
-  }
-  into.own_values += part.entries.size();
-  for (Product product : part.products) {
-    product.value += value_offset;
-    into.products.push_back(product);
-  }
-  for (RowProducts rp : part.rows) {
-    rp.first += product_offset;
-    rp.end += product_offset;
-    into.row_products.push_back(rp);
+    rp.end = next;
+    *row++ = rp;
   }
 }
 
-// Room for all products and rows at once: grown by doubling, the products (about 36 per
-// local row, 12 bytes each: 375 MB at 1e7 unknowns) were copied and their pages touched
-// about twice over, in the serial join. Counted as own_pattern() lays them out.
-void CoarseProblem::reserve_products(Pattern& pattern) const {
+// Per own subdomain, its products and rows (as write_products() lays them out), counted.
+void CoarseProblem::count_products(std::vector<int>& products, std::vector<int>& rows) const {
   const SparseMatrix& G = system_.G();
   const Decomposition& d = system_.decomposition();
   const auto& ops = system_.subdomains();
   const int count = static_cast<int>(ops.size());
-  long long products = 0, rows = 0, work = 0;
+  products.assign(static_cast<std::size_t>(count) + 1, 0);
+  rows.assign(static_cast<std::size_t>(count) + 1, 0);
+  long long work = 0;
   for (const SubdomainOperator& op : ops)
     work += static_cast<long long>(op.incidence.size());
-#pragma omp parallel for schedule(dynamic, 16) reduction(+ : products, rows) \
-    num_threads(threads_for(work))
+#pragma omp parallel for schedule(dynamic, 16) num_threads(threads_for(work))
   for (int i = 0; i < count; ++i) {
     const Subdomain& sub = d.subdomains[ops[i].index];
     int previous = -1;
     for (const Incidence& in : ops[i].incidence) {
       if (in.row == previous) continue;  // incidence is by row
       previous = in.row;
-      const long long column = G.outerIndexPtr()[in.row + 1] - G.outerIndexPtr()[in.row];
-      long long own = 0;
+      const int column = G.outerIndexPtr()[in.row + 1] - G.outerIndexPtr()[in.row];
+      int own = 0;
       for (SparseMatrix::InnerIterator a(G, in.row); a; ++a)
-        own += a.row() >= sub.mode_offset && a.row() < sub.mode_offset + sub.mode_count;
-      products += own * column;
-      ++rows;
+        own += own_mode(sub, a.row());
+      products[i + 1] += own * column;
+      ++rows[i + 1];
     }
   }
-  pattern.products.reserve(static_cast<std::size_t>(products));
-  pattern.row_products.reserve(static_cast<std::size_t>(rows));
 }
 
 // The block rows of G G' this process computes: for own subdomain j, the sum over the
 // rows r touching j of g_r(modes of j) g_r', in increasing r (the same order on every
 // number of processes). Values are laid out per own subdomain, entries (a, b) sorted.
-// Each subdomain's part is found on its own (both cores; a sorted list of its entries,
-// not a map: this pass was serial), then they are joined in subdomain order.
+// Every subdomain's entries, then (their numbers counted) its products, are found on
+// both cores and written where they belong: only counts are joined in turn (the joined
+// products, about 36 per local row, were copied in a serial pass).
 void CoarseProblem::build_pattern() {
   const FetiSystem& s = system_;
   const Decomposition& d = s.decomposition();
   const Communicator& comm = s.communicator();
   const auto& ops = s.subdomains();
   const int count = static_cast<int>(ops.size());
-  // In blocks of subdomains, each joined and freed before the next is found: every part
-  // at once held the products twice where the set-up's memory peaks (+16 MB at 984,900
-  // unknowns).
-  constexpr int kBlock = 128;
-  std::vector<OwnPattern> parts(static_cast<size_t>(std::min(count, kBlock)));
   auto built = std::make_shared<Pattern>();
-  reserve_products(*built);
-  std::vector<int> pattern;  // (a, b) pairs of this process' values, in value order
-  for (int first = 0; first < count; first += kBlock) {
-    const int last = std::min(count, first + kBlock);
-    long long work = 0;
-    for (int i = first; i < last; ++i)
-      work += static_cast<long long>(ops[i].incidence.size()) * 10;
+  std::vector<int> products, rows;
+  count_products(products, rows);
+  std::vector<std::vector<std::pair<int, int>>> entries(static_cast<std::size_t>(count));
+  std::vector<int> values(static_cast<std::size_t>(count) + 1, 0);
+  long long work = 0;
+  for (const SubdomainOperator& op : ops)
+    work += static_cast<long long>(op.incidence.size()) * 10;
 #pragma omp parallel for schedule(dynamic, 4) num_threads(threads_for(work))
-    for (int i = first; i < last; ++i) {
-      if (stop_requested()) continue;  // Ctrl-C: skip the rest (no throw inside OpenMP)
-      parts[i - first] = own_pattern(ops[i], d.subdomains[ops[i].index]);
-    }
-    throw_if_stopped("assembling the coarse problem");
-    for (int i = first; i < last; ++i) {
-      join_pattern(parts[i - first], *built, pattern);
-      parts[i - first] = OwnPattern();
+  for (int i = 0; i < count; ++i) {
+    if (stop_requested()) continue;  // Ctrl-C: skip the rest (no throw inside OpenMP)
+    entries[i] = own_entries(ops[i], d.subdomains[ops[i].index]);
+    values[i + 1] = static_cast<int>(entries[i].size());
+  }
+  throw_if_stopped("assembling the coarse problem");
+  for (int i = 0; i < count; ++i) {
+    products[i + 1] += products[i];
+    rows[i + 1] += rows[i];
+    values[i + 1] += values[i];
+  }
+  built->products.resize(static_cast<std::size_t>(products[count]));
+  built->row_products.resize(static_cast<std::size_t>(rows[count]));
+  built->own_values = static_cast<std::size_t>(values[count]);
+  std::vector<int> pattern(2 * built->own_values);  // (a, b) pairs, in value order
+#pragma omp parallel for schedule(dynamic, 4) num_threads(threads_for(work))
+  for (int i = 0; i < count; ++i) {
+    write_products(ops[i], d.subdomains[ops[i].index], entries[i], values[i],
+                   built->products.data() + products[i], built->row_products.data() + rows[i],
+                   products[i]);
+    for (std::size_t k = 0; k < entries[i].size(); ++k) {
+      pattern[2 * (values[i] + k)] = entries[i][k].first;
+      pattern[2 * (values[i] + k) + 1] = entries[i][k].second;
     }
   }
 

@@ -125,12 +125,6 @@ class CoarseProblem {
     int row = 0;             // local row
     int first = 0, end = 0;  // into Pattern::products
   };
-  // One own subdomain's part of the pattern (build_pattern joins them in order).
-  struct OwnPattern {
-    std::vector<std::pair<int, int>> entries;  // (a, b), sorted: value k is entries[k]
-    std::vector<RowProducts> rows;
-    std::vector<Product> products;  // value: into entries
-  };
   // This process' products and where their sums go: fixed, shared by SamePattern copies.
   struct Pattern {
     std::vector<RowProducts> row_products;  // in increasing local row, grouped by own subdomain
@@ -138,9 +132,12 @@ class CoarseProblem {
     std::size_t own_values = 0;
     std::vector<int> value_slot;  // per gathered value: its position in matrix_ (or -1)
   };
-  OwnPattern own_pattern(const SubdomainOperator& op, const Subdomain& sub) const;
-  static void join_pattern(const OwnPattern& part, Pattern& into, std::vector<int>& pattern);
-  void reserve_products(Pattern& pattern) const;
+  std::vector<std::pair<int, int>> own_entries(const SubdomainOperator& op,
+                                               const Subdomain& sub) const;
+  void write_products(const SubdomainOperator& op, const Subdomain& sub,
+                      const std::vector<std::pair<int, int>>& entries, int first_value,
+                      Product* product, RowProducts* row, int first_product) const;
+  void count_products(std::vector<int>& products, std::vector<int>& rows) const;
   std::shared_ptr<const Pattern> pattern_;
   std::vector<double> own_values_;
   SparseMatrix matrix_;  // lower triangle of G^ G^', fixed pattern

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <limits>
 #include <map>
+#include <memory>
 #include <set>
 #include <string>
 #include <utility>
@@ -14,22 +15,28 @@
 namespace fetic::solver {
 namespace {
 
-// The submatrix K(rows, cols) for sorted index lists given as position maps (-1: absent).
+// The submatrix K(rows, cols) for sorted index lists given as position maps (-1: absent),
+// copied column by column into its exact size: the positions increase with the DOF, so
+// K's sorted columns stay sorted (triplets and their sort were 2 s of CPU at 1e7).
 SparseMatrix extract(const SparseMatrix& K, const std::vector<int>& row_position, int rows,
                      const std::vector<int>& col_position, int cols) {
-  std::vector<Eigen::Triplet<double>> entries;
+  Eigen::Index entries = 0;
+  for (int col = 0; col < K.outerSize(); ++col)
+    if (col_position[col] >= 0)
+      for (SparseMatrix::InnerIterator it(K, col); it; ++it)
+        entries += row_position[it.row()] >= 0;
+  SparseMatrix S(rows, cols);
+  S.reserve(entries);
   for (int col = 0; col < K.outerSize(); ++col) {
     if (col_position[col] < 0) continue;
+    S.startVec(col_position[col]);
     for (SparseMatrix::InnerIterator it(K, col); it; ++it)
       if (row_position[it.row()] >= 0)
-        entries.emplace_back(row_position[it.row()], col_position[col], it.value());
+        S.insertBack(row_position[it.row()], col_position[col]) = it.value();
   }
-  SparseMatrix S(rows, cols);
-  S.setFromTriplets(entries.begin(), entries.end());
+  S.finalize();
   return S;
 }
-
-using DofKey = std::pair<int, int>;  // (subdomain, subdomain-local DOF)
 
 // K_ib's rows renumbered into the order of K_ii's lean factor `factor` (row k of the
 // factor is interior DOF permutation()[k]). Each column keeps its entries in their stored
@@ -93,51 +100,67 @@ std::vector<double> FetiPreconditioner::scaling_weights(bool scaled) const {
   };
 
   // An entry of subdomain i in a row shared with subdomain j gets k_j / (sum of k over
-  // every copy of the DOF): 1/multiplicity between equal neighbours.
-  std::vector<double> weights;
-  std::vector<std::pair<DofKey, double>> side;  // per row, sorted by key
-  for (int r = 0; r < space.rows(); ++r) {
-    const Row& row = d.rows[space.global_row(r)];
-    // Largest diagonal stiffness per side (a plane contact row has two entries a side).
-    // A side is a subdomain; a gluing row's two entries are two sides also when both are
-    // in one FETI-DP cluster (corners.hpp).
-    const bool gluing = row.kind == RowKind::Gluing;
-    auto side_of = [&](const RowEntry& entry) {
-      return DofKey{entry.subdomain, gluing ? entry.dof : -1};
-    };
-    side.clear();
-    for (const RowEntry& entry : row.entries) {
-      const double k = scaled ? stiffness(entry) : 1.0;
-      const DofKey key = side_of(entry);
-      auto it = std::lower_bound(side.begin(), side.end(), key,
-                                 [](const auto& a, const DofKey& b) { return a.first < b; });
-      if (it != side.end() && it->first == key)
-        it->second = std::max(it->second, k);
-      else
-        side.insert(it, {key, k});
-    }
-    double total = 0.0;
-    if (scaled && side.size() >= 2) {
-      if (row.copies.empty())
-        for (const auto& [sub, k] : side)
-          total += k;
-      else
-        for (const RowEntry& copy : row.copies)
-          total += stiffness(copy);
-    }
-    for (const RowEntry& entry : row.entries) {
-      if (system_.own_index(entry.subdomain) < 0) continue;
-      double weight = 1.0;
-      if (total > 0.0) {
-        double others = 0.0;
-        for (const auto& [key, k] : side)
-          if (key != side_of(entry)) others += k;
-        weight = others / total;
-      }
-      weights.push_back(weight);
+  // every copy of the DOF): 1/multiplicity between equal neighbours. Row by row on both
+  // cores, each row's weights at its terms (FetiSystem::first_term).
+  const int rows = space.rows();
+  std::vector<double> weights(static_cast<std::size_t>(system_.first_term(rows)));
+#pragma omp parallel num_threads(threads_for(4LL * rows))
+  {
+    std::vector<std::pair<DofKey, double>> side;  // per row, sorted by key
+    std::vector<int> own;                         // the row's own entries, in term order
+#pragma omp for schedule(static)
+    for (int r = 0; r < rows; ++r) {
+      const Row& row = d.rows[space.global_row(r)];
+      system_.own_entries_in_order(row, own);
+      double* weight = weights.data() + system_.first_term(r);
+      row_weights(row, scaled, stiffness, side, own, weight);
     }
   }
   return weights;
+}
+
+// One row's weights, at `weight` in the order of `own` (indices into row.entries).
+template <class Stiffness>
+void FetiPreconditioner::row_weights(const Row& row, bool scaled, const Stiffness& stiffness,
+                                     std::vector<std::pair<DofKey, double>>& side,
+                                     const std::vector<int>& own, double* weight) {
+  // Largest diagonal stiffness per side (a plane contact row has two entries a side).
+  // A side is a subdomain; a gluing row's two entries are two sides also when both are
+  // in one FETI-DP cluster (corners.hpp).
+  const bool gluing = row.kind == RowKind::Gluing;
+  auto side_of = [&](const RowEntry& entry) {
+    return DofKey{entry.subdomain, gluing ? entry.dof : -1};
+  };
+  side.clear();
+  for (const RowEntry& entry : row.entries) {
+    const double k = scaled ? stiffness(entry) : 1.0;
+    const DofKey key = side_of(entry);
+    auto it = std::lower_bound(side.begin(), side.end(), key,
+                               [](const auto& a, const DofKey& b) { return a.first < b; });
+    if (it != side.end() && it->first == key)
+      it->second = std::max(it->second, k);
+    else
+      side.insert(it, {key, k});
+  }
+  double total = 0.0;
+  if (scaled && side.size() >= 2) {
+    if (row.copies.empty())
+      for (const auto& [sub, k] : side)
+        total += k;
+    else
+      for (const RowEntry& copy : row.copies)
+        total += stiffness(copy);
+  }
+  for (int e : own) {
+    double w = 1.0;
+    if (total > 0.0) {
+      double others = 0.0;
+      for (const auto& [key, k] : side)
+        if (key != side_of(row.entries[e])) others += k;
+      w = others / total;
+    }
+    *weight++ = w;
+  }
 }
 
 bool FetiPreconditioner::set_up_local(const SubdomainOperator& op, Local& local,
@@ -164,9 +187,10 @@ bool FetiPreconditioner::set_up_local(const SubdomainOperator& op, Local& local,
     local.interior_factor = op.K_plus.compact_interior_factor();
   } else {
     const SparseMatrix K_ii = extract(op.K, i_position, ni, i_position, ni);
-    if (local.K_ii.factorize(K_ii, true) != CholmodFactor::Result::Ok) return false;
-    local.K_ii.compact();  // only solved with from here on
-    local.interior_factor = local.K_ii.compact_factor();
+    local.K_ii = std::make_unique<CholmodFactor>();
+    if (local.K_ii->factorize(K_ii, true) != CholmodFactor::Result::Ok) return false;
+    local.K_ii->compact();  // only solved with from here on
+    local.interior_factor = local.K_ii->compact_factor();
   }
   if (!local.interior_factor) return true;
   to_factor_order(local.K_ib, *local.interior_factor);
@@ -174,7 +198,8 @@ bool FetiPreconditioner::set_up_local(const SubdomainOperator& op, Local& local,
   const std::vector<int> coupled(rows, rows + local.K_ib.nonZeros());
   // Its own factor is laid out here; K_j's K_ii factor was at factorization, from K's
   // pattern, which covers K_ib's (checked: else the solves take every supernode).
-  if (CompactFactor* own = local.K_ii.compact_factor()) own->reach_first(coupled);
+  if (CompactFactor* own = local.K_ii ? local.K_ii->compact_factor() : nullptr)
+    own->reach_first(coupled);
   local.reached_only = std::all_of(coupled.begin(), coupled.end(),
                                    [&](int row) { return local.interior_factor->reached(row); });
   return true;
@@ -213,7 +238,7 @@ FetiPreconditioner::FetiPreconditioner(const FetiSystem& system, Preconditioner 
       if (d.subdomains[ops[i].index].parts.empty())
         failed = std::min(failed, ops[i].index);
       else
-        local_[i].K_ii = CholmodFactor();
+        local_[i].K_ii.reset();
     }
     local_[i].offset = offset;
     offset += static_cast<int>(local_[i].boundary.size());
@@ -226,38 +251,35 @@ FetiPreconditioner::FetiPreconditioner(const FetiSystem& system, Preconditioner 
   if (!error.empty()) throw SolverError(error);
 
   // B's scaled entries per own subdomain, and per local row its terms grouped by
-  // subdomain in increasing order (the row's own entries come in that order already).
-  row_first_.assign(space.rows() + 1, 0);
-  size_t w = 0;
-  std::vector<std::pair<const RowEntry*, double>> own;  // one row's (not an allocation per row)
-  for (int r = 0; r < space.rows(); ++r) {
-    row_first_[r] = static_cast<int>(terms_.size());
-    const Row& row = d.rows[space.global_row(r)];
-    own.clear();
-    for (const RowEntry& entry : row.entries)
-      if (system.own_index(entry.subdomain) >= 0) own.emplace_back(&entry, weights[w++]);
-    std::stable_sort(own.begin(), own.end(), [](const auto& a, const auto& b) {
-      return a.first->subdomain < b.first->subdomain;
-    });
-    int previous = -1;
-    for (const auto& [entry, weight] : own) {
-      const int i = system.own_index(entry->subdomain);
-      const int p = position_in_boundary[i][entry->dof];
-      local_[i].incidence.push_back({r, p, entry->value * weight});
-      local_[i].terms.push_back(static_cast<int>(terms_.size()));
-      terms_.push_back({local_[i].offset + p, entry->value * weight,
-                        previous >= 0 && entry->subdomain != previous});
-      previous = entry->subdomain;
+  // subdomain in increasing order: the system's terms (FetiSystem::first_term), filled
+  // subdomain by subdomain on both cores (a serial pass over the rows before).
+  const int rows = space.rows();
+  row_first_.resize(static_cast<std::size_t>(rows) + 1);
+  for (int r = 0; r <= rows; ++r)
+    row_first_[r] = system.first_term(r);
+  terms_.resize(static_cast<std::size_t>(row_first_[rows]));
+#pragma omp parallel for schedule(dynamic, 16) num_threads(threads_for(row_first_[rows]))
+  for (int i = 0; i < count; ++i) {
+    const SubdomainOperator& op = ops[i];
+    Local& local = local_[i];
+    local.incidence.resize(op.incidence.size());
+    local.terms = op.terms;
+    for (std::size_t k = 0; k < op.incidence.size(); ++k) {
+      const Incidence& in = op.incidence[k];
+      const int t = op.terms[k];
+      const int p = position_in_boundary[i][in.dof];
+      const double value = in.value * weights[t];
+      local.incidence[k] = {in.row, p, value};
+      terms_[t] = {local.offset + p, value, system.term(t).new_subdomain};
     }
   }
-  row_first_[space.rows()] = static_cast<int>(terms_.size());
   boundary_dofs_ = offset;
   term_values_.resize(terms_.size());
 }
 
 void FetiPreconditioner::add_memory(LocalMemory& m) const {
   for (const Local& local : local_) {
-    m.preconditioner_factor += static_cast<double>(local.K_ii.memory_in_use());
+    m.preconditioner_factor += static_cast<double>(local.K_ii ? local.K_ii->memory_in_use() : 0);
     m.preconditioner_blocks += sparse_bytes(local.K_bb) + sparse_bytes(local.K_ib);
     m.index += static_cast<double>(local.boundary.capacity()) * sizeof(int);
     m.incidence += static_cast<double>(local.incidence.capacity()) * sizeof(Incidence) +
@@ -278,7 +300,7 @@ double FetiPreconditioner::bytes_read() const {
     else if (local.interior)
       bytes += 2.0 * static_cast<double>(local.interior->interior_memory());
     else
-      bytes += 2.0 * static_cast<double>(local.K_ii.memory_in_use());
+      bytes += 2.0 * static_cast<double>(local.K_ii ? local.K_ii->memory_in_use() : 0);
   }
   return bytes;
 }
@@ -286,7 +308,7 @@ double FetiPreconditioner::bytes_read() const {
 std::size_t FetiPreconditioner::factor_memory() const {
   std::size_t total = 0;
   for (const Local& local : local_)
-    total += local.K_ii.peak_memory();
+    total += local.K_ii ? local.K_ii->peak_memory() : 0;
   return total;
 }
 
@@ -324,7 +346,7 @@ void FetiPreconditioner::apply(const Eigen::VectorXd& w, const std::vector<char>
       else
         local.interior_factor->solve_in_place(in_factor_order.data());
       y.noalias() -= local.K_ib.transpose() * in_factor_order;
-    } else if (local.interior || local.K_ii.size() > 0) {
+    } else if (local.interior || (local.K_ii && local.K_ii->size() > 0)) {
       // Per thread, not per application: no allocation in the iterations.
       thread_local Eigen::VectorXd interior_rhs, interior;
       interior_rhs.resize(local.K_ib.rows());
@@ -333,7 +355,7 @@ void FetiPreconditioner::apply(const Eigen::VectorXd& w, const std::vector<char>
       if (local.interior)
         local.interior->interior_solve(interior_rhs.data(), interior.data());
       else
-        local.K_ii.solve(interior_rhs.data(), interior.data());
+        local.K_ii->solve(interior_rhs.data(), interior.data());
       y.noalias() -= local.K_ib.transpose() * interior;
     }
     for (std::size_t k = 0; k < local.incidence.size(); ++k)

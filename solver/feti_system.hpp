@@ -148,6 +148,15 @@ class FetiSystem {
   int dof_offset(int i) const { return dof_offsets_[i]; }
   // Own subdomain position of a global subdomain, or -1.
   int own_index(int subdomain) const { return own_index_[subdomain]; }
+  // Indices into row.entries of its entries on own subdomains, grouped by subdomain in
+  // increasing order (one subdomain's in the row's order): the order of the row's terms.
+  void own_entries_in_order(const Row& row, std::vector<int>& out) const;
+  // The terms of the local rows' sums, row after row: row r's are [first_term(r),
+  // first_term(r + 1)), in own_entries_in_order(); SubdomainOperator::terms index them.
+  int first_term(int r) const {
+    return r < space_.rows() ? row_parts_[r].first : static_cast<int>(part_entries_.size());
+  }
+  const RowTerm& term(int t) const { return part_entries_[t]; }
 
   // Peak memory of this process' subdomain factors in bytes (CHOLMOD's own accounting).
   std::size_t factor_memory() const;
@@ -173,6 +182,7 @@ class FetiSystem {
   // out_r = sum over B's entries of row r of value * Y(subdomain, dof), all processes.
   void gather_rows(Eigen::VectorXd& out) const;
   void build_incidence();
+  void fill_terms_and_incidence();
   void factorize_subdomains(bool interior_first, bool single_factors, bool single_interior);
   // M v over the own subdomains' modes (M: modes x local rows, like G), replicated.
   Eigen::VectorXd own_modes_product(const SparseMatrix& M, const Eigen::VectorXd& v,
