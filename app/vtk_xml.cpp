@@ -20,10 +20,28 @@ constexpr std::size_t kBlockSize = 32768;
 
 // Where a file's compressed blocks wait for their array's end (see write_vtu): reserved
 // once at the largest array's bound and only written pages become resident, in huge
-// pages (solver/huge_pages.hpp): each 4 KiB page first touched costs a fault of 10-30 us
-// on this kind of machine (a microVM), a 2 MiB page about 0.5 us per 4 KiB
-// (docs/BENCHMARKS.md, "Page faults").
-using Room = solver::huge_pages::Vector<std::uint8_t>;
+// pages when it has a mapping of its own (above huge_pages::kLarge): each 4 KiB page
+// first touched costs a fault of 10-30 us on this kind of machine (a microVM), a 2 MiB
+// page about 0.5 us per 4 KiB (docs/BENCHMARKS.md, "Page faults"). Smaller rooms come
+// from the ordinary heap, which reuses them from frame to frame: frames are also written
+// while the solve's factors live in the arena's chunks, where their space would stay
+// taken until the factors go.
+template <class T>
+struct LargeAllocator : solver::huge_pages::Allocator<T> {
+  using value_type = T;
+  static bool huge(std::size_t n) {
+    return solver::huge_pages::kUsedByAllocator && n > solver::huge_pages::kLarge / sizeof(T);
+  }
+  T* allocate(std::size_t n) {
+    if (huge(n)) return solver::huge_pages::Allocator<T>::allocate(n);
+    return std::allocator<T>().allocate(n);
+  }
+  void deallocate(T* p, std::size_t n) noexcept {
+    if (huge(n)) return solver::huge_pages::Allocator<T>::deallocate(p, n);
+    std::allocator<T>().deallocate(p, n);
+  }
+};
+using Room = std::vector<std::uint8_t, LargeAllocator<std::uint8_t>>;
 
 template <typename T>
 const char* vtk_type();
