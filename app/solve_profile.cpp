@@ -129,6 +129,9 @@ void write_solve_profile(const std::string& path, const solver::Communicator& pr
   // As the OpenMP runtime read it at start-up (fetic sets "passive" unless given: main.cpp).
   const char* wait_policy = std::getenv("OMP_WAIT_POLICY");
   profile["openmp_wait_policy"] = wait_policy ? wait_policy : "";
+  // As glibc read them at start-up (fetic adds glibc.malloc.hugetlb=1 unless given: main.cpp).
+  const char* tunables = std::getenv("GLIBC_TUNABLES");
+  profile["glibc_tunables"] = tunables ? tunables : "";
   profile["threads"] = solver::thread_budget();
   if (run.mprgp_steps)
     profile["mprgp_steps"] = {{"conjugate_gradient", run.mprgp_steps->cg},
