@@ -9,6 +9,7 @@
 
 #include <zlib.h>
 
+#include "solver/huge_pages.hpp"
 #include "solver/threads.hpp"
 
 namespace fetic::app {
@@ -16,6 +17,13 @@ namespace {
 
 // VTK compresses in blocks of this many uncompressed bytes (its writer's default).
 constexpr std::size_t kBlockSize = 32768;
+
+// Where a file's compressed blocks wait for their array's end (see write_vtu): reserved
+// once at the largest array's bound and only written pages become resident, in huge
+// pages (solver/huge_pages.hpp): each 4 KiB page first touched costs a fault of 10-30 us
+// on this kind of machine (a microVM), a 2 MiB page about 0.5 us per 4 KiB
+// (docs/BENCHMARKS.md, "Page faults").
+using Room = solver::huge_pages::Vector<std::uint8_t>;
 
 template <typename T>
 const char* vtk_type();
@@ -132,9 +140,10 @@ class ZlibBlocks {
   // the pages written become resident): a held array grown by doubling was copied at each
   // step and, at the last one, held twice - the 1e7 displacements' 140 MB among them.
   // `held` is that room, kept from array to array of a file (write_vtu).
-  ZlibBlocks(std::size_t bytes, std::vector<std::uint8_t>& held) : compressed_(held) {
+  ZlibBlocks(std::size_t bytes, Room& held) : compressed_(held) {
     compressed_.clear();
     compressed_.reserve(room(bytes));
+    pending_.reserve(std::min(bytes, kBatch * kBlockSize));  // a batch, not grown by doubling
   }
   // The room the compressed blocks of `bytes` bytes may take.
   static std::size_t room(std::size_t bytes) {
@@ -201,7 +210,7 @@ class ZlibBlocks {
   // A block takes about a millisecond to compress (threads.hpp counts microseconds).
   static constexpr long long kWorkPerBlock = 1000;
   std::vector<std::uint8_t> pending_;
-  std::vector<std::uint8_t>& compressed_;
+  Room& compressed_;
   std::vector<std::uint64_t> sizes_;
   std::uint64_t last_ = 0;
   int level_ = -1;  // not chosen yet
@@ -226,7 +235,7 @@ void write_ascii(std::ostream& out, const std::vector<T>& values) {
 // The values `make` gives, encoded; throws std::logic_error unless they are `count`.
 template <typename T>
 void write_values(std::ostream& out, const std::function<void(const VtkSink<T>&)>& make,
-                  std::size_t count, VtkEncoding encoding, std::vector<std::uint8_t>& held) {
+                  std::size_t count, VtkEncoding encoding, Room& held) {
   std::size_t made = 0;
   if (encoding == VtkEncoding::Ascii) {
     make([&](const T* values, std::size_t n) {
@@ -266,7 +275,7 @@ struct MakerValue<std::function<void(const VtkSink<T>&)>> {
 };
 
 void write_array(std::ostream& out, const VtkStreamedArray& array, VtkEncoding encoding,
-                 const char* indent, std::vector<std::uint8_t>& held) {
+                 const char* indent, Room& held) {
   std::visit(
       [&](const auto& make) {
         using T = typename MakerValue<std::decay_t<decltype(make)>>::type;
@@ -318,8 +327,7 @@ void write_field_text(std::ostream& out, const std::string& name, const std::str
 
 // `done` counts the arrays written.
 void write_data(std::ostream& out, const char* tag, const std::vector<VtkStreamedArray>& arrays,
-                VtkEncoding encoding, std::vector<std::uint8_t>& held,
-                const std::function<void()>& done) {
+                VtkEncoding encoding, Room& held, const std::function<void()>& done) {
   out << "      <" << tag << ">\n";
   for (const VtkStreamedArray& array : arrays) {
     write_array(out, array, encoding, "        ", held);
@@ -435,7 +443,7 @@ void write_vtu(std::ostream& out, const VtkStreamedGrid& grid, VtkEncoding encod
   // One room for the compressed blocks of every array, as large as the largest needs:
   // the pages one array made resident serve the next (each array's own room cost fresh
   // pages, about 10 us a page on this VM: 90,000 of them at 1e7).
-  std::vector<std::uint8_t> held;
+  Room held;
   if (encoding == VtkEncoding::Zlib) held.reserve(largest_room(grid));
   write_data(out, "PointData", grid.point_data, encoding, held, done);
   write_data(out, "CellData", grid.cell_data, encoding, held, done);

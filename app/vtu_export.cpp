@@ -14,6 +14,7 @@
 #include "app/version.hpp"
 #include "scenes/units.hpp"
 #include "solver/element_results.hpp"
+#include "solver/huge_pages.hpp"
 
 namespace fetic::app {
 namespace {
@@ -146,18 +147,20 @@ struct StrutSource {
         numbers(of_model),
         hold_fields(hold) {
     for (size_t s = 0; s < model.struts.size(); ++s) {
-      const solver::StrutElements topology = results.topology(static_cast<int>(s));
-      elements.push_back(topology.element_count());
-      cells += static_cast<std::size_t>(topology.element_count());
-      corners += topology.connectivity.size();
+      const solver::StrutElements shape = results.shape(static_cast<int>(s));
+      elements.push_back(shape.element_count());
+      nodes_per_element.push_back(shape.nodes_per_element);
+      cells += static_cast<std::size_t>(shape.element_count());
+      corners += shape.connectivity.size();
       if (s > 0) continue;
+      const solver::StrutElements topology = results.topology(0);
       for (const solver::NamedValues& field : topology.stress)
         fields.push_back("stress_" + field.name);
       for (const solver::NamedValues& field : topology.resultants)
         fields.push_back(field.name);
       stress_fields = topology.stress.size();
     }
-    held.resize(fields.size(), std::vector<std::vector<double>>(model.struts.size()));
+    held.resize(fields.size(), std::vector<Held>(model.struts.size()));
     holds.resize(fields.size(), std::vector<char>(model.struts.size(), 0));
   }
   // Cell field f (stress_* then the resultants) of strut s. Recovering a strut's elements
@@ -165,21 +168,27 @@ struct StrutSource {
   // with hold_fields the first asks once and the strut's later fields are held until their
   // arrays take them (up to 5 values per element: 190 MB at 1e7 unknowns, so only for a
   // frame written where that memory is free); without, each array recovers them again.
-  std::vector<double> field(size_t f, int s) {
+  // The held values are copies in huge pages (solver/huge_pages.hpp): they are the frame's
+  // only fresh memory of that size (the recovered strut's arrays, freed after the copy,
+  // serve the next strut), and 4 KiB pages first touched cost 10-30 us each on this VM.
+  // Into `out` (its room reused from strut to strut).
+  void field(size_t f, int s, std::vector<double>& out) {
     const auto at = static_cast<size_t>(s);
     if (holds[f][at]) {
       holds[f][at] = 0;
-      return std::move(held[f][at]);
+      out.assign(held[f][at].begin(), held[f][at].end());
+      Held().swap(held[f][at]);
+      return;
     }
     solver::StrutElements e = results.elements(s);
     const auto values = [&](size_t g) -> std::vector<double>& {
       return g < stress_fields ? e.stress[g].values : e.resultants[g - stress_fields].values;
     };
     for (size_t g = f + 1; hold_fields && g < fields.size(); ++g) {
-      held[g][at] = std::move(values(g));
+      held[g][at].assign(values(g).begin(), values(g).end());
       holds[g][at] = 1;
     }
-    return std::move(values(f));
+    out.swap(values(f));
   }
   // Strut s's values of the nodes that make a point.
   template <typename T, typename Value>
@@ -195,12 +204,14 @@ struct StrutSource {
   solver::StrutResults results;
   PointNumbers numbers;
   std::vector<int> elements;           // per strut
+  std::vector<int> nodes_per_element;  // per strut
   std::size_t cells = 0, corners = 0;  // elements, their nodes
   std::vector<std::string> fields;     // stress_* then the resultants, as every strut has them
   size_t stress_fields = 0;
   bool hold_fields = false;
-  std::vector<std::vector<std::vector<double>>> held;  // [field][strut], see field()
-  std::vector<std::vector<char>> holds;                // [field][strut]: held[f][s] is there
+  using Held = solver::huge_pages::Vector<double>;
+  std::vector<std::vector<Held>> held;   // [field][strut], see field()
+  std::vector<std::vector<char>> holds;  // [field][strut]: held[f][s] is there
 };
 
 // Frame struts: per element the rotations and bending moments at both of its ends (node
@@ -245,13 +256,13 @@ void add_cell_data(const std::shared_ptr<StrutSource>& source, VtkStreamedGrid& 
       }));
   grid.cell_data.push_back(
       per_strut<std::int32_t>("subdomain", 1, cells, struts, [source](int s, auto& out) {
-        const std::vector<int> subdomains = source->results.topology(s).subdomain;
+        const std::vector<int> subdomains = source->results.shape(s).subdomain;
         out.assign(subdomains.begin(), subdomains.end());
       }));
   for (size_t f = 0; f < source->fields.size(); ++f)
     grid.cell_data.push_back(per_strut<double>(
         source->fields[f], 1, cells, struts,
-        [source, f](int s, std::vector<double>& out) { out = source->field(f, s); }));
+        [source, f](int s, std::vector<double>& out) { source->field(f, s, out); }));
 }
 
 void add_cells(const std::shared_ptr<StrutSource>& source, VtkStreamedGrid& grid) {
@@ -260,21 +271,21 @@ void add_cells(const std::shared_ptr<StrutSource>& source, VtkStreamedGrid& grid
       "connectivity", 1, source->corners, struts, [source](int s, auto& out) {
         std::vector<char> makes;
         const std::vector<std::int64_t> point = source->numbers.strut_points(s, makes);
-        for (int node : source->results.topology(s).connectivity)
+        for (int node : source->results.shape(s).connectivity)
           out.push_back(point[static_cast<size_t>(node)]);
       });
   auto end = std::make_shared<std::int64_t>(0);  // the running offset
   grid.offsets =
       per_strut<std::int64_t>("offsets", 1, source->cells, struts, [source, end](int s, auto& out) {
         if (s == 0) *end = 0;
-        const solver::StrutElements e = source->results.topology(s);
-        for (int k = 0; k < e.element_count(); ++k)
-          out.push_back(*end += e.nodes_per_element);
+        const auto at = static_cast<size_t>(s);
+        for (int k = 0; k < source->elements[at]; ++k)
+          out.push_back(*end += source->nodes_per_element[at]);
       });
   grid.types =
       per_strut<std::uint8_t>("types", 1, source->cells, struts, [source](int s, auto& out) {
         const std::uint8_t type =
-            source->results.topology(s).nodes_per_element == 4 ? kVtkQuad : kVtkLine;
+            source->nodes_per_element[static_cast<size_t>(s)] == 4 ? kVtkQuad : kVtkLine;
         out.assign(static_cast<size_t>(source->elements[static_cast<size_t>(s)]), type);
       });
 }

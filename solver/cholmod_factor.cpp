@@ -7,6 +7,8 @@
 
 #include <cholmod.h>
 
+#include "solver/supernodal_factorization.hpp"
+
 namespace fetic::solver {
 
 struct CholmodFactor::Impl {
@@ -63,25 +65,42 @@ CholmodFactor::Result CholmodFactor::factorize(const SparseMatrix& A, bool to_co
   if (!impl_) impl_ = std::make_unique<Impl>();
   cholmod_free_factor(&impl_->factor, &impl_->common);
   compact_.reset();
+  supernodal_.reset();
   size_ = static_cast<int>(A.rows());
   failed_column_ = -1;
   if (size_ == 0) return Result::Ok;
   cholmod_sparse view = view_of(A);
   cholmod_common& c = impl_->common;
-  if (to_compact && size_ <= kSimplicialUpTo) {
-    c.supernodal = CHOLMOD_SIMPLICIAL;
-    c.final_ll = 1;  // LL' as compact() keeps it, not LDL' converted afterwards
-  }
+  const bool supernodal = to_compact && size_ <= kSimplicialUpTo;
+  if (supernodal) c.supernodal = CHOLMOD_SIMPLICIAL;  // its analysis alone: no supernodes
   impl_->factor = cholmod_analyze(&view, &c);
   // CHOLMOD running out of memory is std::bad_alloc like any other allocation: the
   // commands report it as such (status 7), not as a singular or failed factorization.
   if (!impl_->factor && c.status == CHOLMOD_OUT_OF_MEMORY) throw std::bad_alloc();
   if (!impl_->factor) return Result::Failed;
-  return numeric(A);
+  return supernodal ? factorize_supernodal(A) : numeric(A);
+}
+
+// P A P' = L L' on the ordering CHOLMOD's analysis chose, by SupernodalFactorization
+// into CompactFactor's layout; CHOLMOD's symbolic factor and workspace go right after.
+CholmodFactor::Result CholmodFactor::factorize_supernodal(const SparseMatrix& A) {
+  cholmod_common& c = impl_->common;
+  auto factor = std::make_unique<SupernodalFactorization>();
+  const int failed = factor->factorize(A, static_cast<const int*>(impl_->factor->Perm));
+  compact_peak_ = c.memory_usage + factor->bytes();
+  cholmod_free_factor(&impl_->factor, &c);
+  cholmod_free_work(&c);
+  if (failed >= 0) {
+    failed_column_ = failed;
+    return Result::NotPositiveDefinite;
+  }
+  supernodal_ = std::move(factor);
+  return Result::Ok;
 }
 
 CholmodFactor::Result CholmodFactor::refactorize(const SparseMatrix& A) {
   if (compact_) throw std::logic_error("CholmodFactor: refactorize after compact()");
+  if (supernodal_) return factorize(A, true);
   if (!impl_->factor || static_cast<int>(A.rows()) != size_) return factorize(A);
   if (!A.isCompressed()) throw std::logic_error("CholmodFactor: matrix must be compressed");
   failed_column_ = -1;
@@ -106,6 +125,7 @@ CholmodFactor::Result CholmodFactor::numeric(const SparseMatrix& A) {
 
 CholmodFactor::Result CholmodFactor::update(const SparseMatrix& C, bool add) {
   if (compact_) throw std::logic_error("CholmodFactor: update after compact()");
+  if (supernodal_) throw std::logic_error("CholmodFactor: update of a factorize(A, true) factor");
   if (!impl_->factor || static_cast<int>(C.rows()) != size_) return Result::Failed;
   if (C.cols() == 0) return Result::Ok;
   if (!C.isCompressed()) throw std::logic_error("CholmodFactor: matrix must be compressed");
@@ -134,12 +154,14 @@ CholmodFactor::Result CholmodFactor::update(const SparseMatrix& C, bool add) {
 
 double CholmodFactor::rcond() const {
   if (compact_) return compact_->rcond();
+  if (supernodal_) return supernodal_->rcond();
   if (!impl_->factor || size_ == 0) return 1.0;
   return cholmod_rcond(impl_->factor, &impl_->common);
 }
 
 std::size_t CholmodFactor::factor_nonzeros() const {
   if (compact_) return compact_->nonzeros();
+  if (supernodal_) return supernodal_->nonzeros();
   if (!impl_->factor) return 0;
   const cholmod_factor* L = impl_->factor;
   if (L->is_super) return L->xsize;
@@ -147,11 +169,13 @@ std::size_t CholmodFactor::factor_nonzeros() const {
 }
 
 std::size_t CholmodFactor::peak_memory() const {
-  return compact_ ? compact_peak_ : impl_->common.memory_usage;
+  return compact_ || supernodal_ ? compact_peak_ : impl_->common.memory_usage;
 }
 
 std::size_t CholmodFactor::memory_in_use() const {
-  return compact_ ? compact_->bytes() : impl_->common.memory_inuse;
+  if (compact_) return compact_->bytes();
+  if (supernodal_) return supernodal_->bytes() + impl_->common.memory_inuse;
+  return impl_->common.memory_inuse;
 }
 
 void CholmodFactor::solve(const double* b, double* x, int columns) const {
@@ -160,6 +184,7 @@ void CholmodFactor::solve(const double* b, double* x, int columns) const {
     compact_->solve(b, x, columns);
     return;
   }
+  if (supernodal_) throw std::logic_error("CholmodFactor: solve before compact()");
   cholmod_dense rhs{};
   rhs.nrow = static_cast<size_t>(size_);
   rhs.ncol = static_cast<size_t>(columns);
@@ -256,6 +281,12 @@ CompactFactor::Columns drop_zeros(cholmod_factor* L) {
 
 bool CholmodFactor::compact(bool single) {
   if (compact_) return true;
+  if (supernodal_) {
+    compact_ = supernodal_->compact(single);
+    supernodal_.reset();
+    impl_.reset();
+    return true;
+  }
   if (!impl_) return false;
   cholmod_factor* L = impl_->factor;
   if (!L || size_ == 0 || size_ > CompactFactor::kMaxSize) return false;

@@ -12,6 +12,8 @@
 
 namespace fetic::solver {
 
+class SupernodalFactorization;
+
 class CholmodFactor {
  public:
   enum class Result { Ok, NotPositiveDefinite, OutOfMemory, Failed };
@@ -26,10 +28,11 @@ class CholmodFactor {
   // Factorizes the symmetric matrix A (only its lower triangle is read). Throws
   // std::bad_alloc when CHOLMOD runs out of memory (OutOfMemory is never returned).
   // `to_compact`: the factor is only going to be compact()ed, so a small one (at most
-  // kSimplicialUpTo rows) is factorized simplicial, column by column, whatever CHOLMOD's
-  // own rule would choose: its supernodes' dense blocks only pay in BLAS solves, which the
-  // compact copy does not use, and at the ~1,100 rows of a FETI subdomain the simplicial
-  // factorization took 30% less time (docs/BENCHMARKS.md).
+  // kSimplicialUpTo rows) is factorized by SupernodalFactorization straight into
+  // CompactFactor's layout, on CHOLMOD's ordering (its analysis); CHOLMOD's own numeric
+  // factorizations and the copy of their columns took about twice as long at the ~1,100
+  // rows of a FETI subdomain (docs/BENCHMARKS.md). Such a factor must be compact()ed
+  // before solve(); refactorize() factorizes it anew, update() throws.
   Result factorize(const SparseMatrix& A, bool to_compact = false);
   static constexpr int kSimplicialUpTo = 5000;
   // The same for a matrix with the nonzero pattern of the last factorize(): the fill-
@@ -70,7 +73,10 @@ class CholmodFactor {
  private:
   struct Impl;
   Result numeric(const SparseMatrix& A);
+  Result factorize_supernodal(const SparseMatrix& A);
   std::unique_ptr<Impl> impl_;
+  // factorize(A, true)'s factor until compact() (then null).
+  std::unique_ptr<SupernodalFactorization> supernodal_;
   std::unique_ptr<CompactFactor> compact_;
   std::size_t compact_peak_ = 0;  // CHOLMOD's peak before compact() released it
   int size_ = 0;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <cstdint>
 #include <iterator>
 #include <stdexcept>
 
@@ -63,6 +64,26 @@ CompactFactor::CompactFactor(int size, const int* permutation, const Columns& co
   build_supernodes(ColumnView<int>{columns.start, columns.rows, columns.values, 1});
 }
 
+CompactFactor::CompactFactor(int size, const int* permutation, const Supernodes& supernodes,
+                             bool single)
+    : size_(size), single_(single), permutation_(permutation, permutation + size) {
+  if (size > kMaxSize) throw std::logic_error("CompactFactor: order above 65536");
+  const auto count = static_cast<std::size_t>(supernodes.count);
+  if (supernodes.count < 0 || supernodes.first[0] != 0 || supernodes.first[count] != size)
+    throw std::logic_error("CompactFactor: supernodes do not cover the columns");
+  first_.assign(supernodes.first, supernodes.first + count + 1);
+  row_start_.assign(supernodes.row_start, supernodes.row_start + count + 1);
+  rows_.assign(supernodes.rows, supernodes.rows + supernodes.row_start[count]);
+  const std::size_t stored = size_supernodes();
+  if (single_)
+    values32_.assign(supernodes.values, supernodes.values + stored);
+  else
+    values_.assign(supernodes.values, supernodes.values + stored);
+  inverse_diagonal_.resize(static_cast<std::size_t>(size));
+  for (int j = 0; j < size; ++j)
+    inverse_diagonal_[static_cast<std::size_t>(j)] = 1.0 / supernodes.diagonal[j];
+}
+
 void CompactFactor::finish() {
   column_start_.push_back(static_cast<int>(column_rows_.size()));
   if (static_cast<int>(inverse_diagonal_.size()) != size_)
@@ -121,9 +142,9 @@ void CompactFactor::find_supernodes(const ColumnView<Row>& columns) {
   rows_.assign(rows.begin(), rows.end());
 }
 
-template <class Row>
-void CompactFactor::build_supernodes(const ColumnView<Row>& columns) {
-  find_supernodes(columns);
+// The entries the supernodes store below the diagonal (stored_below_, reached_below_)
+// and the largest m (max_rows_), from first_ and row_start_.
+std::size_t CompactFactor::size_supernodes() {
   std::size_t stored = 0;
   for (int s = 0; s < supernodes(); ++s) {
     const int nc = first_[s + 1] - first_[s];
@@ -133,6 +154,13 @@ void CompactFactor::build_supernodes(const ColumnView<Row>& columns) {
   }
   stored_below_ = stored;
   reached_below_ = stored;
+  return stored;
+}
+
+template <class Row>
+void CompactFactor::build_supernodes(const ColumnView<Row>& columns) {
+  find_supernodes(columns);
+  const std::size_t stored = size_supernodes();
   if (single_)
     values32_.assign(stored, 0.0f);
   else
@@ -198,15 +226,47 @@ void triangle_forward(const Value* v, int nc, const double* inverse_diagonal, do
   }
 }
 
-// x = L_11'^-1 x.
+// x = L_11'^-1 x, column k's dot product with the x below it summed in order.
 template <class Value>
-void triangle_backward(const Value* v, int nc, const double* inverse_diagonal, double* x) {
+void triangle_backward_in_order(const Value* v, int nc, const double* inverse_diagonal, double* x) {
   for (int k = nc - 1; k >= 0; --k) {
     const Value* column = v + triangle_column(nc, k);
     double s = x[k];
     for (int i = k + 1; i < nc; ++i)
       s -= static_cast<double>(column[i - k - 1]) * x[i];
     x[k] = s * inverse_diagonal[k];
+  }
+}
+
+// The same as four partial sums. In order, each subtraction waits on the one before: on
+// the top supernodes of a plane model (dense triangles of 40-70 columns, 10-20% of the
+// entries) that chain was the back solve's critical path and the largest part of
+// M^-1's (docs/BENCHMARKS.md, "Prefetching the factors"). Only there: it rounds otherwise,
+// and the small supernodes of the ill-conditioned frame scenes keep their bits (in
+// partial sums on every supernode frame_scaffold took 91 MPRGP iterations, not 89).
+constexpr int kPartialSumsFrom = 16;  // supernode columns
+
+template <class Value>
+void triangle_backward(const Value* v, int nc, const double* inverse_diagonal, double* x) {
+  if (nc < kPartialSumsFrom) {
+    triangle_backward_in_order(v, nc, inverse_diagonal, x);
+    return;
+  }
+  for (int k = nc - 1; k >= 0; --k) {
+    const Value* column = v + triangle_column(nc, k);  // rows k + 1 .. nc - 1
+    const double* below = x + k + 1;
+    const int n = nc - k - 1;
+    double s0 = 0.0, s1 = 0.0, s2 = 0.0, s3 = 0.0;
+    int i = 0;
+    for (; i + 4 <= n; i += 4) {
+      s0 += static_cast<double>(column[i]) * below[i];
+      s1 += static_cast<double>(column[i + 1]) * below[i + 1];
+      s2 += static_cast<double>(column[i + 2]) * below[i + 2];
+      s3 += static_cast<double>(column[i + 3]) * below[i + 3];
+    }
+    for (; i < n; ++i)
+      s0 += static_cast<double>(column[i]) * below[i];
+    x[k] = (x[k] - ((s0 + s1) + (s2 + s3))) * inverse_diagonal[k];
   }
 }
 
@@ -342,36 +402,95 @@ void pair_backward(const Value* v, int m, const std::uint16_t* rows, const doubl
 
 }  // namespace
 
+namespace {
+
+// How far ahead of the supernode being solved the forward pass asks for the factor's
+// entries. Each entry is read from memory once per solve, in order, but a supernode's
+// columns are short runs (a few hundred bytes) that the hardware prefetcher does not
+// follow: the block products waited on their loads (docs/BENCHMARKS.md, "Prefetching the
+// factors"). 2 KB: 1 KB gained about as much, 4 KB less.
+constexpr std::ptrdiff_t kPrefetchBytes = 2048;
+
+// The cache lines of one part of the entries asked for so far. Addresses as integers: the
+// lines past the last supernode's entries are asked for too (a prefetch does not fault),
+// and a pointer may not point there.
+struct Prefetch {
+  std::uintptr_t done;
+  void upto(const void* end) {
+    const std::uintptr_t stop = reinterpret_cast<std::uintptr_t>(end) + kPrefetchBytes;
+    for (; done < stop; done += 64)
+      __builtin_prefetch(reinterpret_cast<const void*>(done));
+  }
+};
+
+}  // namespace
+
+template <class Value>
+void CompactFactor::forward_supernode(const Value* triangle, int s, double* y, int columns,
+                                      double* t) const {
+  const int j0 = first_[s], nc = first_[s + 1] - j0;
+  const int m = row_start_[s + 1] - row_start_[s];
+  const Value* block = triangle + triangle_entries(nc);
+  const std::uint16_t* rows = rows_.data() + row_start_[s];
+  for (int c = 0; c < columns; ++c) {
+    double* yc = y + static_cast<std::ptrdiff_t>(c) * size_;
+    if (nc == 1) {  // a chain's columns (bars, beams)
+      column_forward(triangle, m, rows, inverse_diagonal_[j0], yc, j0);
+      continue;
+    }
+    if (nc == 2) {  // most supernodes of a plane model: a node's two DOFs
+      pair_forward(triangle, m, rows, inverse_diagonal_.data() + j0, yc, j0);
+      continue;
+    }
+    triangle_forward(triangle, nc, inverse_diagonal_.data() + j0, yc + j0);
+    if (m == 0) continue;
+    block_times(block, m, nc, yc + j0, t);
+    for (int r = 0; r < m; ++r)
+      yc[rows[r]] -= t[r];
+  }
+}
+
+template <class Value>
+void CompactFactor::backward_supernode(const Value* triangle, int s, double* y, int columns,
+                                       double* t) const {
+  const int j0 = first_[s], nc = first_[s + 1] - j0;
+  const int m = row_start_[s + 1] - row_start_[s];
+  const Value* block = triangle + triangle_entries(nc);
+  const std::uint16_t* rows = rows_.data() + row_start_[s];
+  for (int c = 0; c < columns; ++c) {
+    double* yc = y + static_cast<std::ptrdiff_t>(c) * size_;
+    if (nc == 1) {
+      column_backward(triangle, m, rows, inverse_diagonal_[j0], yc, j0);
+      continue;
+    }
+    if (nc == 2) {
+      pair_backward(triangle, m, rows, inverse_diagonal_.data() + j0, yc, j0);
+      continue;
+    }
+    if (m > 0) {
+      for (int r = 0; r < m; ++r)
+        t[r] = yc[rows[r]];
+      block_transposed_times(block, m, nc, t, yc + j0);
+    }
+    triangle_backward(triangle, nc, inverse_diagonal_.data() + j0, yc + j0);
+  }
+}
+
 template <class Value>
 void CompactFactor::forward(const Value* values, double* y, int columns, double* t,
                             bool reached_only) const {
   // The supernodes' entries follow each other in two parts: the reached, then the others.
   const Value* next[2] = {values + reached_below_, values};
+  Prefetch ahead[2] = {{reinterpret_cast<std::uintptr_t>(next[0])},
+                       {reinterpret_cast<std::uintptr_t>(next[1])}};
   for (int s = 0; s < supernodes(); ++s) {
-    const int j0 = first_[s], nc = first_[s + 1] - j0;
-    const int m = row_start_[s + 1] - row_start_[s];
     const bool reached = is_reached(s);
     if (reached_only && !reached) continue;
     const Value* triangle = next[reached];
-    next[reached] += supernode_entries(nc, m);
-    const Value* block = triangle + triangle_entries(nc);
-    const std::uint16_t* rows = rows_.data() + row_start_[s];
-    for (int c = 0; c < columns; ++c) {
-      double* yc = y + static_cast<std::ptrdiff_t>(c) * size_;
-      if (nc == 1) {  // a chain's columns (bars, beams)
-        column_forward(triangle, m, rows, inverse_diagonal_[j0], yc, j0);
-        continue;
-      }
-      if (nc == 2) {  // most supernodes of a plane model: a node's two DOFs
-        pair_forward(triangle, m, rows, inverse_diagonal_.data() + j0, yc, j0);
-        continue;
-      }
-      triangle_forward(triangle, nc, inverse_diagonal_.data() + j0, yc + j0);
-      if (m == 0) continue;
-      block_times(block, m, nc, yc + j0, t);
-      for (int r = 0; r < m; ++r)
-        yc[rows[r]] -= t[r];
-    }
+    next[reached] +=
+        supernode_entries(first_[s + 1] - first_[s], row_start_[s + 1] - row_start_[s]);
+    ahead[reached].upto(next[reached]);
+    forward_supernode(triangle, s, y, columns, t);
   }
 }
 
@@ -381,31 +500,10 @@ void CompactFactor::backward(const Value* values, double* y, int columns, double
   // Past the last supernode's entries of each part (the others, the reached).
   const Value* end[2] = {values + stored_below_, values + reached_below_};
   for (int s = supernodes() - 1; s >= 0; --s) {
-    const int j0 = first_[s], nc = first_[s + 1] - j0;
-    const int m = row_start_[s + 1] - row_start_[s];
     const bool reached = is_reached(s);
     if (reached_only && !reached) continue;
-    end[reached] -= supernode_entries(nc, m);
-    const Value* triangle = end[reached];
-    const Value* block = triangle + triangle_entries(nc);
-    const std::uint16_t* rows = rows_.data() + row_start_[s];
-    for (int c = 0; c < columns; ++c) {
-      double* yc = y + static_cast<std::ptrdiff_t>(c) * size_;
-      if (nc == 1) {
-        column_backward(triangle, m, rows, inverse_diagonal_[j0], yc, j0);
-        continue;
-      }
-      if (nc == 2) {
-        pair_backward(triangle, m, rows, inverse_diagonal_.data() + j0, yc, j0);
-        continue;
-      }
-      if (m > 0) {
-        for (int r = 0; r < m; ++r)
-          t[r] = yc[rows[r]];
-        block_transposed_times(block, m, nc, t, yc + j0);
-      }
-      triangle_backward(triangle, nc, inverse_diagonal_.data() + j0, yc + j0);
-    }
+    end[reached] -= supernode_entries(first_[s + 1] - first_[s], row_start_[s + 1] - row_start_[s]);
+    backward_supernode(end[reached], s, y, columns, t);
   }
 }
 

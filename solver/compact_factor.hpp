@@ -54,6 +54,22 @@ class CompactFactor {
     const double* values;
   };
   CompactFactor(int size, const int* permutation, const Columns& columns, bool single = false);
+  // A factor computed in this layout already (solver/supernodal_factorization.hpp): `count`
+  // supernodes, s holding columns first[s] .. first[s + 1] - 1 and rows rows[row_start[s]
+  // .. row_start[s + 1] - 1] below them (increasing), its entries in `values` (all
+  // supernodes' one after the other: the strict lower triangle packed by columns, then the
+  // m x nc block column-major), L's diagonal apart. Copied once at their size; no
+  // supernodes are looked for (the caller chose them).
+  struct Supernodes {
+    int count;
+    const int* first;
+    const int* row_start;
+    const int* rows;
+    const double* values;
+    const double* diagonal;
+  };
+  CompactFactor(int size, const int* permutation, const Supernodes& supernodes,
+                bool single = false);
 
   int size() const { return size_; }
   bool single() const { return single_; }
@@ -110,6 +126,7 @@ class CompactFactor {
   };
   template <class Row>
   void build_supernodes(const ColumnView<Row>& columns);  // the columns into supernodes
+  std::size_t size_supernodes();
   template <class Row>
   void find_supernodes(const ColumnView<Row>& columns);
   template <class Row>
@@ -120,6 +137,11 @@ class CompactFactor {
   void forward(const Value* values, double* y, int columns, double* t, bool reached_only) const;
   template <class Value>
   void backward(const Value* values, double* y, int columns, double* t, bool reached_only) const;
+  // One supernode of those: s, its entries from `triangle` on.
+  template <class Value>
+  void forward_supernode(const Value* triangle, int s, double* y, int columns, double* t) const;
+  template <class Value>
+  void backward_supernode(const Value* triangle, int s, double* y, int columns, double* t) const;
   void solve_parts(double* y, int columns, bool reached_only) const;
   bool is_reached(int s) const { return reached_.empty() || reached_[static_cast<std::size_t>(s)]; }
   template <class Value>

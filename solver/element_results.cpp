@@ -67,7 +67,8 @@ int element_index(const StrutMesh& mesh, int i, int k) {
   return is_plane(mesh) ? i * mesh.ny + k : i;
 }
 
-StrutElements topology(const StrutMesh& mesh, int first_subdomain) {
+// Connectivity and subdomains only: the value fields stay empty.
+StrutElements shape(const StrutMesh& mesh, int first_subdomain) {
   StrutElements elements;
   const bool plane = is_plane(mesh);
   elements.nodes_per_element = plane ? 4 : 2;
@@ -96,6 +97,13 @@ StrutElements topology(const StrutMesh& mesh, int first_subdomain) {
           elements.subdomain[static_cast<size_t>(element_index(mesh, i, k))] = index;
       ++index;
     }
+  return elements;
+}
+
+StrutElements topology(const StrutMesh& mesh, int first_subdomain) {
+  StrutElements elements = shape(mesh, first_subdomain);
+  const bool plane = is_plane(mesh);
+  const int count = elements.element_count();
   const std::vector<std::string> stress_names =
       plane ? std::vector<std::string>{"axial", "sxx", "syy", "sxy", "von_mises"}
             : std::vector<std::string>{"axial"};
@@ -197,6 +205,11 @@ std::vector<double> StrutResults::rotations(int strut) const {
 StrutElements StrutResults::topology(int strut) const {
   const auto at = static_cast<size_t>(strut);
   return fetic::solver::topology(model_.struts[at], first_subdomain_[at]);
+}
+
+StrutElements StrutResults::shape(int strut) const {
+  const auto at = static_cast<size_t>(strut);
+  return fetic::solver::shape(model_.struts[at], first_subdomain_[at]);
 }
 
 StrutElements StrutResults::elements(int strut) const {

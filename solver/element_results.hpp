@@ -54,7 +54,11 @@ class StrutResults {
   std::vector<Vec2> displacements(int strut) const;  // strut_displacements(...)[strut]
   std::vector<double> rotations(int strut) const;    // strut_rotations(...)[strut]
   StrutElements topology(int strut) const;           // element_topology(...)[strut]
-  StrutElements elements(int strut) const;           // element_results(...)[strut]
+  // topology(strut) without its value fields (empty): connectivity and subdomains only,
+  // for the writers' arrays that need no values (a plane strut's six fields are 48 of
+  // its 68 bytes per element).
+  StrutElements shape(int strut) const;
+  StrutElements elements(int strut) const;  // element_results(...)[strut]
 
  private:
   const Model& model_;

@@ -591,7 +591,11 @@ Eigen::VectorXd FetiSystem::subdomain_displacements(const Eigen::VectorXd& lambd
                                                     const Eigen::VectorXd& alpha,
                                                     double load_factor) const {
   solve_subdomains(&lambda, -1.0, load_factor, true);
-  Eigen::VectorXd u = y_;
+  // y_ is only written before it is read: take its pages instead of copying them into
+  // fresh ones (at 1e7 unknowns 77 MB, 19,000 first touches of 10-30 us on this VM) and
+  // leave it a new, untouched room for the next solve.
+  Eigen::VectorXd u = std::move(y_);
+  y_.resize(u.size());
   for (size_t i = 0; i < subdomains_.size(); ++i) {
     const Subdomain& sub = decomposition_.subdomains[subdomains_[i].index];
     u.segment(dof_offsets_[i], sub.dof_count) +=

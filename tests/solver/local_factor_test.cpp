@@ -124,12 +124,13 @@ TEST_CASE("A compacted factor solves as CHOLMOD's factor did, in fewer bytes") {
 TEST_CASE("A compacted simplicial factor leaves out the entries that cancelled to zero") {
   // ones(3) + diag(0, 1, 1): L = [1 0 0; 1 1 0; 1 0 1], its entry (2, 1) an exact zero
   // that CHOLMOD keeps (A's pattern has it); the compact copy, read from CHOLMOD's arrays
-  // in place, drops it and still solves A.
+  // in place, drops it and still solves A. (factorize(A, true)'s own supernodal factor
+  // keeps such zeros: tests/solver/supernodal_factorization_test.cpp.)
   Eigen::MatrixXd dense = Eigen::MatrixXd::Ones(3, 3);
   dense(1, 1) = dense(2, 2) = 2.0;
   const solver::SparseMatrix A = dense.sparseView();
   solver::CholmodFactor factor;
-  REQUIRE(factor.factorize(A, /*to_compact=*/true) == solver::CholmodFactor::Result::Ok);
+  REQUIRE(factor.factorize(A) == solver::CholmodFactor::Result::Ok);
   REQUIRE(factor.factor_nonzeros() == 6);
   REQUIRE(factor.compact());
   CHECK(factor.factor_nonzeros() == 5);
