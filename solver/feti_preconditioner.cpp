@@ -179,9 +179,13 @@ bool FetiPreconditioner::set_up_local(const SubdomainOperator& op, Local& local,
   int ni = 0;
   for (int dof = 0; dof < n; ++dof)
     if (b_position[dof] < 0) i_position[dof] = ni++;
-  local.K_bb = extract(op.K, b_position, nb, b_position, nb);
+  // swap, not assign: Eigen's SparseMatrix assignment copies a returned matrix (a copy, its
+  // allocation and first touch were most of this function's time).
+  SparseMatrix K_bb = extract(op.K, b_position, nb, b_position, nb);
+  local.K_bb.swap(K_bb);
   if (kind_ != Preconditioner::Dirichlet || ni == 0) return true;
-  local.K_ib = extract(op.K, i_position, ni, b_position, nb);
+  SparseMatrix K_ib = extract(op.K, i_position, ni, b_position, nb);
+  local.K_ib.swap(K_ib);
   if (op.K_plus.has_interior_solve()) {
     local.interior = &op.K_plus;
     local.interior_factor = op.K_plus.compact_interior_factor();
