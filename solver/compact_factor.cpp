@@ -241,9 +241,9 @@ void triangle_backward_in_order(const Value* v, int nc, const double* inverse_di
 // The same as four partial sums. In order, each subtraction waits on the one before: on
 // the top supernodes of a plane model (dense triangles of 40-70 columns, 10-20% of the
 // entries) that chain was the back solve's critical path and the largest part of
-// M^-1's (docs/BENCHMARKS.md, "Prefetching the factors"). Only there: it rounds otherwise,
-// and the small supernodes of the ill-conditioned frame scenes keep their bits (in
-// partial sums on every supernode frame_scaffold took 91 MPRGP iterations, not 89).
+// M^-1's (docs/BENCHMARKS.md, "F and M^-1: prefetching the factors"). Only there: it
+// rounds otherwise, and the small supernodes of the ill-conditioned frame scenes keep their bits
+// (in partial sums on every supernode frame_scaffold took 91 MPRGP iterations, not 89).
 constexpr int kPartialSumsFrom = 16;  // supernode columns
 
 template <class Value>
@@ -407,8 +407,8 @@ namespace {
 // How far ahead of the supernode being solved the forward pass asks for the factor's
 // entries. Each entry is read from memory once per solve, in order, but a supernode's
 // columns are short runs (a few hundred bytes) that the hardware prefetcher does not
-// follow: the block products waited on their loads (docs/BENCHMARKS.md, "Prefetching the
-// factors"). 2 KB: 1 KB gained about as much, 4 KB less.
+// follow: the block products waited on their loads (docs/BENCHMARKS.md, "F and M^-1:
+// prefetching the factors"). 2 KB: 1 KB gained about as much, 4 KB less.
 constexpr std::ptrdiff_t kPrefetchBytes = 2048;
 
 // The cache lines of one part of the entries asked for so far. Addresses as integers: the
@@ -426,57 +426,6 @@ struct Prefetch {
 }  // namespace
 
 template <class Value>
-void CompactFactor::forward_supernode(const Value* triangle, int s, double* y, int columns,
-                                      double* t) const {
-  const int j0 = first_[s], nc = first_[s + 1] - j0;
-  const int m = row_start_[s + 1] - row_start_[s];
-  const Value* block = triangle + triangle_entries(nc);
-  const std::uint16_t* rows = rows_.data() + row_start_[s];
-  for (int c = 0; c < columns; ++c) {
-    double* yc = y + static_cast<std::ptrdiff_t>(c) * size_;
-    if (nc == 1) {  // a chain's columns (bars, beams)
-      column_forward(triangle, m, rows, inverse_diagonal_[j0], yc, j0);
-      continue;
-    }
-    if (nc == 2) {  // most supernodes of a plane model: a node's two DOFs
-      pair_forward(triangle, m, rows, inverse_diagonal_.data() + j0, yc, j0);
-      continue;
-    }
-    triangle_forward(triangle, nc, inverse_diagonal_.data() + j0, yc + j0);
-    if (m == 0) continue;
-    block_times(block, m, nc, yc + j0, t);
-    for (int r = 0; r < m; ++r)
-      yc[rows[r]] -= t[r];
-  }
-}
-
-template <class Value>
-void CompactFactor::backward_supernode(const Value* triangle, int s, double* y, int columns,
-                                       double* t) const {
-  const int j0 = first_[s], nc = first_[s + 1] - j0;
-  const int m = row_start_[s + 1] - row_start_[s];
-  const Value* block = triangle + triangle_entries(nc);
-  const std::uint16_t* rows = rows_.data() + row_start_[s];
-  for (int c = 0; c < columns; ++c) {
-    double* yc = y + static_cast<std::ptrdiff_t>(c) * size_;
-    if (nc == 1) {
-      column_backward(triangle, m, rows, inverse_diagonal_[j0], yc, j0);
-      continue;
-    }
-    if (nc == 2) {
-      pair_backward(triangle, m, rows, inverse_diagonal_.data() + j0, yc, j0);
-      continue;
-    }
-    if (m > 0) {
-      for (int r = 0; r < m; ++r)
-        t[r] = yc[rows[r]];
-      block_transposed_times(block, m, nc, t, yc + j0);
-    }
-    triangle_backward(triangle, nc, inverse_diagonal_.data() + j0, yc + j0);
-  }
-}
-
-template <class Value>
 void CompactFactor::forward(const Value* values, double* y, int columns, double* t,
                             bool reached_only) const {
   // The supernodes' entries follow each other in two parts: the reached, then the others.
@@ -484,13 +433,31 @@ void CompactFactor::forward(const Value* values, double* y, int columns, double*
   Prefetch ahead[2] = {{reinterpret_cast<std::uintptr_t>(next[0])},
                        {reinterpret_cast<std::uintptr_t>(next[1])}};
   for (int s = 0; s < supernodes(); ++s) {
+    const int j0 = first_[s], nc = first_[s + 1] - j0;
+    const int m = row_start_[s + 1] - row_start_[s];
     const bool reached = is_reached(s);
     if (reached_only && !reached) continue;
     const Value* triangle = next[reached];
-    next[reached] +=
-        supernode_entries(first_[s + 1] - first_[s], row_start_[s + 1] - row_start_[s]);
+    next[reached] += supernode_entries(nc, m);
     ahead[reached].upto(next[reached]);
-    forward_supernode(triangle, s, y, columns, t);
+    const Value* block = triangle + triangle_entries(nc);
+    const std::uint16_t* rows = rows_.data() + row_start_[s];
+    for (int c = 0; c < columns; ++c) {
+      double* yc = y + static_cast<std::ptrdiff_t>(c) * size_;
+      if (nc == 1) {  // a chain's columns (bars, beams)
+        column_forward(triangle, m, rows, inverse_diagonal_[j0], yc, j0);
+        continue;
+      }
+      if (nc == 2) {  // most supernodes of a plane model: a node's two DOFs
+        pair_forward(triangle, m, rows, inverse_diagonal_.data() + j0, yc, j0);
+        continue;
+      }
+      triangle_forward(triangle, nc, inverse_diagonal_.data() + j0, yc + j0);
+      if (m == 0) continue;
+      block_times(block, m, nc, yc + j0, t);
+      for (int r = 0; r < m; ++r)
+        yc[rows[r]] -= t[r];
+    }
   }
 }
 
@@ -500,10 +467,31 @@ void CompactFactor::backward(const Value* values, double* y, int columns, double
   // Past the last supernode's entries of each part (the others, the reached).
   const Value* end[2] = {values + stored_below_, values + reached_below_};
   for (int s = supernodes() - 1; s >= 0; --s) {
+    const int j0 = first_[s], nc = first_[s + 1] - j0;
+    const int m = row_start_[s + 1] - row_start_[s];
     const bool reached = is_reached(s);
     if (reached_only && !reached) continue;
-    end[reached] -= supernode_entries(first_[s + 1] - first_[s], row_start_[s + 1] - row_start_[s]);
-    backward_supernode(end[reached], s, y, columns, t);
+    end[reached] -= supernode_entries(nc, m);
+    const Value* triangle = end[reached];
+    const Value* block = triangle + triangle_entries(nc);
+    const std::uint16_t* rows = rows_.data() + row_start_[s];
+    for (int c = 0; c < columns; ++c) {
+      double* yc = y + static_cast<std::ptrdiff_t>(c) * size_;
+      if (nc == 1) {
+        column_backward(triangle, m, rows, inverse_diagonal_[j0], yc, j0);
+        continue;
+      }
+      if (nc == 2) {
+        pair_backward(triangle, m, rows, inverse_diagonal_.data() + j0, yc, j0);
+        continue;
+      }
+      if (m > 0) {
+        for (int r = 0; r < m; ++r)
+          t[r] = yc[rows[r]];
+        block_transposed_times(block, m, nc, t, yc + j0);
+      }
+      triangle_backward(triangle, nc, inverse_diagonal_.data() + j0, yc + j0);
+    }
   }
 }
 

@@ -137,11 +137,6 @@ class CompactFactor {
   void forward(const Value* values, double* y, int columns, double* t, bool reached_only) const;
   template <class Value>
   void backward(const Value* values, double* y, int columns, double* t, bool reached_only) const;
-  // One supernode of those: s, its entries from `triangle` on.
-  template <class Value>
-  void forward_supernode(const Value* triangle, int s, double* y, int columns, double* t) const;
-  template <class Value>
-  void backward_supernode(const Value* triangle, int s, double* y, int columns, double* t) const;
   void solve_parts(double* y, int columns, bool reached_only) const;
   bool is_reached(int s) const { return reached_.empty() || reached_[static_cast<std::size_t>(s)]; }
   template <class Value>
