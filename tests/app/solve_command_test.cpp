@@ -294,33 +294,37 @@ TEST_CASE("solve --profile: per process counts, and MPRGP's iterations by step k
   }
 }
 
+namespace {
+
+// The string `field` of the --profile of a small solve started under `environment` (an
+// `env ...` prefix): what the process itself saw after fetic's start-up (app/main.cpp).
+std::string profile_string(const std::string& environment, const std::string& field) {
+  const std::string profile_path = temporary("fetic_profile_start_up.json");
+  const Run r =
+      fetic::test::run_shell(environment + " " + std::string(FETIC_EXECUTABLE) + " solve " +
+                             scene("thesis.toml") + " --quiet --profile " + profile_path);
+  INFO(r.output);
+  REQUIRE(r.status == 0);
+  std::ifstream in(profile_path);
+  const std::string value = nlohmann::json::parse(in)[field].get<std::string>();
+  std::filesystem::remove(profile_path);
+  return value;
+}
+
+}  // namespace
+
 TEST_CASE("fetic starts its OpenMP threads passive unless OMP_WAIT_POLICY is given") {
-  const std::string profile_path = temporary("fetic_profile_wait_policy.json");
-  const auto policy_of = [&](const std::string& environment) {
-    const Run r =
-        fetic::test::run_shell(environment + " " + std::string(FETIC_EXECUTABLE) + " solve " +
-                               scene("thesis.toml") + " --quiet --profile " + profile_path);
-    INFO(r.output);
-    REQUIRE(r.status == 0);
-    std::ifstream in(profile_path);
-    return nlohmann::json::parse(in)["openmp_wait_policy"].get<std::string>();
+  const auto policy_of = [](const std::string& environment) {
+    return profile_string(environment, "openmp_wait_policy");
   };
   // Spinning threads make a solve several times slower when another process holds a core.
   CHECK(policy_of("env -u OMP_WAIT_POLICY") == "passive");
   CHECK(policy_of("env OMP_WAIT_POLICY=active") == "active");  // the user's choice wins
-  std::filesystem::remove(profile_path);
 }
 
 TEST_CASE("fetic asks glibc's malloc for huge pages unless GLIBC_TUNABLES names hugetlb") {
-  const std::string profile_path = temporary("fetic_profile_tunables.json");
-  const auto tunables_of = [&](const std::string& environment) {
-    const Run r =
-        fetic::test::run_shell(environment + " " + std::string(FETIC_EXECUTABLE) + " solve " +
-                               scene("thesis.toml") + " --quiet --profile " + profile_path);
-    INFO(r.output);
-    REQUIRE(r.status == 0);
-    std::ifstream in(profile_path);
-    return nlohmann::json::parse(in)["glibc_tunables"].get<std::string>();
+  const auto tunables_of = [](const std::string& environment) {
+    return profile_string(environment, "glibc_tunables");
   };
   // Each first touch of a 4 KiB heap page costs 10-30 us on the machines measured (main.cpp).
   CHECK(tunables_of("env -u OMP_WAIT_POLICY -u GLIBC_TUNABLES") == "glibc.malloc.hugetlb=1");
@@ -329,5 +333,4 @@ TEST_CASE("fetic asks glibc's malloc for huge pages unless GLIBC_TUNABLES names 
         "glibc.malloc.arena_max=2:glibc.malloc.hugetlb=1");
   CHECK(tunables_of("env -u OMP_WAIT_POLICY GLIBC_TUNABLES=glibc.malloc.hugetlb=0") ==
         "glibc.malloc.hugetlb=0");
-  std::filesystem::remove(profile_path);
 }
