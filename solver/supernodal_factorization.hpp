@@ -3,11 +3,12 @@
 // FETI subdomain's K_j or K_ii, ~1,000 unknowns) computed straight into CompactFactor's
 // layout (solver/compact_factor.hpp): per supernode the strict lower triangle packed by
 // columns, then the dense m x nc block of its rows below, one row list per supernode.
-// CHOLMOD chooses the fill-reducing permutation; the rest is done here. For these sizes
+// AMD (SuiteSparse, called directly) chooses the fill-reducing permutation; the rest is
+// done here. For these sizes
 // CHOLMOD's simplicial up-looking factorization (a sparse triangular solve per row) and
 // the copy of its columns into supernodes were most of the FETI set-up, and its own
 // supernodal factorization spends more time in BLAS call overheads than in arithmetic
-// (docs/BENCHMARKS.md, "Supernodal factorization into the compact layout").
+// (docs/BENCHMARKS.md, "Subdomain factors computed in the compact layout").
 //
 // Symbolic: the elimination tree of P A P' and its column counts (row subtrees), the
 // fundamental supernodes (a column whose parent is the next column, its only child, with
