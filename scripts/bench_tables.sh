@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
 # Runs the parts of `fetic-bench-scale --preset full` for two binaries, alternating, so
 # that a loaded machine hits both alike: every part is its own process, in rounds of
-# old, new, new, old. Each run writes its CSVs and `/usr/bin/time -f "%e %M %x"` (wall s,
-# peak kB, exit status) into OUT/<part>/<round>.<slot>.<old|new>/; OUT/load.txt gets the
-# time and /proc/loadavg every 15 s. scripts/compare_tables.py OUT reads it all.
+# old, new, new, old. Each run writes its CSVs and `/usr/bin/time -f "%e %M %U %S %x"`
+# (wall s, peak kB, user s, system s, exit status) into
+# OUT/<part>/<round>.<slot>.<old|new>/; OUT/load.txt gets the time and /proc/loadavg
+# every 15 s. scripts/compare_tables.py OUT reads it all.
 #
 #   scripts/bench_tables.sh OLD_BENCH NEW_BENCH OUT [ROUNDS [PART...]]
 #
@@ -17,7 +18,7 @@
 set -euo pipefail
 
 if [[ $# -lt 3 ]]; then
-  sed -n '2,17p' "$0"
+  sed -n '2,18p' "$0"
   exit 2
 fi
 old=$(realpath "$1")
@@ -47,7 +48,7 @@ run_one() { # part, directory, binary
   fi
   mkdir -p "$dir"
   echo "$(date -u +%T) start $dir" >>"$out/runs.txt"
-  "${lock[@]}" /usr/bin/time -f "%e %M %x" -o "$dir/time.txt" \
+  "${lock[@]}" /usr/bin/time -f "%e %M %U %S %x" -o "$dir/time.txt" \
     "$binary" --preset "${PRESET:-full}" --only "$part" --csv-dir "$dir" >"$dir/stdout.txt" 2>"$dir/stderr.txt" ||
     true
   echo "$(date -u +%T) end $dir $(cat "$dir/time.txt" | tail -1)" >>"$out/runs.txt"

@@ -2,12 +2,12 @@
 """New / old per cell of fetic-bench-scale's tables, from the runs of scripts/bench_tables.sh.
 
     scripts/compare_tables.py OUT [--threshold 1.10] [--rows-by-place FILE...]
-                                  [--rename OLD=NEW ...]
+                                  [--rename OLD=NEW ...] [--sum FILE:A+B ...]
 
 OUT holds OUT/<part>/<round>.<slot>.<old|new>/ (CSVs and time.txt). A round of a part is
 old, new, new, old: its pairs are slot 1 with slot 2 and slot 4 with slot 3, each a run
 that finished (exit status 0). Printed as Markdown: per part the pairs, the median
-whole-process wall new / old (min-max) and the peaks; then per CSV and row (matched by
+whole-process wall and CPU time new / old (min-max) and the peaks; then per CSV and row (matched by
 row name) the median new / old (min-max) of every time column - a header ending in " s"
 or " ms", and every column of setup.csv - in bold where the median is above the
 threshold. Cells whose old and new values are both 0 are left out of a cell's ratios.
@@ -16,7 +16,15 @@ Rows whose names changed between the versions: --rename OLD=NEW replaces the tex
 in the old rows' names (e.g. "one factor=double factors"); --rows-by-place FILE matches
 FILE's rows by their place among the rows that share the scene (the name up to its last
 ", "): the first against the first, the second against the second. Columns are matched
-by name, with the renames in COLUMN_RENAMES.
+by name, with the renames in COLUMN_RENAMES. --sum FILE:A+B adds the column "A + B" to
+FILE's table, for work that moved from one column to another between the versions (since
+c264bc3 the Dirichlet interiors' factors are made in "K_j factors", no longer in
+"preconditioner": --sum "setup.csv:K_j factors+preconditioner").
+
+For the last check (docs/BENCHMARKS.md), with b4f7ef1's and main's fetic-bench-scale:
+    scripts/bench_tables.sh bench-old bench-new runs 2
+    scripts/compare_tables.py runs --rows-by-place setup.csv apply_F.csv bytes.csv \
+        --sum "setup.csv:K_j factors+preconditioner"
 """
 import argparse
 import csv
@@ -32,15 +40,17 @@ ORDINALS = ["1st", "2nd", "3rd", "4th"]
 
 
 def read_time(run):
-    """(wall s, peak kB) of a run that finished, else None."""
+    """(wall s, peak kB, CPU s or None) of a run that finished, else None. time.txt holds
+    "wall peak status" or "wall peak user system status" (its last line)."""
     try:
         with open(os.path.join(run, "time.txt")) as f:
-            fields = f.read().split()[-3:]
+            fields = f.read().strip().split("\n")[-1].split()
     except OSError:
         return None
-    if len(fields) != 3 or fields[2] != "0":
+    if len(fields) not in (3, 5) or fields[-1] != "0":
         return None
-    return float(fields[0]), int(fields[1])
+    cpu = float(fields[2]) + float(fields[3]) if len(fields) == 5 else None
+    return float(fields[0]), int(fields[1]), cpu
 
 
 def pairs_of(part_dir):
@@ -65,11 +75,19 @@ def number(cell):
     return float(m.group(1)) if m else None
 
 
-def read_csv(path, renames, by_place):
-    """{row key: {column: text}} and the column order of the file."""
+def read_csv(path, renames, by_place, sums=()):
+    """{row key: {column: text}} and the column order of the file, with a column
+    "A + B" added for every (file, [A, B]) of `sums` that names this file."""
     with open(path, newline="") as f:
         rows = list(csv.reader(f))
     header = [COLUMN_RENAMES.get(h, h) for h in rows[0]]
+    added = [columns for file, columns in sums if file == os.path.basename(path)]
+    for columns in added:
+        places = [header.index(c) if c in header else None for c in columns]
+        header.append(" + ".join(columns))
+        for row in rows[1:]:
+            values = [number(row[i]) if i is not None and i < len(row) else None for i in places]
+            row.append("-" if None in values else repr(sum(values)))
     table, seen = {}, {}
     for row in rows[1:]:
         name = row[0]
@@ -94,15 +112,15 @@ def ratio_text(ratios):
     return med, "%.2f (%.2f-%.2f)" % (med, min(ratios), max(ratios))
 
 
-def cell_ratios(pairs, file, renames, by_place):
+def cell_ratios(pairs, file, renames, by_place, sums):
     """{row: {column: [new / old per pair]}}, rows and columns in the new file's order."""
     cells, rows, columns = {}, [], []
     for old_run, new_run in pairs:
         paths = [os.path.join(run, file) for run in (old_run, new_run)]
         if not all(os.path.exists(p) for p in paths):
             continue
-        old, _ = read_csv(paths[0], renames, by_place)
-        new, header = read_csv(paths[1], [], by_place)
+        old, _ = read_csv(paths[0], renames, by_place, sums)
+        new, header = read_csv(paths[1], [], by_place, sums)
         columns = [c for c in header if is_time(file, c)]
         rows = [r for r in new if r in old]
         for row in rows:
@@ -116,8 +134,8 @@ def cell_ratios(pairs, file, renames, by_place):
     return cells, rows, columns
 
 
-def print_cells(part, file, pairs, threshold, renames, by_place):
-    cells, rows, columns = cell_ratios(pairs, file, renames, by_place)
+def print_cells(part, file, pairs, threshold, renames, by_place, sums):
+    cells, rows, columns = cell_ratios(pairs, file, renames, by_place, sums)
     if not cells:
         return []
     flagged = []
@@ -146,11 +164,14 @@ def main():
     parser.add_argument("--threshold", type=float, default=1.10)
     parser.add_argument("--rows-by-place", nargs="*", default=[], metavar="FILE")
     parser.add_argument("--rename", action="append", default=[], metavar="OLD=NEW")
+    parser.add_argument("--sum", action="append", default=[], metavar="FILE:A+B")
     args = parser.parse_args()
     renames = [tuple(r.split("=", 1)) for r in args.rename]
+    sums = [(s.split(":", 1)[0], s.split(":", 1)[1].split("+")) for s in args.sum]
     parts = sorted(d for d in os.listdir(args.out) if os.path.isdir(os.path.join(args.out, d)))
-    print("| part | pairs | whole process wall, new / old | wall old / new (medians) | peak old / new |")
-    print("|---|---|---|---|---|")
+    print("| part | pairs | whole process wall, new / old | CPU (user + system), new / old "
+          "| wall old / new (medians) | peak old / new |")
+    print("|---|---|---|---|---|---|")
     all_pairs = {}
     for part in parts:
         pairs = pairs_of(os.path.join(args.out, part))
@@ -159,8 +180,10 @@ def main():
             continue
         times = [(read_time(a), read_time(b)) for a, b in pairs]
         _, wall = ratio_text([b[0] / a[0] for a, b in times])
-        print("| %s | %d | %s | %.1f / %.1f s | %.0f / %.0f MB |" % (
-            part, len(pairs), wall,
+        cpu_ratios = [b[2] / a[2] for a, b in times if a[2] and b[2]]
+        cpu = "%s (%d pairs)" % (ratio_text(cpu_ratios)[1], len(cpu_ratios)) if cpu_ratios else "-"
+        print("| %s | %d | %s | %s | %.1f / %.1f s | %.0f / %.0f MB |" % (
+            part, len(pairs), wall, cpu,
             statistics.median(a[0] for a, _ in times), statistics.median(b[0] for _, b in times),
             max(a[1] for a, _ in times) / 1024, max(b[1] for _, b in times) / 1024))
     flagged = []
@@ -171,7 +194,7 @@ def main():
         files = sorted(f for f in os.listdir(pairs[0][1]) if f.endswith(".csv"))
         for file in files:
             flagged += print_cells(part, file, pairs, args.threshold, renames,
-                                   file in args.rows_by_place)
+                                   file in args.rows_by_place, sums)
     print("\nMedians above %.2f: %d" % (args.threshold, len(flagged)))
     for part, file, row, column, text in flagged:
         print("- %s / %s / %s / %s: %s" % (part, file, row, column, text.strip("*")))
