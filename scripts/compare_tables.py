@@ -18,7 +18,7 @@ FILE's rows by their place among the rows that share the scene (the name up to i
 ", "): the first against the first, the second against the second. Columns are matched
 by name, with the renames in COLUMN_RENAMES. --sum FILE:A+B adds the column "A + B" to
 FILE's table, for work that moved from one column to another between the versions (since
-c264bc3 the Dirichlet interiors' factors are made in "K_j factors", no longer in
+b7e8ea2 the Dirichlet interiors' factors are made in "K_j factors", no longer in
 "preconditioner": --sum "setup.csv:K_j factors+preconditioner").
 
 For the last check (docs/BENCHMARKS.md), with b4f7ef1's and main's fetic-bench-scale:
