@@ -22,6 +22,15 @@ namespace {
 
 constexpr double kSingularRcond = 1e-15;
 
+// Sorts [first, last) by `less`, stably, by insertion: for the few items of a row of B
+// or a column of G (std::stable_sort allocated per call).
+template <class Iterator, class Less>
+void insertion_sort(Iterator first, Iterator last, Less less) {
+  for (Iterator k = first; k != last; ++k)
+    for (Iterator j = k; j != first && less(*j, *(j - 1)); --j)
+      std::iter_swap(j - 1, j);
+}
+
 // glibc's heap thresholds fixed at the values its own rule reaches after the first large
 // free (mmap 32 MB, trim twice that). At the start-up defaults (128 KB) each subdomain's
 // temporaries above 128 KB (CHOLMOD's workspace, K_j) are mapped and unmapped, and the heaps
@@ -100,14 +109,11 @@ FetiSystem::FetiSystem(const Model& model, const Communicator& communicator, boo
 
 void FetiSystem::own_entries_in_order(const Row& row, std::vector<int>& out) const {
   out.clear();
-  for (int e = 0; e < static_cast<int>(row.entries.size()); ++e) {
-    if (own_index_[row.entries[e].subdomain] < 0) continue;
-    // Insertion, stable: a row has a few entries (std::stable_sort allocated per row).
-    auto at = out.end();
-    while (at != out.begin() && row.entries[*(at - 1)].subdomain > row.entries[e].subdomain)
-      --at;
-    out.insert(at, e);
-  }
+  for (int e = 0; e < static_cast<int>(row.entries.size()); ++e)
+    if (own_index_[row.entries[e].subdomain] >= 0) out.push_back(e);
+  insertion_sort(out.begin(), out.end(), [&row](int a, int b) {
+    return row.entries[a].subdomain < row.entries[b].subdomain;
+  });
 }
 
 void FetiSystem::build_incidence() {
@@ -314,10 +320,8 @@ void column_of_G(const Row& row, const Decomposition& d,
       if (R(entry.dof, m) != 0.0)
         column.emplace_back(sub.mode_offset + m, R(entry.dof, m) * entry.value);
   }
-  // Insertion, stable (std::stable_sort allocated per column): a column has a few terms.
-  for (std::size_t k = 1; k < column.size(); ++k)
-    for (std::size_t j = k; j > 0 && column[j - 1].first > column[j].first; --j)
-      std::swap(column[j - 1], column[j]);
+  insertion_sort(column.begin(), column.end(),
+                 [](const auto& a, const auto& b) { return a.first < b.first; });
   std::size_t kept = 0;
   for (std::size_t k = 0; k < column.size(); ++k) {
     if (kept > 0 && column[kept - 1].first == column[k].first)
