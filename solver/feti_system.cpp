@@ -7,7 +7,6 @@
 #include <map>
 #include <string>
 
-#include <malloc.h>
 #include <omp.h>
 
 #include "solver/corners.hpp"
@@ -31,22 +30,7 @@ void insertion_sort(Iterator first, Iterator last, Less less) {
       std::iter_swap(j - 1, j);
 }
 
-// glibc's heap thresholds fixed at the values its own rule reaches after the first large
-// free (mmap 32 MB, trim twice that). At the start-up defaults (128 KB) each subdomain's
-// temporaries above 128 KB (CHOLMOD's workspace, K_j) are mapped and unmapped, and the heaps
-// trimmed and grown, subdomain after subdomain: at 984,900 unknowns 239,000 page faults
-// instead of 59,000 and the factorization 1.5x slower, once the set-up no longer freed a
-// large grown array before it (which had raised them by accident). Process-wide, and set
-// the same by every set-up.
-void keep_freed_heap_for_reuse() {
-#ifdef __GLIBC__
-  mallopt(M_MMAP_THRESHOLD, 32 << 20);
-  mallopt(M_TRIM_THRESHOLD, 64 << 20);
-#endif
-}
-
 Decomposition decomposition_for(const Model& model, int corner_clusters, bool edge_averages) {
-  keep_freed_heap_for_reuse();
   Decomposition boxes = decompose(model);
   if (corner_clusters == 0) return boxes;
   return join_corners(model, boxes, std::max(corner_clusters, 0), edge_averages);
