@@ -9,6 +9,7 @@
 #include <string>
 
 #include "app/exit_codes.hpp"
+#include "app/heap_policy.hpp"
 #include "app/processes.hpp"
 #include "app/run_command_line.hpp"
 #include "scenes/scene_error.hpp"
@@ -79,6 +80,7 @@ void use_passive_openmp_threads(char** argv) {
 
 int main(int argc, char** argv) {
   use_passive_openmp_threads(argv);
+  fetic::app::keep_freed_heap_for_reuse();
   if (!fetic::app::start_processes(&argc, &argv)) return fetic::app::kExitUsage;
   const int status = [&] {
     if (refuse_under_mpi(argc, argv)) return static_cast<int>(fetic::app::kExitUsage);

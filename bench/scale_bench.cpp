@@ -31,6 +31,7 @@
 #include <CLI/CLI.hpp>
 
 #include "app/exit_codes.hpp"
+#include "app/heap_policy.hpp"
 #include "app/output_file.hpp"
 #include "bench/floor_pair.hpp"
 #include "bench/ipopt_qp.hpp"
@@ -512,6 +513,7 @@ int run(const Args& args) {
 }  // namespace fetic::bench
 
 int main(int argc, char** argv) {
+  fetic::app::keep_freed_heap_for_reuse();  // as fetic sets it (app/main.cpp)
   CLI::App app{
       "fetic-bench-scale: FETI-C and MPRGP at scale against the direct floor, the "
       "active-set method and Ipopt"};

@@ -104,6 +104,23 @@ CholmodFactor::Result CholmodFactor::refactorize(const SparseMatrix& A) {
   return numeric(A);
 }
 
+namespace {
+
+// The first column of a simplicial LDL' factor whose pivot D(j, j) is not positive (or
+// NaN), -1 when there is none or the factor is LL'. CHOLMOD factorizes a small matrix
+// as LDL' by default and goes on through negative pivots (it stops only at a zero one),
+// where its LL' stops at the first pivot that is not positive.
+int first_nonpositive_pivot(const cholmod_factor* L) {
+  if (L->is_super || L->is_ll) return -1;
+  const int* p = static_cast<const int*>(L->p);
+  const double* x = static_cast<const double*>(L->x);
+  for (int j = 0; j < static_cast<int>(L->n); ++j)
+    if (!(x[p[j]] > 0.0)) return j;  // D(j, j) is the column's first entry
+  return -1;
+}
+
+}  // namespace
+
 CholmodFactor::Result CholmodFactor::numeric(const SparseMatrix& A) {
   cholmod_sparse view = view_of(A);
   cholmod_common& c = impl_->common;
@@ -112,6 +129,8 @@ CholmodFactor::Result CholmodFactor::numeric(const SparseMatrix& A) {
     failed_column_ = static_cast<int>(impl_->factor->minor);
     return Result::NotPositiveDefinite;
   }
+  if (c.status >= CHOLMOD_OK) failed_column_ = first_nonpositive_pivot(impl_->factor);
+  if (failed_column_ >= 0) return Result::NotPositiveDefinite;
   if (c.status == CHOLMOD_OUT_OF_MEMORY) throw std::bad_alloc();
   if (c.status < CHOLMOD_OK) return Result::Failed;
   // The factorization's workspace (O(n) per factor, thousands of factors in a FETI

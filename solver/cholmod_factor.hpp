@@ -27,6 +27,8 @@ class CholmodFactor {
 
   // Factorizes the symmetric matrix A (only its lower triangle is read). Throws
   // std::bad_alloc when CHOLMOD runs out of memory (OutOfMemory is never returned).
+  // NotPositiveDefinite when A is not positive definite, from CHOLMOD's LDL' (its default
+  // for a small A, which factorizes through negative pivots) as from its LL'.
   // `to_compact`: the factor is only going to be compact()ed, so a small one (at most
   // kSimplicialUpTo rows) is factorized by SupernodalFactorization straight into
   // CompactFactor's layout, on AMD's ordering as CHOLMOD's analysis would choose it;

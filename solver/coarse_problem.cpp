@@ -76,9 +76,7 @@ void CoarseProblem::write_products(const SubdomainOperator& op, const Subdomain&
   const SparseMatrix& G = system_.G();
   int next = first_product;
   for (int r : rows_of(op)) {
-    RowProducts rp;
-    rp.row = r;
-    rp.first = next;
+    RowProducts rp{r, next, next};
     int ia = 0;
     for (SparseMatrix::InnerIterator a(G, r); a; ++a, ++ia) {
       if (!own_mode(sub, a.row())) continue;

@@ -39,6 +39,7 @@
 #include <Eigen/SparseCore>
 
 #include "solver/cholmod_factor.hpp"
+#include "solver/default_init.hpp"
 #include "solver/feti_system.hpp"
 
 namespace fetic::solver {
@@ -117,18 +118,21 @@ class CoarseProblem {
 
   // This process' block rows of G G': per own subdomain, its local rows; each row's
   // products g_a g_b go to value positions of the block rows.
+  // No default values: the pattern's arrays of them are sized unwritten (DefaultInitVector)
+  // and then written on both cores (a zeroing resize was a serial pass over them).
   struct Product {
-    int value = 0;     // into own_values_
-    int a = 0, b = 0;  // positions of the two factors in the row's column of G
+    int value;  // into own_values_
+    int a, b;   // positions of the two factors in the row's column of G
   };
   struct RowProducts {
-    int row = 0;             // local row
-    int first = 0, end = 0;  // into Pattern::products
+    int row;         // local row
+    int first, end;  // into Pattern::products
   };
   // This process' products and where their sums go: fixed, shared by SamePattern copies.
   struct Pattern {
-    std::vector<RowProducts> row_products;  // in increasing local row, grouped by own subdomain
-    std::vector<Product> products;
+    // in increasing local row, grouped by own subdomain
+    DefaultInitVector<RowProducts> row_products;
+    DefaultInitVector<Product> products;
     std::size_t own_values = 0;
     std::vector<int> value_slot;  // per gathered value: its position in matrix_ (or -1)
   };

@@ -239,8 +239,8 @@ void triangle_backward_in_order(const Value* v, int nc, const double* inverse_di
 }
 
 // The same as four partial sums. In order, each subtraction waits on the one before: on
-// the top supernodes of a plane model (dense triangles of 40-70 columns, 10-20% of the
-// entries) that chain was the back solve's critical path and the largest part of
+// the top supernodes of a plane model (dense triangles of 60-75 columns, 11-12% of the
+// reached entries) that chain was the back solve's critical path and the largest part of
 // M^-1's (docs/BENCHMARKS.md, "F and M^-1: prefetching the factors"). Only there: it
 // rounds otherwise, and the small supernodes of the ill-conditioned frame scenes keep their bits
 // (in partial sums on every supernode frame_scaffold took 91 MPRGP iterations, not 89).

@@ -69,7 +69,7 @@ bool FetiC::hold_loaded_groups() {
       if (std::abs(push) <= negligible) continue;
       reached.clear();
       for (Eigen::SparseVector<double>::InnerIterator mode(group.direction); mode; ++mode)
-        for (SparseMatrix::InnerIterator row(Gt_, mode.index()); row; ++row) {
+        for (SparseMatrix::InnerIterator row(Gt(), mode.index()); row; ++row) {
           if (along[static_cast<size_t>(row.index())] == 0.0) reached.push_back(row.index());
           along[static_cast<size_t>(row.index())] += row.value() * mode.value();
         }

@@ -21,8 +21,7 @@ FetiMethod::FetiMethod(MethodKind kind, const Model& model, const SolveOptions& 
       coarse_([this] {
         Stopwatch watch(coarse_setup_seconds_);
         return CoarseProblem(system_);
-      }()),
-      Gt_(system_.G().transpose()) {
+      }()) {
   system_.release_stiffness();
 }
 
@@ -71,7 +70,7 @@ Eigen::VectorXd FetiMethod::rigid_amplitudes() const {
   for (const UnheldGroup& group : coarse_.unheld()) {
     // Gap of every row the group reaches under the current placement, and its rate of
     // change per unit translation s along z: gap(s) = gap(0) - s (G'z)_k.
-    reached_rows(Gt_, group.direction, along_rows, rate);
+    reached_rows(Gt(), group.direction, along_rows, rate);
     double low = -std::numeric_limits<double>::infinity();
     double high = std::numeric_limits<double>::infinity();
     for (const auto& [r, g] : rate) {

@@ -5,6 +5,7 @@
 // subdomain interfaces until lambda has converged.
 
 #include <algorithm>
+#include <optional>
 #include <vector>
 
 #include <Eigen/Core>
@@ -78,6 +79,10 @@ class FetiMethod : public Method {
   double reference_error() const override;
   long long f_applications() const override { return system_.f_applications(); }
 
+  const SparseMatrix& Gt() const {
+    if (!Gt_) Gt_.emplace(system_.G().transpose());
+    return *Gt_;
+  }
   // Rigid-body amplitudes alpha = (G^ G^')^+ G^ (F lambda - d) for the current rows,
   // with groups of floating struts the active rows leave free placed as close to where
   // they started as the gaps allow.
@@ -127,7 +132,10 @@ class FetiMethod : public Method {
   FetiPreconditioner preconditioner_;
   double coarse_setup_seconds_ = 0.0;  // before coarse_, whose construction it times
   CoarseProblem coarse_;
-  SparseMatrix Gt_;  // G' (local rows x modes): a column per mode, the rows it reaches
+  // G' (local rows x modes): a column per mode, the rows it reaches. Made on first use: only
+  // groups of subdomains the active rows leave free read it (the serial transposition
+  // was a part of every set-up).
+  mutable std::optional<SparseMatrix> Gt_;
   Eigen::VectorXd d_;
   Eigen::VectorXd e_;
   double scale_ = 0.0;

@@ -7,7 +7,6 @@
 #include <map>
 #include <string>
 
-#include <malloc.h>
 #include <omp.h>
 
 #include "solver/corners.hpp"
@@ -22,22 +21,16 @@ namespace {
 
 constexpr double kSingularRcond = 1e-15;
 
-// glibc's heap thresholds fixed at the values its own rule reaches after the first large
-// free (mmap 32 MB, trim twice that). At the start-up defaults (128 KB) each subdomain's
-// temporaries above 128 KB (CHOLMOD's workspace, K_j) are mapped and unmapped, and the heaps
-// trimmed and grown, subdomain after subdomain: at 984,900 unknowns 239,000 page faults
-// instead of 59,000 and the factorization 1.5x slower, once the set-up no longer freed a
-// large grown array before it (which had raised them by accident). Process-wide, and set
-// the same by every set-up.
-void keep_freed_heap_for_reuse() {
-#ifdef __GLIBC__
-  mallopt(M_MMAP_THRESHOLD, 32 << 20);
-  mallopt(M_TRIM_THRESHOLD, 64 << 20);
-#endif
+// Sorts [first, last) by `less`, stably, by insertion: for the few items of a row of B
+// or a column of G (std::stable_sort allocated per call).
+template <class Iterator, class Less>
+void insertion_sort(Iterator first, Iterator last, Less less) {
+  for (Iterator k = first; k != last; ++k)
+    for (Iterator j = k; j != first && less(*j, *(j - 1)); --j)
+      std::iter_swap(j - 1, j);
 }
 
 Decomposition decomposition_for(const Model& model, int corner_clusters, bool edge_averages) {
-  keep_freed_heap_for_reuse();
   Decomposition boxes = decompose(model);
   if (corner_clusters == 0) return boxes;
   return join_corners(model, boxes, std::max(corner_clusters, 0), edge_averages);
@@ -100,14 +93,11 @@ FetiSystem::FetiSystem(const Model& model, const Communicator& communicator, boo
 
 void FetiSystem::own_entries_in_order(const Row& row, std::vector<int>& out) const {
   out.clear();
-  for (int e = 0; e < static_cast<int>(row.entries.size()); ++e) {
-    if (own_index_[row.entries[e].subdomain] < 0) continue;
-    // Insertion, stable: a row has a few entries (std::stable_sort allocated per row).
-    auto at = out.end();
-    while (at != out.begin() && row.entries[*(at - 1)].subdomain > row.entries[e].subdomain)
-      --at;
-    out.insert(at, e);
-  }
+  for (int e = 0; e < static_cast<int>(row.entries.size()); ++e)
+    if (own_index_[row.entries[e].subdomain] >= 0) out.push_back(e);
+  insertion_sort(out.begin(), out.end(), [&row](int a, int b) {
+    return row.entries[a].subdomain < row.entries[b].subdomain;
+  });
 }
 
 void FetiSystem::build_incidence() {
@@ -132,27 +122,37 @@ void FetiSystem::build_incidence() {
 }
 
 // B's entries per own subdomain, and per local row the own entries grouped by subdomain,
-// on both cores: each thread takes a block of rows, counts its rows' terms and its
-// entries per subdomain, then writes them where the counts before it end - the order a
-// serial pass row after row gives (which was 0.75 s of CPU at 1e7).
+// on both cores: each thread takes a block of rows, orders each row's own entries once
+// (kept, row after row) and counts its rows' terms and its entries per subdomain, then
+// writes them where the counts before it end - the order a serial pass row after row
+// gives (which was 0.75 s of CPU at 1e7).
 void FetiSystem::fill_terms_and_incidence() {
   const Decomposition& d = decomposition_;
   const int rows = space_.rows();
   const int count = static_cast<int>(subdomains_.size());
   row_parts_.resize(static_cast<std::size_t>(rows));
-  std::vector<std::vector<int>> before;  // per thread, per own subdomain: entries before it
-#pragma omp parallel num_threads(threads_for(4LL * rows))
+  const int threads = threads_for(4LL * rows);
+  // Per thread, per own subdomain: its entries in the thread's rows, then the entries
+  // of the threads before it.
+  std::vector<std::vector<int>> before(static_cast<std::size_t>(threads));
+#pragma omp parallel num_threads(threads)
   {
     const int team = omp_get_num_threads(), t = omp_get_thread_num();
     const int begin = static_cast<int>(1LL * rows * t / team);
     const int end = static_cast<int>(1LL * rows * (t + 1) / team);
-    std::vector<int> order;
+    std::vector<int>& mine = before[t];
+    mine.assign(static_cast<std::size_t>(count), 0);
+    std::vector<int> order, orders;  // orders: each row's order, row after row
     for (int r = begin; r < end; ++r) {
-      own_entries_in_order(d.rows[space_.global_row(r)], order);
+      const Row& row = d.rows[space_.global_row(r)];
+      own_entries_in_order(row, order);
       row_parts_[r].end = static_cast<int>(order.size());
+      for (int e : order)
+        ++mine[own_index_[row.entries[e].subdomain]];
+      orders.insert(orders.end(), order.begin(), order.end());
     }
 #pragma omp barrier
-#pragma omp single
+#pragma omp single nowait
     {
       int at = 0;
       for (RowPart& part : row_parts_) {
@@ -161,46 +161,39 @@ void FetiSystem::fill_terms_and_incidence() {
         part.end = at;
       }
       part_entries_.resize(static_cast<std::size_t>(at));
-      before.assign(static_cast<std::size_t>(team), std::vector<int>(count, 0));
     }
-    std::vector<int>& mine = before[t];
-    for (int r = begin; r < end; ++r) {
-      const Row& row = d.rows[space_.global_row(r)];
-      own_entries_in_order(row, order);
-      int term = row_parts_[r].first, previous = -1;
-      for (int e : order) {
-        const RowEntry& entry = row.entries[e];
-        const int i = own_index_[entry.subdomain];
-        part_entries_[term++] = {dof_offsets_[i] + entry.dof, entry.value,
-                                 previous >= 0 && entry.subdomain != previous};
-        previous = entry.subdomain;
-        ++mine[i];
-      }
-    }
-#pragma omp barrier
 #pragma omp for schedule(static)
     for (int i = 0; i < count; ++i) {
       int total = 0;
-      for (std::vector<int>& counts : before) {
-        const int n = counts[i];
-        counts[i] = total;
+      for (int q = 0; q < team; ++q) {
+        const int n = before[q][i];
+        before[q][i] = total;
         total += n;
       }
       subdomains_[i].incidence.resize(static_cast<std::size_t>(total));
       subdomains_[i].terms.resize(static_cast<std::size_t>(total));
     }
-    for (int r = begin; r < end; ++r) {
-      const Row& row = d.rows[space_.global_row(r)];
-      own_entries_in_order(row, order);
-      int term = row_parts_[r].first;
-      for (int e : order) {
-        const RowEntry& entry = row.entries[e];
-        SubdomainOperator& op = subdomains_[own_index_[entry.subdomain]];
-        const int k = mine[own_index_[entry.subdomain]]++;
-        op.incidence[k] = {r, entry.dof, entry.value};
-        op.terms[k] = term++;
-      }
-    }
+    const int* next = orders.data();
+    for (int r = begin; r < end; ++r)
+      write_row_terms(r, next, mine);
+  }
+}
+
+// Row r's terms and its entries of the own subdomains' incidence, its own entries taken
+// in order from `next` on; `at`: per own subdomain, where its next entry goes.
+void FetiSystem::write_row_terms(int r, const int*& next, std::vector<int>& at) {
+  const Row& row = decomposition_.rows[space_.global_row(r)];
+  int previous = -1;
+  for (int term = row_parts_[r].first; term < row_parts_[r].end; ++term) {
+    const RowEntry& entry = row.entries[*next++];
+    const int i = own_index_[entry.subdomain];
+    part_entries_[term] = {dof_offsets_[i] + entry.dof, entry.value,
+                           previous >= 0 && entry.subdomain != previous};
+    previous = entry.subdomain;
+    SubdomainOperator& op = subdomains_[i];
+    const int k = at[i]++;
+    op.incidence[k] = {r, entry.dof, entry.value};
+    op.terms[k] = term;
   }
 }
 
@@ -311,10 +304,8 @@ void column_of_G(const Row& row, const Decomposition& d,
       if (R(entry.dof, m) != 0.0)
         column.emplace_back(sub.mode_offset + m, R(entry.dof, m) * entry.value);
   }
-  // Insertion, stable (std::stable_sort allocated per column): a column has a few terms.
-  for (std::size_t k = 1; k < column.size(); ++k)
-    for (std::size_t j = k; j > 0 && column[j - 1].first > column[j].first; --j)
-      std::swap(column[j - 1], column[j]);
+  insertion_sort(column.begin(), column.end(),
+                 [](const auto& a, const auto& b) { return a.first < b.first; });
   std::size_t kept = 0;
   for (std::size_t k = 0; k < column.size(); ++k) {
     if (kept > 0 && column[kept - 1].first == column[k].first)

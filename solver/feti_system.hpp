@@ -183,6 +183,7 @@ class FetiSystem {
   void gather_rows(Eigen::VectorXd& out) const;
   void build_incidence();
   void fill_terms_and_incidence();
+  void write_row_terms(int r, const int*& next, std::vector<int>& at);
   void factorize_subdomains(bool interior_first, bool single_factors, bool single_interior);
   // M v over the own subdomains' modes (M: modes x local rows, like G), replicated.
   Eigen::VectorXd own_modes_product(const SparseMatrix& M, const Eigen::VectorXd& v,

@@ -140,6 +140,28 @@ TEST_CASE("A compacted simplicial factor leaves out the entries that cancelled t
   CHECK((dense * x - b).norm() <= 1e-14 * b.norm());
 }
 
+TEST_CASE("An indefinite matrix is not positive definite, from CHOLMOD's LDL' as from its LL'") {
+  // The grid matrix with one diagonal entry negative: e_k' A e_k < 0, so A is indefinite
+  // whatever its other pivots. 12x9: CHOLMOD's default is a simplicial LDL', which
+  // factorizes through negative pivots; 40x30: a supernodal LL', which stops at one.
+  for (const auto& [nx, ny] : {std::pair{12, 9}, std::pair{40, 30}}) {
+    CAPTURE(nx, ny);
+    const solver::SparseMatrix A = grid_matrix(nx, ny);
+    solver::SparseMatrix indefinite = A;
+    indefinite.coeffRef(nx * ny / 2, nx * ny / 2) = -4.0;
+    const int n = static_cast<int>(A.rows());
+    solver::CholmodFactor factor;
+    CHECK(factor.factorize(indefinite) == solver::CholmodFactor::Result::NotPositiveDefinite);
+    CHECK(factor.failed_column() >= 0);
+    CHECK(factor.failed_column() < n);
+    // The same pattern factorized anew (the kept analysis), first definite, then not.
+    REQUIRE(factor.factorize(A) == solver::CholmodFactor::Result::Ok);
+    CHECK(factor.failed_column() == -1);
+    CHECK(factor.refactorize(indefinite) == solver::CholmodFactor::Result::NotPositiveDefinite);
+    CHECK(factor.failed_column() >= 0);
+  }
+}
+
 TEST_CASE("A factor kept in single precision solves A to its rounding, in 40% fewer bytes") {
   const solver::SparseMatrix A = grid_matrix(40, 30);  // supernodal, condition about 800
   const int n = static_cast<int>(A.rows());
