@@ -24,8 +24,8 @@ std::size_t entries_of_supernode(std::size_t nc, std::size_t m) {
 }  // namespace
 
 // P A P' as compressed columns: its lower triangle with values (column j: rows >= j, the
-// diagonal among them) for the numeric factorization, its strict upper triangle's pattern
-// (column k: rows i < k) for the elimination tree and the row subtrees.
+// diagonal among them) for the column counts and the numeric factorization, its strict upper
+// triangle's pattern (column k: rows i < k) for the elimination tree.
 struct SupernodalFactorization::Permuted {
   int n = 0;
   std::vector<int> lower_start, lower_rows;
@@ -33,8 +33,9 @@ struct SupernodalFactorization::Permuted {
   std::vector<int> upper_start, upper_rows;
 
   void assign(const SparseMatrix& A, const int* permutation);
-  // `from` with its rows and columns renumbered: k becomes inverse[k] (old[k'] = k' 's
-  // old number), an order in which each entry stays on its side of the diagonal.
+  // `from`'s lower triangle with its rows and columns renumbered: k becomes inverse[k]
+  // (old[k'] = k' 's old number), an order in which each entry stays on its side of the
+  // diagonal. The upper pattern is left empty: the tree it gave is relabelled instead.
   void relabel(const Permuted& from, const std::vector<int>& old, const std::vector<int>& inverse);
 };
 
@@ -68,7 +69,8 @@ void SupernodalFactorization::Permuted::relabel(const Permuted& from, const std:
   n = from.n;
   relabel_columns(from.lower_start, from.lower_rows, old, inverse, lower_start, lower_rows,
                   from.lower_values.data(), &lower_values);
-  relabel_columns(from.upper_start, from.upper_rows, old, inverse, upper_start, upper_rows);
+  upper_start.clear();  // read by the elimination tree alone, which is relabelled instead
+  upper_rows.clear();
 }
 
 void SupernodalFactorization::Permuted::assign(const SparseMatrix& A, const int* permutation) {

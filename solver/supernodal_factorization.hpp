@@ -10,14 +10,14 @@
 // supernodal factorization spends more time in BLAS call overheads than in arithmetic
 // (docs/BENCHMARKS.md, "Subdomain factors computed in the compact layout").
 //
-// Symbolic: the elimination tree of P A P' and its column counts (row subtrees), the
-// fundamental supernodes (a column whose parent is the next column, its only child, with
-// one entry fewer), merged greedily with the following ones while at most
-// CompactFactor::kRelaxedZeros of the merged supernode's stored entries are zeros, as
-// CompactFactor does with given columns. Numeric: left-looking by supernodes. Each
-// supernode's columns are gathered from A into a dense (nc + m) x nc workspace, every
-// earlier supernode whose rows reach into its columns subtracts its update there (dense
-// loops over its block, scattered through a row map), then the dense trapezoid is
+// Symbolic (solver/elimination_tree.hpp): the elimination tree of P A P' and L's column
+// counts (Gilbert, Ng and Peyton: the row subtrees' leaves), the fundamental supernodes (a
+// column whose parent is the next column, its only child, with one entry fewer), merged
+// greedily with the following ones while at most CompactFactor::kRelaxedZeros of the
+// merged supernode's stored entries are zeros, as CompactFactor does with given columns. Numeric:
+// left-looking by supernodes. Each supernode's columns are gathered from A into a dense (nc + m) x
+// nc workspace, every earlier supernode whose rows reach into its columns subtracts its update
+// there (dense loops over its block, scattered through a row map), then the dense trapezoid is
 // factorized and packed. Entries that cancel to zero are kept (CHOLMOD's simplicial path
 // dropped them: rare in stiffness matrices, docs/BENCHMARKS.md).
 
