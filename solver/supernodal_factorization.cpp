@@ -203,7 +203,7 @@ void SupernodalFactorization::find_fundamental(const std::vector<int>& parent,
 // children may bring rows its columns do not have: stored zeros).
 void SupernodalFactorization::relax(const Permuted& C, const std::vector<int>& count) {
   thread_local std::vector<int> fundamental, fundamental_of, head, next, mark, own, run, merged,
-      added;
+      added, gathered;
   fundamental.assign(first_.begin(), first_.end());
   const int F = static_cast<int>(fundamental.size()) - 1;
   fundamental_of.resize(static_cast<std::size_t>(size_));
@@ -213,15 +213,19 @@ void SupernodalFactorization::relax(const Permuted& C, const std::vector<int>& c
   head.assign(static_cast<std::size_t>(F), -1);  // closed supernodes attached to f
   next.assign(static_cast<std::size_t>(F), -1);
   mark.assign(static_cast<std::size_t>(size_), -1);
-  int stamp = 0, below = 0;
-  const auto take = [&](int r) {  // r into own, once, when below the open fundamental
-    if (r < below || mark[r] == stamp) return;
-    mark[r] = stamp;
-    own.push_back(r);
+  int stamp = 0, below = 0, taken = 0;
+  gathered.resize(static_cast<std::size_t>(size_) + 1);
+  // r into gathered[0 .. taken), once, when below the open fundamental: without branches
+  // (which rows are new is not predictable).
+  const auto take = [&](int r) {
+    const bool fresh = r >= below && mark[r] != stamp;
+    mark[r] = stamp;  // rows above the fundamental are never taken under this stamp
+    gathered[static_cast<std::size_t>(taken)] = r;
+    taken += fresh;
   };
   const auto rows_of = [&](int f) {  // rows below fundamental f, into own
     below = fundamental[f + 1];
-    own.clear();
+    taken = 0;
     ++stamp;
     for (int j = fundamental[f]; j < below; ++j)
       for (int e = C.lower_start[j]; e < C.lower_start[j + 1]; ++e)
@@ -229,14 +233,15 @@ void SupernodalFactorization::relax(const Permuted& C, const std::vector<int>& c
     for (int K = head[f]; K != -1; K = next[K])
       for (int e = row_start_[K]; e < row_start_[K + 1]; ++e)
         take(rows_[e]);
+    own.assign(gathered.begin(), gathered.begin() + taken);
     std::sort(own.begin(), own.end());
   };
   const auto add_child = [&](int K) {  // a supernode closed as f's child: its rows too
-    const auto before = static_cast<std::ptrdiff_t>(own.size());
+    taken = 0;
     for (int e = row_start_[K]; e < row_start_[K + 1]; ++e)
-      take(rows_[e]);  // increasing: own's two parts are each sorted
+      take(rows_[e]);  // increasing, as own
     added.clear();
-    std::merge(own.begin(), own.begin() + before, own.begin() + before, own.end(),
+    std::merge(own.begin(), own.end(), gathered.begin(), gathered.begin() + taken,
                std::back_inserter(added));
     own.swap(added);
   };
