@@ -10,6 +10,8 @@
 
 #include <Eigen/Core>
 
+#include "solver/elimination_tree.hpp"
+
 namespace fetic::solver {
 
 namespace {
@@ -22,8 +24,8 @@ std::size_t entries_of_supernode(std::size_t nc, std::size_t m) {
 }  // namespace
 
 // P A P' as compressed columns: its lower triangle with values (column j: rows >= j, the
-// diagonal among them) for the numeric factorization, its strict upper triangle's pattern
-// (column k: rows i < k) for the elimination tree and the row subtrees.
+// diagonal among them) for the column counts and the numeric factorization, its strict upper
+// triangle's pattern (column k: rows i < k) for the elimination tree.
 struct SupernodalFactorization::Permuted {
   int n = 0;
   std::vector<int> lower_start, lower_rows;
@@ -31,8 +33,9 @@ struct SupernodalFactorization::Permuted {
   std::vector<int> upper_start, upper_rows;
 
   void assign(const SparseMatrix& A, const int* permutation);
-  // `from` with its rows and columns renumbered: k becomes inverse[k] (old[k'] = k' 's
-  // old number), an order in which each entry stays on its side of the diagonal.
+  // `from`'s lower triangle with its rows and columns renumbered: k becomes inverse[k]
+  // (old[k'] = k' 's old number), an order in which each entry stays on its side of the
+  // diagonal. The upper pattern is left empty: the tree it gave is relabelled instead.
   void relabel(const Permuted& from, const std::vector<int>& old, const std::vector<int>& inverse);
 };
 
@@ -66,7 +69,8 @@ void SupernodalFactorization::Permuted::relabel(const Permuted& from, const std:
   n = from.n;
   relabel_columns(from.lower_start, from.lower_rows, old, inverse, lower_start, lower_rows,
                   from.lower_values.data(), &lower_values);
-  relabel_columns(from.upper_start, from.upper_rows, old, inverse, upper_start, upper_rows);
+  upper_start.clear();  // read by the elimination tree alone, which is relabelled instead
+  upper_rows.clear();
 }
 
 void SupernodalFactorization::Permuted::assign(const SparseMatrix& A, const int* permutation) {
@@ -110,75 +114,6 @@ void SupernodalFactorization::Permuted::assign(const SparseMatrix& A, const int*
   upper_start.pop_back();
 }
 
-namespace {
-
-// The elimination tree of P A P' (Liu's algorithm, with path compression).
-void elimination_tree(const std::vector<int>& upper_start, const std::vector<int>& upper_rows,
-                      int n, std::vector<int>& parent) {
-  thread_local std::vector<int> ancestor;
-  parent.assign(static_cast<std::size_t>(n), -1);
-  ancestor.assign(static_cast<std::size_t>(n), -1);
-  for (int k = 0; k < n; ++k)
-    for (int e = upper_start[k]; e < upper_start[k + 1]; ++e)
-      for (int i = upper_rows[e]; i != -1 && i < k;) {
-        const int next = ancestor[i];
-        ancestor[i] = k;
-        if (next == -1) parent[i] = k;
-        i = next;
-      }
-}
-
-// The entries below the diagonal of each column of L, counted over the row subtrees: row
-// k of L holds the columns on the tree paths from the entries of A's row k up to k.
-void column_counts(const std::vector<int>& upper_start, const std::vector<int>& upper_rows,
-                   const std::vector<int>& parent, std::vector<int>& count) {
-  const auto n = parent.size();
-  thread_local std::vector<int> mark;
-  count.assign(n, 0);
-  mark.assign(n, -1);
-  for (int k = 0; k < static_cast<int>(n); ++k) {
-    mark[k] = k;
-    for (int e = upper_start[k]; e < upper_start[k + 1]; ++e)
-      for (int i = upper_rows[e]; mark[i] != k; i = parent[i]) {
-        mark[i] = k;
-        ++count[i];
-      }
-  }
-}
-
-// A postorder of the forest `parent` (children in increasing order, by depth-first search):
-// row k of the postordered matrix is row post[k] of the given one. Each subtree's columns
-// become consecutive, so chains of the tree become runs of columns (supernodes).
-void postorder(const std::vector<int>& parent, std::vector<int>& post) {
-  const int n = static_cast<int>(parent.size());
-  thread_local std::vector<int> head, next, stack;
-  head.assign(parent.size(), -1);
-  next.resize(parent.size());
-  for (int j = n - 1; j >= 0; --j)
-    if (parent[j] != -1) {
-      next[j] = head[parent[j]];
-      head[parent[j]] = j;
-    }
-  post.clear();
-  stack.clear();
-  for (int root = 0; root < n; ++root) {
-    if (parent[root] != -1) continue;
-    stack.push_back(root);
-    while (!stack.empty()) {
-      const int top = stack.back(), child = head[top];
-      if (child == -1) {
-        stack.pop_back();
-        post.push_back(top);
-      } else {
-        head[top] = next[child];
-        stack.push_back(child);
-      }
-    }
-  }
-}
-
-}  // namespace
-
 int SupernodalFactorization::factorize(const SparseMatrix& A) {
   const int n = static_cast<int>(A.rows());
   thread_local std::vector<int> order, parent, post;
@@ -207,7 +142,7 @@ int SupernodalFactorization::factorize(const SparseMatrix& A) {
   relabelled.resize(static_cast<std::size_t>(n));
   for (int j = 0; j < n; ++j)
     relabelled[inverse[j]] = parent[j] < 0 ? -1 : inverse[parent[j]];
-  analyse(C, relabelled);
+  analyse(C, relabelled, /*postordered=*/true);
   return numeric(C);
 }
 
@@ -218,13 +153,14 @@ int SupernodalFactorization::factorize(const SparseMatrix& A, const int* permuta
   thread_local std::vector<int> parent;
   C.assign(A, permutation);
   elimination_tree(C.upper_start, C.upper_rows, size_, parent);
-  analyse(C, parent);
+  analyse(C, parent, /*postordered=*/false);
   return numeric(C);
 }
 
-void SupernodalFactorization::analyse(const Permuted& C, const std::vector<int>& parent) {
+void SupernodalFactorization::analyse(const Permuted& C, const std::vector<int>& parent,
+                                      bool postordered) {
   thread_local std::vector<int> count;
-  column_counts(C.upper_start, C.upper_rows, parent, count);
+  column_counts(C.lower_start, C.lower_rows, parent, count, postordered);
   find_fundamental(parent, count);
   relax(C, count);
   offset_.resize(first_.size());
@@ -235,7 +171,11 @@ void SupernodalFactorization::analyse(const Permuted& C, const std::vector<int>&
                                    static_cast<std::size_t>(row_start_[s + 1] - row_start_[s]));
   }
   offset_.back() = stored;
-  values_.resize(stored);
+  if (stored > values_capacity_) {
+    values_ = std::make_unique_for_overwrite<double[]>(stored);
+    values_capacity_ = stored;
+  }
+  stored_ = stored;
   diagonal_.resize(static_cast<std::size_t>(size_));
 }
 
@@ -262,7 +202,8 @@ void SupernodalFactorization::find_fundamental(const std::vector<int>& parent,
 // factorization makes, whatever was merged (a merged supernode's rows are a union, so its
 // children may bring rows its columns do not have: stored zeros).
 void SupernodalFactorization::relax(const Permuted& C, const std::vector<int>& count) {
-  thread_local std::vector<int> fundamental, fundamental_of, head, next, mark, own, run, merged;
+  thread_local std::vector<int> fundamental, fundamental_of, head, next, mark, own, run, merged,
+      added, gathered;
   fundamental.assign(first_.begin(), first_.end());
   const int F = static_cast<int>(fundamental.size()) - 1;
   fundamental_of.resize(static_cast<std::size_t>(size_));
@@ -272,23 +213,37 @@ void SupernodalFactorization::relax(const Permuted& C, const std::vector<int>& c
   head.assign(static_cast<std::size_t>(F), -1);  // closed supernodes attached to f
   next.assign(static_cast<std::size_t>(F), -1);
   mark.assign(static_cast<std::size_t>(size_), -1);
-  int stamp = 0;
+  int stamp = 0, below = 0, taken = 0;
+  gathered.resize(static_cast<std::size_t>(size_) + 1);
+  // r into gathered[0 .. taken), once, when below the open fundamental: without branches
+  // (which rows are new is not predictable).
+  const auto take = [&](int r) {
+    const bool fresh = r >= below && mark[r] != stamp;
+    mark[r] = stamp;  // rows above the fundamental are never taken under this stamp
+    gathered[static_cast<std::size_t>(taken)] = r;
+    taken += fresh;
+  };
   const auto rows_of = [&](int f) {  // rows below fundamental f, into own
-    const int end = fundamental[f + 1];
-    own.clear();
+    below = fundamental[f + 1];
+    taken = 0;
     ++stamp;
-    const auto take = [&](int r) {
-      if (r < end || mark[r] == stamp) return;
-      mark[r] = stamp;
-      own.push_back(r);
-    };
-    for (int j = fundamental[f]; j < end; ++j)
+    for (int j = fundamental[f]; j < below; ++j)
       for (int e = C.lower_start[j]; e < C.lower_start[j + 1]; ++e)
         take(C.lower_rows[e]);
     for (int K = head[f]; K != -1; K = next[K])
       for (int e = row_start_[K]; e < row_start_[K + 1]; ++e)
         take(rows_[e]);
+    own.assign(gathered.begin(), gathered.begin() + taken);
     std::sort(own.begin(), own.end());
+  };
+  const auto add_child = [&](int K) {  // a supernode closed as f's child: its rows too
+    taken = 0;
+    for (int e = row_start_[K]; e < row_start_[K + 1]; ++e)
+      take(rows_[e]);  // increasing, as own
+    added.clear();
+    std::merge(own.begin(), own.end(), gathered.begin(), gathered.begin() + taken,
+               std::back_inserter(added));
+    own.swap(added);
   };
   first_.assign(1, 0);
   row_start_.assign(1, 0);
@@ -324,7 +279,7 @@ void SupernodalFactorization::relax(const Permuted& C, const std::vector<int>& c
         given += own_given;
         continue;
       }
-      if (close(begin) == f) rows_of(f);  // the closed run is f's child: its rows too
+      if (close(begin) == f) add_child(static_cast<int>(first_.size()) - 2);
     }
     run.assign(own.begin(), own.end());
     given = own_given;
@@ -467,7 +422,7 @@ int SupernodalFactorization::factorize_supernode(const Permuted& C, int s, std::
     int q = p;
     while (q < mK && rowsK[q] < j0 + nc)
       ++q;
-    const double* block = values_.data() + offset_[K] + entries_of_supernode(ncK, 0);
+    const double* block = values_.get() + offset_[K] + entries_of_supernode(ncK, 0);
     subtract_update(block, mK, ncK, rowsK, p, q, map.data(), work.data(), ld);
     next_row[K] = q;
     if (q < mK) link(K);
@@ -475,7 +430,7 @@ int SupernodalFactorization::factorize_supernode(const Permuted& C, int s, std::
   }
   const int failed = factorize_dense(work.data(), ld, nc);
   if (failed >= 0) return j0 + failed;
-  double* out = values_.data() + offset_[s];
+  double* out = values_.get() + offset_[s];
   for (int k = 0; k < nc; ++k) {
     const double* column = work.data() + static_cast<std::size_t>(k) * ld;
     diagonal_[j0 + k] = column[k];
@@ -490,7 +445,7 @@ int SupernodalFactorization::factorize_supernode(const Permuted& C, int s, std::
 }
 
 std::size_t SupernodalFactorization::bytes() const {
-  return (values_.capacity() + diagonal_.capacity()) * sizeof(double) +
+  return (values_capacity_ + diagonal_.capacity()) * sizeof(double) +
          offset_.capacity() * sizeof(std::size_t) +
          (permutation_.capacity() + first_.capacity() + row_start_.capacity() + rows_.capacity()) *
              sizeof(int);
@@ -504,8 +459,8 @@ double SupernodalFactorization::rcond() const {
 }
 
 std::unique_ptr<CompactFactor> SupernodalFactorization::compact(bool single) const {
-  const CompactFactor::Supernodes supernodes{this->supernodes(), first_.data(),  row_start_.data(),
-                                             rows_.data(),       values_.data(), diagonal_.data()};
+  const CompactFactor::Supernodes supernodes{this->supernodes(), first_.data(), row_start_.data(),
+                                             rows_.data(),       values_.get(), diagonal_.data()};
   return std::make_unique<CompactFactor>(size_, permutation_.data(), supernodes, single);
 }
 

@@ -10,14 +10,14 @@
 // supernodal factorization spends more time in BLAS call overheads than in arithmetic
 // (docs/BENCHMARKS.md, "Subdomain factors computed in the compact layout").
 //
-// Symbolic: the elimination tree of P A P' and its column counts (row subtrees), the
-// fundamental supernodes (a column whose parent is the next column, its only child, with
-// one entry fewer), merged greedily with the following ones while at most
-// CompactFactor::kRelaxedZeros of the merged supernode's stored entries are zeros, as
-// CompactFactor does with given columns. Numeric: left-looking by supernodes. Each
-// supernode's columns are gathered from A into a dense (nc + m) x nc workspace, every
-// earlier supernode whose rows reach into its columns subtracts its update there (dense
-// loops over its block, scattered through a row map), then the dense trapezoid is
+// Symbolic (solver/elimination_tree.hpp): the elimination tree of P A P' and L's column
+// counts (Gilbert, Ng and Peyton: the row subtrees' leaves), the fundamental supernodes (a
+// column whose parent is the next column, its only child, with one entry fewer), merged
+// greedily with the following ones while at most CompactFactor::kRelaxedZeros of the
+// merged supernode's stored entries are zeros, as CompactFactor does with given columns. Numeric:
+// left-looking by supernodes. Each supernode's columns are gathered from A into a dense (nc + m) x
+// nc workspace, every earlier supernode whose rows reach into its columns subtracts its update
+// there (dense loops over its block, scattered through a row map), then the dense trapezoid is
 // factorized and packed. Entries that cancel to zero are kept (CHOLMOD's simplicial path
 // dropped them: rare in stiffness matrices, docs/BENCHMARKS.md).
 
@@ -43,7 +43,7 @@ class SupernodalFactorization {
 
   int size() const { return size_; }
   // Stored entries of L: the diagonal and the supernodes' (their zeros included).
-  std::size_t nonzeros() const { return values_.size() + diagonal_.size(); }
+  std::size_t nonzeros() const { return stored_ + diagonal_.size(); }
   int supernodes() const { return static_cast<int>(first_.size()) - 1; }
   // Bytes held now (the factor before it is compacted).
   std::size_t bytes() const;
@@ -54,7 +54,8 @@ class SupernodalFactorization {
 
  private:
   struct Permuted;
-  void analyse(const Permuted& C, const std::vector<int>& parent);
+  // `postordered`: C's columns are in a postorder of its elimination tree `parent`.
+  void analyse(const Permuted& C, const std::vector<int>& parent, bool postordered);
   void find_fundamental(const std::vector<int>& parent, const std::vector<int>& count);
   void relax(const Permuted& C, const std::vector<int>& count);
   int numeric(const Permuted& C);
@@ -67,7 +68,11 @@ class SupernodalFactorization {
   std::vector<int> row_start_;  // its rows below them: rows_[row_start_[s] ..]
   std::vector<int> rows_;
   std::vector<std::size_t> offset_;  // where its entries start in values_
-  std::vector<double> values_;       // CompactFactor's layout, in double
+  // CompactFactor's layout, in double: stored_ entries (values_capacity_ allocated), all
+  // written by the numeric pass, so allocated without zeroing them first.
+  std::unique_ptr<double[]> values_;
+  std::size_t stored_ = 0;
+  std::size_t values_capacity_ = 0;
   std::vector<double> diagonal_;
 };
 

@@ -15,6 +15,7 @@
 
 #include "scenes/generate_scene.hpp"
 #include "solver/cholmod_factor.hpp"
+#include "solver/elimination_tree.hpp"
 #include "solver/feti_system.hpp"
 #include "solver/model.hpp"
 #include "solver/supernodal_factorization.hpp"
@@ -147,20 +148,24 @@ void check_against_cholmod(const std::string& name, const solver::SparseMatrix& 
   CHECK(static_cast<double>(factor.factor_nonzeros()) <= 1.15 * reference.factor_nonzeros());
 }
 
+// The shapes the tests factorize: order 1, diagonal, dense, sparse, disconnected blocks, 2D
+// fill up to 3,000 rows, a plane-stress subdomain's stiffness.
+std::vector<std::pair<std::string, solver::SparseMatrix>> test_matrices(std::mt19937& random) {
+  return {{"order 1", random_spd(1, 0.0, 1, random)},
+          {"diagonal", random_spd(50, 0.0, 1, random)},
+          {"dense", random_spd(60, 1.0, 1, random)},
+          {"sparse", random_spd(300, 0.02, 1, random)},
+          {"disconnected blocks", random_spd(240, 0.1, 6, random)},
+          {"grid 12x9", grid_matrix(12, 9)},
+          {"grid 60x50", grid_matrix(60, 50)},
+          {"plane-stress subdomain", plane_subdomain()}};
+}
+
 }  // namespace
 
 TEST_CASE("The supernodal factorization solves as CHOLMOD's factor of random SPD matrices") {
   std::mt19937 random(17);
-  const std::vector<std::pair<std::string, solver::SparseMatrix>> matrices = {
-      {"order 1", random_spd(1, 0.0, 1, random)},
-      {"diagonal", random_spd(50, 0.0, 1, random)},
-      {"dense", random_spd(60, 1.0, 1, random)},
-      {"sparse", random_spd(300, 0.02, 1, random)},
-      {"disconnected blocks", random_spd(240, 0.1, 6, random)},
-      {"grid 12x9", grid_matrix(12, 9)},
-      {"grid 60x50", grid_matrix(60, 50)},
-      {"plane-stress subdomain", plane_subdomain()}};
-  for (const auto& [name, A] : matrices)
+  for (const auto& [name, A] : test_matrices(random))
     for (const bool single : {false, true})
       check_against_cholmod(name, A, single);
 }
@@ -213,5 +218,81 @@ TEST_CASE("The supernodal factorization fails where the leading block stops bein
         lead(i, j) = dense(permutation[i], permutation[j]);
     CHECK(Eigen::LLT<Eigen::MatrixXd>(lead.topLeftCorner(k, k)).info() == Eigen::Success);
     CHECK(Eigen::LLT<Eigen::MatrixXd>(lead).info() == Eigen::NumericalIssue);
+  }
+}
+
+namespace {
+
+// Column counts of L below the diagonal by eliminating A's pattern (dense, boolean): each
+// column's rows below the diagonal connect pairwise in the columns after it.
+std::vector<int> counted_by_elimination(const Eigen::MatrixXd& A) {
+  const int n = static_cast<int>(A.rows());
+  Eigen::Matrix<bool, Eigen::Dynamic, Eigen::Dynamic> pattern = A.array() != 0.0;
+  std::vector<int> count(static_cast<std::size_t>(n), 0);
+  for (int k = 0; k < n; ++k) {
+    std::vector<int> below;
+    for (int i = k + 1; i < n; ++i)
+      if (pattern(i, k) || pattern(k, i)) below.push_back(i);
+    count[static_cast<std::size_t>(k)] = static_cast<int>(below.size());
+    for (const int i : below)
+      for (const int j : below)
+        pattern(i, j) = true;
+  }
+  return count;
+}
+
+// The lower triangle's (rows >= j) and strict upper triangle's patterns of P A P' as
+// compressed columns, P the permutation `order` (row k: row order[k] of A).
+void permuted_patterns(const Eigen::MatrixXd& A, const std::vector<int>& order,
+                       std::vector<int>& lower_start, std::vector<int>& lower_rows,
+                       std::vector<int>& upper_start, std::vector<int>& upper_rows) {
+  const int n = static_cast<int>(A.rows());
+  lower_start.assign(1, 0);
+  upper_start.assign(1, 0);
+  lower_rows.clear();
+  upper_rows.clear();
+  for (int j = 0; j < n; ++j) {
+    for (int i = 0; i < n; ++i) {
+      if (A(order[i], order[j]) == 0.0 && i != j) continue;
+      (i < j ? upper_rows : lower_rows).push_back(i);
+    }
+    lower_start.push_back(static_cast<int>(lower_rows.size()));
+    upper_start.push_back(static_cast<int>(upper_rows.size()));
+  }
+}
+
+}  // namespace
+
+TEST_CASE("L's column counts from the row subtrees' leaves equal those of the elimination") {
+  std::mt19937 random(29);
+  for (const auto& [name, A] : test_matrices(random)) {
+    const Eigen::MatrixXd dense = Eigen::MatrixXd(A);
+    const int n = static_cast<int>(A.rows());
+    for (int trial = 0; trial < 3; ++trial) {
+      CAPTURE(name, trial);
+      // The natural order, AMD's postordered (the factorization's), a random one.
+      std::vector<int> order(static_cast<std::size_t>(n));
+      std::iota(order.begin(), order.end(), 0);
+      if (trial == 1) {
+        solver::SupernodalFactorization factor;
+        REQUIRE(factor.factorize(A) == -1);
+        order = factor.permutation();
+      }
+      if (trial == 2) std::shuffle(order.begin(), order.end(), random);
+      std::vector<int> lower_start, lower_rows, upper_start, upper_rows, parent, count;
+      permuted_patterns(dense, order, lower_start, lower_rows, upper_start, upper_rows);
+      solver::elimination_tree(upper_start, upper_rows, n, parent);
+      solver::column_counts(lower_start, lower_rows, parent, count);
+      if (trial == 1) {  // AMD's order postordered: the counts without a postorder of their own
+        std::vector<int> postordered;
+        solver::column_counts(lower_start, lower_rows, parent, postordered, true);
+        CHECK(postordered == count);
+      }
+      Eigen::MatrixXd permuted(n, n);
+      for (int i = 0; i < n; ++i)
+        for (int j = 0; j < n; ++j)
+          permuted(i, j) = dense(order[i], order[j]);
+      CHECK(count == counted_by_elimination(permuted));
+    }
   }
 }
