@@ -39,9 +39,14 @@ struct DualCosts {
 constexpr DualCosts kFetiCCosts{98, 49900, 1260, 6.1, 3.5, 2.6, 33};
 constexpr DualCosts kMprgpCosts{103, 45700, 1710, 5.7, 3.2, 2.85, 34};
 constexpr DualCosts kFetiDpCosts{156, 6500, 220, 14.7, 12.3, 0.0, 0.0};
-// FETI-C's and MPRGP's interior factors in single precision: always since 5 December
-// (SolveOptions::single_interior_factors; the costs above were fitted with them double).
-constexpr double kSingleFactorShare = 0.6;
+// FETI-C's and MPRGP's interior factors: in single precision since 5 December
+// (SolveOptions::single_interior_factors; the costs above were fitted with them double),
+// 0.6 of the fitted cost; since 6 December one factor per subdomain with the boundary
+// last (solver/boundary_last.hpp) instead of K_j's and K_ii's: its entries beyond K_j's
+// are double, and K_bb and K_ib are no longer held - the peak of the 984,900-unknown
+// scene grew by 30 MB, 0.75 of the fitted cost of fill(K_ii) (docs/BENCHMARKS.md, "One
+// subdomain factor with the boundary last").
+constexpr double kInteriorFactorShare = 0.75;
 // Active set: K factorized per strut, the contact rows solved against it (dense, per
 // strut), the working-set system (dense, up to every pair: twice, for the LU).
 constexpr double kActivePerUnknown = 320, kActivePerStrut = 3300, kActivePerFactorEntry = 5,
@@ -117,7 +122,7 @@ Counts count(const scenes::Scene& scene) {
 
 double dual_bytes(const Counts& c, const DualCosts& k, const MemoryUse& use) {
   const double per_entry = use.single_factors ? k.per_single_factor_entry : k.per_factor_entry;
-  const double interior = use.dirichlet ? k.per_interior_factor_entry * kSingleFactorShare : 0.0;
+  const double interior = use.dirichlet ? k.per_interior_factor_entry * kInteriorFactorShare : 0.0;
   const double dofs_per_node = c.nodes > 0 ? c.unknowns / c.nodes : 1.0;
   const double kept_stiffness = use.dirichlet ? 0.0 : c.unknowns * dofs_per_node;
   return kMargin * (kBase + k.per_unknown * c.unknowns + k.per_strut * c.struts +

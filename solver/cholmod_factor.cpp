@@ -83,9 +83,24 @@ CholmodFactor::Result CholmodFactor::factorize(const SparseMatrix& A, bool to_co
 // P A P' = L L' by SupernodalFactorization into CompactFactor's layout, on AMD's ordering
 // postordered (CHOLMOD's analysis of a small matrix chooses the same; its transposes,
 // copies and counts took a third of the time of the factorization itself).
-CholmodFactor::Result CholmodFactor::factorize_supernodal(const SparseMatrix& A) {
+CholmodFactor::Result CholmodFactor::factorize(const SparseMatrix& A, const int* permutation) {
+  if (!A.isCompressed()) throw std::logic_error("CholmodFactor: matrix must be compressed");
+  if (A.rows() > kSimplicialUpTo)
+    throw std::logic_error("CholmodFactor: too large for an ordering");
+  if (!impl_) impl_ = std::make_unique<Impl>();
+  cholmod_free_factor(&impl_->factor, &impl_->common);
+  compact_.reset();
+  supernodal_.reset();
+  size_ = static_cast<int>(A.rows());
+  failed_column_ = -1;
+  if (size_ == 0) return Result::Ok;
+  return factorize_supernodal(A, permutation);
+}
+
+CholmodFactor::Result CholmodFactor::factorize_supernodal(const SparseMatrix& A,
+                                                          const int* permutation) {
   auto factor = std::make_unique<SupernodalFactorization>();
-  const int failed = factor->factorize(A);
+  const int failed = permutation ? factor->factorize(A, permutation) : factor->factorize(A);
   compact_peak_ = factor->bytes();
   if (failed >= 0) {
     failed_column_ = failed;

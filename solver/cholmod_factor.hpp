@@ -36,6 +36,9 @@ class CholmodFactor {
   // the ~1,100 rows of a FETI subdomain (docs/BENCHMARKS.md). Such a factor must be compact()ed
   // before solve(); refactorize() factorizes it anew, update() throws.
   Result factorize(const SparseMatrix& A, bool to_compact = false);
+  // The same as factorize(A, true) on the given fill-reducing ordering (row k of P A P' is
+  // row permutation[k] of A) instead of AMD's; A of at most kSimplicialUpTo rows.
+  Result factorize(const SparseMatrix& A, const int* permutation);
   static constexpr int kSimplicialUpTo = 5000;
   // The same for a matrix with the nonzero pattern of the last factorize(): the fill-
   // reducing ordering and symbolic analysis are kept, only the numbers are factorized
@@ -75,7 +78,7 @@ class CholmodFactor {
  private:
   struct Impl;
   Result numeric(const SparseMatrix& A);
-  Result factorize_supernodal(const SparseMatrix& A);
+  Result factorize_supernodal(const SparseMatrix& A, const int* permutation = nullptr);
   std::unique_ptr<Impl> impl_;
   // factorize(A, true)'s factor until compact() (then null).
   std::unique_ptr<SupernodalFactorization> supernodal_;

@@ -495,6 +495,143 @@ void CompactFactor::backward(const Value* values, double* y, int columns, double
   }
 }
 
+namespace {
+
+// The dot product of n entries of a column with x, in four partial sums (they vectorize).
+template <class Value>
+double column_dot(const Value* __restrict column, const double* __restrict x, int n) {
+  double s0 = 0.0, s1 = 0.0, s2 = 0.0, s3 = 0.0;
+  int i = 0;
+  for (; i + 4 <= n; i += 4) {
+    s0 += static_cast<double>(column[i]) * x[i];
+    s1 += static_cast<double>(column[i + 1]) * x[i + 1];
+    s2 += static_cast<double>(column[i + 2]) * x[i + 2];
+    s3 += static_cast<double>(column[i + 3]) * x[i + 3];
+  }
+  for (; i < n; ++i)
+    s0 += static_cast<double>(column[i]) * x[i];
+  return (s0 + s1) + (s2 + s3);
+}
+
+}  // namespace
+
+template <class Value>
+void CompactFactor::trailing_entries(const Value* values, int first,
+                                     std::vector<const Value*>& at) const {
+  const Value* end[2] = {values + stored_below_, values + reached_below_};
+  at.clear();
+  for (int s = supernodes() - 1; s >= 0 && first_[s + 1] > first; --s) {
+    const bool reached = is_reached(s);
+    end[reached] -= supernode_entries(first_[s + 1] - first_[s], row_start_[s + 1] - row_start_[s]);
+    at.push_back(end[reached]);
+  }
+}
+
+template <class Value>
+void CompactFactor::multiply_trailing(const Value* values, int first, const double* t,
+                                      double* v) const {
+  std::fill(v, v + (size_ - first), 0.0);
+  thread_local std::vector<const Value*> at;
+  trailing_entries(values, first, at);
+  for (std::size_t p = 0; p < at.size(); ++p) {
+    const int s = supernodes() - 1 - static_cast<int>(p), j0 = first_[s], nc = first_[s + 1] - j0;
+    const int m = row_start_[s + 1] - row_start_[s];
+    const Value* triangle = at[p];
+    const Value* block = triangle + triangle_entries(nc);
+    const std::uint16_t* rows = rows_.data() + row_start_[s];
+    for (int k = std::max(0, first - j0); k < nc; ++k) {
+      const int j = j0 + k - first;  // the column's row in t and v
+      const Value* below = triangle + triangle_column(nc, k);
+      const Value* column = block + static_cast<std::ptrdiff_t>(k) * m;
+      const double diagonal = 1.0 / inverse_diagonal_[j0 + k];
+      double a = diagonal * t[j] + column_dot(below, t + j + 1, nc - k - 1);
+      for (int r = 0; r < m; ++r)
+        a += static_cast<double>(column[r]) * t[rows[r] - first];
+      v[j] += diagonal * a;
+      for (int i = 0; i < nc - k - 1; ++i)
+        v[j + 1 + i] += static_cast<double>(below[i]) * a;
+      for (int r = 0; r < m; ++r)
+        v[rows[r] - first] += static_cast<double>(column[r]) * a;
+    }
+  }
+}
+
+template <class Value>
+void CompactFactor::solve_trailing(const Value* values, int first, double* y) const {
+  thread_local std::vector<const Value*> at;
+  thread_local std::vector<double> t;
+  trailing_entries(values, first, at);
+  const int count = static_cast<int>(at.size()), last = supernodes() - 1;
+  if (t.size() < static_cast<std::size_t>(max_rows_)) t.resize(static_cast<std::size_t>(max_rows_));
+  for (int a = count - 1; a >= 0; --a) {  // forward: L_t y' = y
+    const int s = last - a, j0 = first_[s], nc = first_[s + 1] - j0;
+    const int m = row_start_[s + 1] - row_start_[s], k0 = std::max(0, first - j0);
+    const Value* block = at[static_cast<std::size_t>(a)] + triangle_entries(nc);
+    for (int k = k0; k < nc; ++k) {
+      const double xk = y[j0 + k] * inverse_diagonal_[j0 + k];
+      y[j0 + k] = xk;
+      const Value* below = at[static_cast<std::size_t>(a)] + triangle_column(nc, k);
+      for (int i = 0; i < nc - k - 1; ++i)
+        y[j0 + k + 1 + i] -= static_cast<double>(below[i]) * xk;
+    }
+    if (m == 0) continue;
+    std::fill(t.begin(), t.begin() + m, 0.0);
+    for (int k = k0; k < nc; ++k) {
+      const Value* column = block + static_cast<std::ptrdiff_t>(k) * m;
+      const double xk = y[j0 + k];
+      for (int r = 0; r < m; ++r)
+        t[static_cast<std::size_t>(r)] += static_cast<double>(column[r]) * xk;
+    }
+    const std::uint16_t* rows = rows_.data() + row_start_[s];
+    for (int r = 0; r < m; ++r)
+      y[rows[r]] -= t[static_cast<std::size_t>(r)];
+  }
+  for (int a = 0; a < count; ++a) {  // back: L_t' y' = y
+    const int s = last - a, j0 = first_[s], nc = first_[s + 1] - j0;
+    const int m = row_start_[s + 1] - row_start_[s], k0 = std::max(0, first - j0);
+    const Value* block = at[static_cast<std::size_t>(a)] + triangle_entries(nc);
+    const std::uint16_t* rows = rows_.data() + row_start_[s];
+    for (int r = 0; r < m; ++r)
+      t[static_cast<std::size_t>(r)] = y[rows[r]];
+    for (int k = nc - 1; k >= k0; --k) {
+      const Value* below = at[static_cast<std::size_t>(a)] + triangle_column(nc, k);
+      const double sum = column_dot(block + static_cast<std::ptrdiff_t>(k) * m, t.data(), m) +
+                         column_dot(below, y + j0 + k + 1, nc - k - 1);
+      y[j0 + k] = (y[j0 + k] - sum) * inverse_diagonal_[j0 + k];
+    }
+  }
+}
+
+void CompactFactor::solve_trailing_in_place(int first, double* y) const {
+  if (single_)
+    solve_trailing(values32_.data(), first, y);
+  else
+    solve_trailing(values_.data(), first, y);
+}
+
+void CompactFactor::multiply_trailing(int first, const double* t, double* v) const {
+  if (single_)
+    multiply_trailing(values32_.data(), first, t, v);
+  else
+    multiply_trailing(values_.data(), first, t, v);
+}
+
+std::size_t CompactFactor::trailing_bytes(int first) const {
+  std::size_t bytes = 0;
+  const std::size_t value = single_ ? sizeof(float) : sizeof(double);
+  for (int s = supernodes() - 1; s >= 0 && first_[s + 1] > first; --s) {
+    const int j0 = first_[s], nc = first_[s + 1] - j0;
+    const int m = row_start_[s + 1] - row_start_[s];
+    const int k0 = std::max(0, first - j0);
+    // Columns k0 .. nc - 1: their triangle's entries and block rows, diagonal and rows.
+    const auto columns = static_cast<std::size_t>(nc - k0);
+    bytes += (columns * (columns - 1) / 2 + columns * static_cast<std::size_t>(m)) * value +
+             columns * sizeof(double) + static_cast<std::size_t>(m) * sizeof(std::uint16_t) +
+             2 * sizeof(int);
+  }
+  return bytes;
+}
+
 std::vector<int> CompactFactor::positions() const {
   std::vector<int> position(permutation_.size());
   for (int k = 0; k < size_; ++k)

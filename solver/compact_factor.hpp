@@ -108,6 +108,19 @@ class CompactFactor {
   // Bytes of the factor that solve_reached_in_place() reads (each pass once): the marked
   // supernodes' entries, row lists, inverse diagonals and bounds.
   std::size_t reached_bytes() const;
+  // v = L_t L_t' t, L_t the factor's columns from `first` on and their rows (all from
+  // `first` on): for an ordering with the leading block's rows first, the Schur
+  // complement of A onto its trailing rows (solver/boundary_last.hpp). t and v hold rows
+  // first .. size() - 1 (factor order); each column is read once (v gains column j times
+  // its product with t while the column is in the cache).
+  void multiply_trailing(int first, const double* t, double* v) const;
+  // y = (L_t L_t')^-1 y on rows first .. size() - 1 (factor order; the others neither read
+  // nor written): for such an ordering, the solve of a right-hand side that is zero on the
+  // leading rows, read on the trailing rows alone - F's on a subdomain's boundary. Only
+  // the trailing columns are read, not the leading ones a relaxed supernode shares them with.
+  void solve_trailing_in_place(int first, double* y) const;
+  // Bytes multiply_trailing(first) reads of the factor (solve_trailing_in_place(): twice).
+  std::size_t trailing_bytes(int first) const;
   const std::vector<int>& permutation() const { return permutation_; }
   // Per row of A, its row in the factor's order: the inverse of permutation().
   std::vector<int> positions() const;
@@ -138,6 +151,13 @@ class CompactFactor {
   template <class Value>
   void backward(const Value* values, double* y, int columns, double* t, bool reached_only) const;
   void solve_parts(double* y, int columns, bool reached_only) const;
+  template <class Value>
+  void multiply_trailing(const Value* values, int first, const double* t, double* v) const;
+  template <class Value>
+  void solve_trailing(const Value* values, int first, double* y) const;
+  // The entries of the supernodes holding columns from `first` on, the last first.
+  template <class Value>
+  void trailing_entries(const Value* values, int first, std::vector<const Value*>& at) const;
   bool is_reached(int s) const { return reached_.empty() || reached_[static_cast<std::size_t>(s)]; }
   template <class Value>
   void reorder_reached_first(huge_pages::Vector<Value>& values) const;

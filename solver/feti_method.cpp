@@ -16,7 +16,7 @@ FetiMethod::FetiMethod(MethodKind kind, const Model& model, const SolveOptions& 
       system_(model, communicator,
               options.preconditioner == Preconditioner::Dirichlet && options.shared_interior_factor,
               options.corner_clusters, options.single_factors, options.single_interior_factors,
-              options.edge_averages),
+              options.edge_averages, options.boundary_last_factor),
       preconditioner_(system_, options.preconditioner, options.scaling),
       coarse_([this] {
         Stopwatch watch(coarse_setup_seconds_);

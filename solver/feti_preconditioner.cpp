@@ -176,6 +176,10 @@ bool FetiPreconditioner::set_up_local(const SubdomainOperator& op, Local& local,
   std::vector<int> i_position(n, -1);
   for (int p = 0; p < nb; ++p)
     b_position[local.boundary[p]] = p;
+  if (kind_ == Preconditioner::Dirichlet && op.K_plus.has_boundary_schur()) {
+    local.schur = &op.K_plus;
+    return true;
+  }
   int ni = 0;
   for (int dof = 0; dof < n; ++dof)
     if (b_position[dof] < 0) i_position[dof] = ni++;
@@ -298,7 +302,9 @@ double FetiPreconditioner::bytes_read() const {
   double bytes = 0.0;
   for (const Local& local : local_) {
     bytes += 2.0 * sparse_bytes(local.K_ib) + sparse_bytes(local.K_bb);
-    if (local.interior_factor)
+    if (local.schur)
+      bytes += static_cast<double>(local.schur->boundary_schur_bytes());
+    else if (local.interior_factor)
       bytes += 2.0 * static_cast<double>(local.reached_only ? local.interior_factor->reached_bytes()
                                                             : local.interior_factor->bytes());
     else if (local.interior)
@@ -314,6 +320,39 @@ std::size_t FetiPreconditioner::factor_memory() const {
   for (const Local& local : local_)
     total += local.K_ii ? local.K_ii->peak_memory() : 0;
   return total;
+}
+
+// y = S_j x for one subdomain (x, y over its boundary DOFs).
+void FetiPreconditioner::apply_local(const Local& local, const Eigen::VectorXd& x,
+                                     Eigen::VectorXd& y) {
+  if (local.schur) {
+    local.schur->apply_boundary_schur(x.data(), y.data());
+    return;
+  }
+  y.noalias() = local.K_bb * x;
+  if (local.interior_factor) {
+    // K_ib's rows in the factor's order: the right-hand side is formed there and
+    // solved in place (per thread, not per application: no allocation).
+    thread_local Eigen::VectorXd in_factor_order;
+    in_factor_order.resize(local.K_ib.rows());
+    in_factor_order.noalias() = local.K_ib * x;
+    if (local.reached_only)
+      local.interior_factor->solve_reached_in_place(in_factor_order.data());
+    else
+      local.interior_factor->solve_in_place(in_factor_order.data());
+    y.noalias() -= local.K_ib.transpose() * in_factor_order;
+  } else if (local.interior || (local.K_ii && local.K_ii->size() > 0)) {
+    // Per thread, not per application: no allocation in the iterations.
+    thread_local Eigen::VectorXd interior_rhs, interior;
+    interior_rhs.resize(local.K_ib.rows());
+    interior.resize(local.K_ib.rows());
+    interior_rhs.noalias() = local.K_ib * x;
+    if (local.interior)
+      local.interior->interior_solve(interior_rhs.data(), interior.data());
+    else
+      local.K_ii->solve(interior_rhs.data(), interior.data());
+    y.noalias() -= local.K_ib.transpose() * interior;
+  }
 }
 
 void FetiPreconditioner::apply(const Eigen::VectorXd& w, const std::vector<char>* mask,
@@ -338,30 +377,7 @@ void FetiPreconditioner::apply(const Eigen::VectorXd& w, const std::vector<char>
     y.resize(nb);
     for (const Incidence& in : local.incidence)
       if (!mask || (*mask)[in.row]) x(in.dof) += in.value * w(in.row);
-    y.noalias() = local.K_bb * x;
-    if (local.interior_factor) {
-      // K_ib's rows in the factor's order: the right-hand side is formed there and
-      // solved in place (per thread, not per application: no allocation).
-      thread_local Eigen::VectorXd in_factor_order;
-      in_factor_order.resize(local.K_ib.rows());
-      in_factor_order.noalias() = local.K_ib * x;
-      if (local.reached_only)
-        local.interior_factor->solve_reached_in_place(in_factor_order.data());
-      else
-        local.interior_factor->solve_in_place(in_factor_order.data());
-      y.noalias() -= local.K_ib.transpose() * in_factor_order;
-    } else if (local.interior || (local.K_ii && local.K_ii->size() > 0)) {
-      // Per thread, not per application: no allocation in the iterations.
-      thread_local Eigen::VectorXd interior_rhs, interior;
-      interior_rhs.resize(local.K_ib.rows());
-      interior.resize(local.K_ib.rows());
-      interior_rhs.noalias() = local.K_ib * x;
-      if (local.interior)
-        local.interior->interior_solve(interior_rhs.data(), interior.data());
-      else
-        local.K_ii->solve(interior_rhs.data(), interior.data());
-      y.noalias() -= local.K_ib.transpose() * interior;
-    }
+    apply_local(local, x, y);
     for (std::size_t k = 0; k < local.incidence.size(); ++k)
       term_values_[static_cast<std::size_t>(local.terms[k])] = y(local.incidence[k].dof);
   }

@@ -5,9 +5,9 @@
 //   Dirichlet: M^-1 = sum_j B_j [0 0; 0 S_j] B_j',  S_j = K_bb - K_bi K_ii^-1 K_ib
 //   none:      M^-1 = I
 // b: the DOFs of subdomain j that rows of B touch; i: the others. S_j is applied
-// implicitly (K_ii factorized once by CHOLMOD, one interior solve per application),
-// which is cheaper than forming it densely unless a solve needs more iterations than a
-// subdomain has boundary DOFs.
+// implicitly: from the trailing block of K_j's one factor with the boundary last
+// (GeneralizedInverse::apply_boundary_schur, solver/boundary_last.hpp), or where that
+// factor is not made, through a factor of K_ii (one interior solve per application).
 // Stiffness scaling (optional): in a row shared by subdomains a and b, B_j's entry is
 // weighted by k_other / (k_a + k_b), k the diagonal stiffness at the DOF; this is the
 // multiplicity scaling 1/2 for equal neighbours and follows jumps in stiffness.
@@ -39,8 +39,9 @@ class FetiPreconditioner {
   void add_memory(LocalMemory& memory) const;
   double setup_seconds() const { return setup_seconds_; }
   long long applications() const { return applications_; }
-  // Bytes one application reads of the own subdomains' blocks: K_ii's factors (their
-  // reached parts) forward and back, K_ib twice (K_ib x, K_ib' y), K_bb once.
+  // Bytes one application reads of the own subdomains' blocks: with one boundary-last
+  // factor its trailing columns once; else K_ii's factors (their reached parts) forward
+  // and back, K_ib twice (K_ib x, K_ib' y), K_bb once.
   double bytes_read() const;
   // z = M^-1 w, using and producing only rows with mask[r] != 0 (all rows without a mask).
   void apply(const Eigen::VectorXd& w, const std::vector<char>* mask, Eigen::VectorXd& z) const;
@@ -55,6 +56,9 @@ class FetiPreconditioner {
     // CholmodFactor holds CHOLMOD's 2.7 KB workspace header: 26 MB and 0.1 s at 1e7).
     std::unique_ptr<CholmodFactor> K_ii;
     const GeneralizedInverse* interior = nullptr;  // K_j's K^+, which also holds K_ii's factor
+    // K_j's K^+ when its one factor applies S_j from its trailing block (boundary_last.hpp):
+    // then no K_bb, K_ib or K_ii factor.
+    const GeneralizedInverse* schur = nullptr;
     // K_ii's lean factor, if it has one: K_ib's rows are then renumbered into its order,
     // so that M^-1 solves in place (CompactFactor::solve_in_place).
     const CompactFactor* interior_factor = nullptr;
@@ -69,6 +73,8 @@ class FetiPreconditioner {
   // The boundary, K_bb and (Dirichlet) K_ib and the factor of K_ii of one subdomain;
   // false when K_ii is singular. b_position: per DOF its place in the boundary or -1.
   bool set_up_local(const SubdomainOperator& op, Local& local, std::vector<int>& b_position) const;
+  // y = S_j x for one subdomain (x, y over its boundary DOFs; y sized).
+  static void apply_local(const Local& local, const Eigen::VectorXd& x, Eigen::VectorXd& y);
   // The scaling weights of every local row's own entries, at their terms
   // (FetiSystem::first_term).
   std::vector<double> scaling_weights(bool scaled) const;

@@ -36,12 +36,14 @@ Decomposition decomposition_for(const Model& model, int corner_clusters, bool ed
   return join_corners(model, boxes, std::max(corner_clusters, 0), edge_averages);
 }
 
-// K's columns in `boundary` (sorted), the others emptied; same order as K.
-SparseMatrix boundary_columns(const SparseMatrix& K, const std::vector<int>& boundary) {
+// K's columns in `boundary` (sorted), the others emptied; same order as K. `diagonal_only`:
+// only their diagonal entries.
+SparseMatrix boundary_columns(const SparseMatrix& K, const std::vector<int>& boundary,
+                              bool diagonal_only) {
   SparseMatrix kept(K.rows(), K.cols());
   long long entries = 0;
   for (int col : boundary)
-    entries += K.outerIndexPtr()[col + 1] - K.outerIndexPtr()[col];
+    entries += diagonal_only ? 1 : K.outerIndexPtr()[col + 1] - K.outerIndexPtr()[col];
   kept.reserve(static_cast<Eigen::Index>(entries));
   size_t next = 0;
   for (int col = 0; col < K.outerSize(); ++col) {
@@ -49,7 +51,7 @@ SparseMatrix boundary_columns(const SparseMatrix& K, const std::vector<int>& bou
     if (next < boundary.size() && boundary[next] == col) {
       ++next;
       for (SparseMatrix::InnerIterator it(K, col); it; ++it)
-        kept.insertBack(it.row(), col) = it.value();
+        if (!diagonal_only || it.row() == col) kept.insertBack(it.row(), col) = it.value();
     }
   }
   kept.finalize();
@@ -71,7 +73,7 @@ auto timed(double& seconds, Build build) {
 
 FetiSystem::FetiSystem(const Model& model, const Communicator& communicator, bool interior_first,
                        int corner_clusters, bool single_factors, bool single_interior,
-                       bool edge_averages)
+                       bool edge_averages, bool boundary_last)
     : model_(model),
       decomposition_(
           timed(setup_times_.decomposition,
@@ -81,7 +83,7 @@ FetiSystem::FetiSystem(const Model& model, const Communicator& communicator, boo
   build_incidence();
   {
     Stopwatch watch(setup_times_.factorization);
-    factorize_subdomains(interior_first, single_factors, single_interior);
+    factorize_subdomains({interior_first, single_factors, single_interior, boundary_last});
   }
   Stopwatch watch(setup_times_.coarse_space);
   c_ = Eigen::VectorXd::Zero(space_.rows());
@@ -219,8 +221,7 @@ std::vector<int> factor_positions(const GeneralizedInverse& K_plus,
 
 }  // namespace
 
-void FetiSystem::factorize_subdomains(bool interior_first, bool single_factors,
-                                      bool single_interior) {
+void FetiSystem::factorize_subdomains(const FactorOptions& options) {
   const Decomposition& d = decomposition_;
   const int count = static_cast<int>(subdomains_.size());
   std::vector<CholmodFactor::Result> results(count, CholmodFactor::Result::Ok);
@@ -238,12 +239,13 @@ void FetiSystem::factorize_subdomains(bool interior_first, bool single_factors,
     SparseMatrix K = subdomain_stiffness(model_, sub);
     op.K.swap(K);
     op.R = subdomain_modes(model_, sub);
-    op.K_plus.use_single_precision(single_factors);
-    op.K_plus.use_single_precision_interior(single_interior);
+    op.K_plus.use_single_precision(options.single_factors);
+    op.K_plus.use_single_precision_interior(options.single_interior);
     op.K_plus.use_simplicial_when_small(true);
+    op.K_plus.use_boundary_last(options.boundary_last);
     // Not for FETI-DP's clusters: their boundary (every torn interface DOF of the
     // cluster's boxes, coupled through the corners) would be one dense trailing block.
-    if (interior_first && sub.parts.empty()) {
+    if (options.interior_first && sub.parts.empty()) {
       std::vector<int> boundary;  // as the preconditioner finds it: the DOFs B touches
       for (const Incidence& in : op.incidence)
         boundary.push_back(in.dof);
@@ -253,8 +255,10 @@ void FetiSystem::factorize_subdomains(bool interior_first, bool single_factors,
       // The preconditioner reads only K_j's boundary columns (K_bb, K_ib and the
       // diagonal at B's DOFs) when K_j's factor solves with K_ii: the rest goes now, not
       // after every subdomain is factorized (K_j is about a quarter of the factor).
-      if (op.K_plus.has_interior_solve()) {
-        SparseMatrix cut = boundary_columns(op.K, boundary);
+      if (op.K_plus.has_interior_solve() || op.K_plus.has_boundary_schur()) {
+        // From the factor's trailing block S_j needs no K_bb: the diagonal at B's DOFs
+        // (the preconditioner's scaling) is all that is read of K_j.
+        SparseMatrix cut = boundary_columns(op.K, boundary, op.K_plus.has_boundary_schur());
         op.K.swap(cut);
       }
     } else {
@@ -448,7 +452,15 @@ void FetiSystem::solve_subdomain_fused(int i, const Eigen::VectorXd* lambda, dou
       touched = touched || term != 0.0;
       if (op.positions[k] >= 0) work[static_cast<std::size_t>(op.positions[k])] += term;
     }
-  if (touched) op.K_plus.compact_factor()->solve_reached_in_place(work.data());
+  if (touched) {
+    // One factor with the boundary last: B's rows are its trailing rows, and their solve
+    // needs its trailing columns alone (solver/boundary_last.hpp).
+    if (op.K_plus.has_boundary_schur())
+      op.K_plus.compact_factor()->solve_trailing_in_place(op.K_plus.boundary_schur_first(),
+                                                          work.data());
+    else
+      op.K_plus.compact_factor()->solve_reached_in_place(work.data());
+  }
   for (std::size_t k = 0; k < entries; ++k)
     boundary_y_[static_cast<std::size_t>(op.terms[k])] =
         op.positions[k] >= 0 ? work[static_cast<std::size_t>(op.positions[k])] : 0.0;
@@ -698,8 +710,12 @@ double FetiSystem::f_bytes_read() const {
   double bytes = 0.0;
   for (const SubdomainOperator& op : subdomains_) {
     const CompactFactor* factor = op.K_plus.compact_factor();
-    bytes += 2.0 * static_cast<double>(factor && !op.positions.empty() ? factor->reached_bytes()
-                                                                       : op.K_plus.factor_memory());
+    if (factor && !op.positions.empty() && op.K_plus.has_boundary_schur())
+      bytes += 2.0 * static_cast<double>(factor->trailing_bytes(op.K_plus.boundary_schur_first()));
+    else
+      bytes +=
+          2.0 * static_cast<double>(factor && !op.positions.empty() ? factor->reached_bytes()
+                                                                    : op.K_plus.factor_memory());
   }
   return bytes;
 }

@@ -81,10 +81,12 @@ class FetiSystem {
   // `single_factors`: the subdomain factors' entries kept as floats (SolveOptions);
   // `single_interior`: K_ii's factors (interior_first) kept as floats.
   // `edge_averages`: FETI-DP with the plane model's edge averages primal (edge_averages.hpp).
+  // `boundary_last` (interior_first): one factor per subdomain with the boundary last where
+  // it can (GeneralizedInverse::factorize), instead of K_j's and K_ii's.
   explicit FetiSystem(const Model& model, const Communicator& communicator = Communicator::self(),
                       bool interior_first = false, int corner_clusters = 0,
                       bool single_factors = false, bool single_interior = true,
-                      bool edge_averages = false);
+                      bool edge_averages = false, bool boundary_last = true);
   FetiSystem(const FetiSystem&) = delete;
   FetiSystem& operator=(const FetiSystem&) = delete;
 
@@ -163,7 +165,8 @@ class FetiSystem {
   // Bytes held now for the own subdomains, by kind (the preconditioner adds its own).
   LocalMemory memory() const;
   // Bytes one application of F reads of the own subdomains' factors: each lean factor's
-  // reached part twice (forward, back; CompactFactor::reached_bytes), others whole.
+  // trailing columns (boundary last) or reached part twice (forward, back;
+  // CompactFactor::trailing_bytes, reached_bytes), others whole.
   double f_bytes_read() const;
   const SetupTimes& setup_times() const { return setup_times_; }
   // Frees every K_j: after the preconditioner's set-up nothing reads them (the factors
@@ -184,7 +187,10 @@ class FetiSystem {
   void build_incidence();
   void fill_terms_and_incidence();
   void write_row_terms(int r, const int*& next, std::vector<int>& at);
-  void factorize_subdomains(bool interior_first, bool single_factors, bool single_interior);
+  struct FactorOptions {
+    bool interior_first, single_factors, single_interior, boundary_last;
+  };
+  void factorize_subdomains(const FactorOptions& options);
   // M v over the own subdomains' modes (M: modes x local rows, like G), replicated.
   Eigen::VectorXd own_modes_product(const SparseMatrix& M, const Eigen::VectorXd& v,
                                     const std::vector<char>* mask) const;

@@ -44,6 +44,7 @@ SparseMatrix lower_submatrix(const SparseMatrix& K, const std::vector<int>& posi
 CholmodFactor::Result GeneralizedInverse::factorize(const SparseMatrix& K,
                                                     const Eigen::MatrixXd& kernel) {
   size_ = static_cast<int>(K.rows());
+  schur_.reset();
   fixed_ = choose_fixing_dofs(kernel);
   interior_factor_ = CholmodFactor();
   return factorize_kept(K);
@@ -52,6 +53,8 @@ CholmodFactor::Result GeneralizedInverse::factorize(const SparseMatrix& K,
 CholmodFactor::Result GeneralizedInverse::factorize(const SparseMatrix& K,
                                                     const Eigen::MatrixXd& kernel,
                                                     const std::vector<int>& boundary) {
+  if (boundary_last_)
+    if (const auto result = factorize_boundary_last(K, kernel, boundary)) return *result;
   const CholmodFactor::Result result = factorize(K, kernel);
   if (result != CholmodFactor::Result::Ok) return result;
   // K_ii over the DOFs not in the boundary, in increasing order, factorized on its own
@@ -97,7 +100,8 @@ void GeneralizedInverse::reach_coupled_rows(const SparseMatrix& K, const std::ve
   factor.reach_first(rows);
 }
 
-CholmodFactor::Result GeneralizedInverse::factorize_kept(const SparseMatrix& K) {
+// kept_: the DOFs not in fixed_, in order. Returns per DOF its place among them (-1: fixed).
+std::vector<int> GeneralizedInverse::keep_unfixed() {
   kept_.clear();
   std::vector<int> position(size_, -1);
   for (int dof = 0, f = 0; dof < size_; ++dof) {
@@ -108,6 +112,49 @@ CholmodFactor::Result GeneralizedInverse::factorize_kept(const SparseMatrix& K) 
     position[dof] = static_cast<int>(kept_.size());
     kept_.push_back(dof);
   }
+  return position;
+}
+
+// One factor with the boundary last (solver/boundary_last.hpp), or nothing where the
+// two-factor path is kept: no interior, no boundary, a boundary that pins the kernel
+// badly, or a subdomain too large for the compact factor.
+std::optional<CholmodFactor::Result> GeneralizedInverse::factorize_boundary_last(
+    const SparseMatrix& K, const Eigen::MatrixXd& kernel, const std::vector<int>& boundary) {
+  const int n = static_cast<int>(K.rows());
+  const auto nb = static_cast<int>(boundary.size());
+  if (nb == 0 || nb >= n || n > CholmodFactor::kSimplicialUpTo) return std::nullopt;
+  std::optional<std::vector<int>> fixed = choose_boundary_fixing_dofs(kernel, boundary);
+  if (!fixed) return std::nullopt;
+  size_ = n;
+  fixed_ = std::move(*fixed);
+  interior_factor_ = CholmodFactor();
+  schur_.reset();
+  const std::vector<int> position = keep_unfixed();
+  const int kept = static_cast<int>(kept_.size());
+  std::vector<char> on_boundary(static_cast<std::size_t>(kept), 0);
+  for (int dof : boundary)
+    if (position[dof] >= 0) on_boundary[static_cast<std::size_t>(position[dof])] = 1;
+  const SparseMatrix reduced = fixed_.empty() ? SparseMatrix() : lower_submatrix(K, position, kept);
+  const SparseMatrix& A = fixed_.empty() ? K : reduced;
+  const std::vector<int> order = interior_first_order(A, on_boundary);
+  const CholmodFactor::Result result = factor_.factorize(A, order.data());
+  if (result != CholmodFactor::Result::Ok) return result;
+  factor_.compact(single_);
+  const std::vector<int> in_factor = factor_.compact_factor()->positions();
+  std::vector<int> factor_row(static_cast<std::size_t>(nb));
+  Eigen::MatrixXd kernel_rows(nb, kernel.cols());
+  for (int p = 0; p < nb; ++p) {
+    const int at = position[boundary[p]];
+    factor_row[static_cast<std::size_t>(p)] = at < 0 ? -1 : in_factor[static_cast<std::size_t>(at)];
+    kernel_rows.row(p) = kernel.row(boundary[p]);
+  }
+  schur_ = std::make_unique<BoundarySchur>(kept - (nb - static_cast<int>(fixed_.size())),
+                                           factor_row, kernel_rows);
+  return result;
+}
+
+CholmodFactor::Result GeneralizedInverse::factorize_kept(const SparseMatrix& K) {
+  const std::vector<int> position = keep_unfixed();
   if (fixed_.empty()) return compacted(factor_.factorize(K, simplicial_));
   const int n = static_cast<int>(kept_.size());
   return compacted(factor_.factorize(lower_submatrix(K, position, n), simplicial_));

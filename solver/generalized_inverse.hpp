@@ -5,10 +5,13 @@
 // generalized inverse (K K^+ K = K) exactly when the fixed DOFs remove only ker K, so a
 // breakdown of the factorization means a singularity the rigid-body modes do not explain.
 
+#include <memory>
+#include <optional>
 #include <vector>
 
 #include <Eigen/Core>
 
+#include "solver/boundary_last.hpp"
 #include "solver/cholmod_factor.hpp"
 
 namespace fetic::solver {
@@ -17,12 +20,30 @@ class GeneralizedInverse {
  public:
   // `kernel` spans ker K (zero columns for a regular K).
   CholmodFactor::Result factorize(const SparseMatrix& K, const Eigen::MatrixXd& kernel);
-  // The same, and a second factor, of the interior block K_ii over the DOFs not in
-  // `boundary` (sorted), for interior_solve() (the Dirichlet preconditioner's). Each
-  // factor has its own fill-reducing ordering. has_interior_solve() is false when there
-  // is no interior or K_ii is singular.
+  // The same for the Dirichlet preconditioner too, whose S_j is the Schur complement of K
+  // onto `boundary` (sorted DOFs). By default one factor with the boundary last
+  // (solver/boundary_last.hpp): the fixing DOFs chosen among the boundary's, K's kept
+  // DOFs ordered interior first, then the boundary (CAMD); apply_boundary_schur()
+  // applies S_j from the factor's trailing block. Where the boundary's rows pin the kernel
+  // badly, or there is no interior (or with use_boundary_last(false)): a second factor, of
+  // the interior block K_ii, for interior_solve(); each factor then has its own
+  // fill-reducing ordering, and has_interior_solve() is false when there is no interior
+  // or K_ii is singular.
   CholmodFactor::Result factorize(const SparseMatrix& K, const Eigen::MatrixXd& kernel,
                                   const std::vector<int>& boundary);
+  void use_boundary_last(bool boundary_last) { boundary_last_ = boundary_last; }
+  bool has_boundary_schur() const { return schur_ != nullptr; }
+  // y = S_j x over the boundary DOFs given to factorize() (in their order).
+  void apply_boundary_schur(const double* x, double* y) const {
+    schur_->apply(*factor_.compact_factor(), x, y);
+  }
+  // The factor's first boundary row: F's solves are on its rows from there on
+  // (CompactFactor::solve_trailing_in_place).
+  int boundary_schur_first() const { return schur_->first(); }
+  // Bytes one apply_boundary_schur() reads: the factor's trailing columns and T's map.
+  std::size_t boundary_schur_bytes() const {
+    return factor_.compact_factor()->trailing_bytes(schur_->first()) + schur_->bytes();
+  }
   // Keep the factors' entries below the diagonal as floats (CompactFactor), for the
   // factorizations after this call.
   void use_single_precision(bool single) { single_ = single; }
@@ -51,7 +72,9 @@ class GeneralizedInverse {
   // Bytes held now by K's factor and by K_ii's.
   std::size_t factor_memory() const { return factor_.memory_in_use(); }
   std::size_t interior_memory() const { return interior_factor_.memory_in_use(); }
-  std::size_t index_memory() const { return (fixed_.capacity() + kept_.capacity()) * sizeof(int); }
+  std::size_t index_memory() const {
+    return (fixed_.capacity() + kept_.capacity()) * sizeof(int) + (schur_ ? schur_->bytes() : 0);
+  }
 
   // y = K^+ x for `columns` column-major right-hand sides. Not reentrant.
   void apply(const double* x, double* y, int columns = 1) const;
@@ -75,11 +98,17 @@ class GeneralizedInverse {
   std::vector<int> fixed_;
   std::vector<int> kept_;  // factorized DOFs, in order
   CholmodFactor::Result factorize_kept(const SparseMatrix& K);
+  std::vector<int> keep_unfixed();
+  std::optional<CholmodFactor::Result> factorize_boundary_last(const SparseMatrix& K,
+                                                               const Eigen::MatrixXd& kernel,
+                                                               const std::vector<int>& boundary);
   CholmodFactor::Result compacted(CholmodFactor::Result result);
   static void reach_coupled_rows(const SparseMatrix& K, const std::vector<int>& position,
                                  CompactFactor& factor);
   CholmodFactor factor_;
-  CholmodFactor interior_factor_;  // K_ii's (empty unless asked for)
+  CholmodFactor interior_factor_;         // K_ii's (empty unless asked for)
+  std::unique_ptr<BoundarySchur> schur_;  // the boundary-last path's S_j (else null)
+  bool boundary_last_ = true;
   bool single_ = false;
   bool single_interior_ = true;
   bool simplicial_ = false;

@@ -64,6 +64,11 @@ struct SolveOptions {
   // the problem itself (GeneralizedInverse::use_single_precision_interior); off only to
   // measure the difference (fetic-bench-scale --only bytes, tests).
   bool single_interior_factors = true;
+  // Dirichlet with shared_interior_factor: one factor per subdomain with the boundary last,
+  // from whose trailing block F and S_j are applied (solver/boundary_last.hpp), where the
+  // boundary holds the fixing DOFs well; off: K_j's and K_ii's factors (only to measure
+  // the difference, tests).
+  bool boundary_last_factor = true;
 };
 
 // A problem found while setting a method up (singular strut, unsupported scene, ...).

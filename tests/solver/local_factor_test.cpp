@@ -189,8 +189,10 @@ TEST_CASE("A factor kept in single precision solves A to its rounding, in 40% fe
 TEST_CASE("The Dirichlet preconditioner through K_j's factor equals it with its own K_ii") {
   const scenes::Scene scene = small_plane();
   const solver::Model model = solver::build_model(scene);
-  // K_ii's factor in double here, as the preconditioner's own is: the same operator.
-  const solver::FetiSystem shared(model, solver::Communicator::self(), true, 0, false, false);
+  // K_ii's factor in double here, as the preconditioner's own is: the same operator. The
+  // two-factor path (not one factor with the boundary last: tests/solver/boundary_last_test.cpp).
+  const solver::FetiSystem shared(model, solver::Communicator::self(), true, 0, false, false, false,
+                                  false);
   const solver::FetiSystem separate(model, solver::Communicator::self(), false);
   for (const solver::SubdomainOperator& op : shared.subdomains())
     REQUIRE(op.K_plus.has_interior_solve());
@@ -236,8 +238,11 @@ TEST_CASE("Single precision interior factors move the preconditioner, not the an
   // single precision K_j factors come (1e-7 of the largest displacement on these scenes),
   // since the problem solved is the same.
   const solver::Model plane = solver::build_model(small_plane());
-  const solver::FetiSystem doubles(plane, solver::Communicator::self(), true, 0, false, false);
-  const solver::FetiSystem singles(plane, solver::Communicator::self(), true, 0, false, true);
+  // (The two-factor path: one factor with the boundary last has no K_ii factor.)
+  const solver::FetiSystem doubles(plane, solver::Communicator::self(), true, 0, false, false,
+                                   false, false);
+  const solver::FetiSystem singles(plane, solver::Communicator::self(), true, 0, false, true, false,
+                                   false);
   const double double_bytes = doubles.memory().preconditioner_factor;
   CHECK(double_bytes > 0.0);
   CHECK(singles.memory().preconditioner_factor <= 0.7 * double_bytes);
@@ -245,6 +250,7 @@ TEST_CASE("Single precision interior factors move the preconditioner, not the an
 
   solver::SolveOptions double_interior, single_interior;
   double_interior.single_interior_factors = false;
+  double_interior.boundary_last_factor = single_interior.boundary_last_factor = false;
   for (const auto kind : {solver::MethodKind::Mprgp, solver::MethodKind::FetiC})
     for (const auto& [name, scene] : named_scenes())
       check_same_answer(name, scene, kind, double_interior, single_interior, 1e-8);
