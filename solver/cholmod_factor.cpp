@@ -60,7 +60,8 @@ cholmod_sparse view_of(const SparseMatrix& A) {
 
 }  // namespace
 
-CholmodFactor::Result CholmodFactor::factorize(const SparseMatrix& A, bool to_compact) {
+// Forgets the factor held for one of A (checked compressed).
+void CholmodFactor::restart(const SparseMatrix& A) {
   if (!A.isCompressed()) throw std::logic_error("CholmodFactor: matrix must be compressed");
   if (!impl_) impl_ = std::make_unique<Impl>();
   cholmod_free_factor(&impl_->factor, &impl_->common);
@@ -68,6 +69,10 @@ CholmodFactor::Result CholmodFactor::factorize(const SparseMatrix& A, bool to_co
   supernodal_.reset();
   size_ = static_cast<int>(A.rows());
   failed_column_ = -1;
+}
+
+CholmodFactor::Result CholmodFactor::factorize(const SparseMatrix& A, bool to_compact) {
+  restart(A);
   if (size_ == 0) return Result::Ok;
   if (to_compact && size_ <= kSimplicialUpTo) return factorize_supernodal(A);
   cholmod_sparse view = view_of(A);
@@ -80,22 +85,18 @@ CholmodFactor::Result CholmodFactor::factorize(const SparseMatrix& A, bool to_co
   return numeric(A);
 }
 
-// P A P' = L L' by SupernodalFactorization into CompactFactor's layout, on AMD's ordering
-// postordered (CHOLMOD's analysis of a small matrix chooses the same; its transposes,
-// copies and counts took a third of the time of the factorization itself).
 CholmodFactor::Result CholmodFactor::factorize(const SparseMatrix& A, const int* permutation) {
-  if (!A.isCompressed()) throw std::logic_error("CholmodFactor: matrix must be compressed");
   if (A.rows() > kSimplicialUpTo)
     throw std::logic_error("CholmodFactor: too large for an ordering");
-  if (!impl_) impl_ = std::make_unique<Impl>();
-  cholmod_free_factor(&impl_->factor, &impl_->common);
-  compact_.reset();
-  supernodal_.reset();
-  size_ = static_cast<int>(A.rows());
-  failed_column_ = -1;
+  restart(A);
   if (size_ == 0) return Result::Ok;
   return factorize_supernodal(A, permutation);
 }
+
+// P A P' = L L' by SupernodalFactorization into CompactFactor's layout, on AMD's ordering
+// postordered (CHOLMOD's analysis of a small matrix chooses the same; its transposes,
+// copies and counts took a third of the time of the factorization itself), or on the
+// given one.
 
 CholmodFactor::Result CholmodFactor::factorize_supernodal(const SparseMatrix& A,
                                                           const int* permutation) {

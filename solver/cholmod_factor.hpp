@@ -79,6 +79,7 @@ class CholmodFactor {
   struct Impl;
   Result numeric(const SparseMatrix& A);
   Result factorize_supernodal(const SparseMatrix& A, const int* permutation = nullptr);
+  void restart(const SparseMatrix& A);
   std::unique_ptr<Impl> impl_;
   // factorize(A, true)'s factor until compact() (then null).
   std::unique_ptr<SupernodalFactorization> supernodal_;

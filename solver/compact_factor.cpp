@@ -246,6 +246,22 @@ void triangle_backward_in_order(const Value* v, int nc, const double* inverse_di
 // (in partial sums on every supernode frame_scaffold took 91 MPRGP iterations, not 89).
 constexpr int kPartialSumsFrom = 16;  // supernode columns
 
+// The dot product of n entries of a column with x, in four partial sums (they vectorize).
+template <class Value>
+double column_dot(const Value* __restrict column, const double* __restrict x, int n) {
+  double s0 = 0.0, s1 = 0.0, s2 = 0.0, s3 = 0.0;
+  int i = 0;
+  for (; i + 4 <= n; i += 4) {
+    s0 += static_cast<double>(column[i]) * x[i];
+    s1 += static_cast<double>(column[i + 1]) * x[i + 1];
+    s2 += static_cast<double>(column[i + 2]) * x[i + 2];
+    s3 += static_cast<double>(column[i + 3]) * x[i + 3];
+  }
+  for (; i < n; ++i)
+    s0 += static_cast<double>(column[i]) * x[i];
+  return (s0 + s1) + (s2 + s3);
+}
+
 template <class Value>
 void triangle_backward(const Value* v, int nc, const double* inverse_diagonal, double* x) {
   if (nc < kPartialSumsFrom) {
@@ -254,19 +270,7 @@ void triangle_backward(const Value* v, int nc, const double* inverse_diagonal, d
   }
   for (int k = nc - 1; k >= 0; --k) {
     const Value* column = v + triangle_column(nc, k);  // rows k + 1 .. nc - 1
-    const double* below = x + k + 1;
-    const int n = nc - k - 1;
-    double s0 = 0.0, s1 = 0.0, s2 = 0.0, s3 = 0.0;
-    int i = 0;
-    for (; i + 4 <= n; i += 4) {
-      s0 += static_cast<double>(column[i]) * below[i];
-      s1 += static_cast<double>(column[i + 1]) * below[i + 1];
-      s2 += static_cast<double>(column[i + 2]) * below[i + 2];
-      s3 += static_cast<double>(column[i + 3]) * below[i + 3];
-    }
-    for (; i < n; ++i)
-      s0 += static_cast<double>(column[i]) * below[i];
-    x[k] = (x[k] - ((s0 + s1) + (s2 + s3))) * inverse_diagonal[k];
+    x[k] = (x[k] - column_dot(column, x + k + 1, nc - k - 1)) * inverse_diagonal[k];
   }
 }
 
@@ -494,26 +498,6 @@ void CompactFactor::backward(const Value* values, double* y, int columns, double
     }
   }
 }
-
-namespace {
-
-// The dot product of n entries of a column with x, in four partial sums (they vectorize).
-template <class Value>
-double column_dot(const Value* __restrict column, const double* __restrict x, int n) {
-  double s0 = 0.0, s1 = 0.0, s2 = 0.0, s3 = 0.0;
-  int i = 0;
-  for (; i + 4 <= n; i += 4) {
-    s0 += static_cast<double>(column[i]) * x[i];
-    s1 += static_cast<double>(column[i + 1]) * x[i + 1];
-    s2 += static_cast<double>(column[i + 2]) * x[i + 2];
-    s3 += static_cast<double>(column[i + 3]) * x[i + 3];
-  }
-  for (; i < n; ++i)
-    s0 += static_cast<double>(column[i]) * x[i];
-  return (s0 + s1) + (s2 + s3);
-}
-
-}  // namespace
 
 template <class Value>
 void CompactFactor::trailing_entries(const Value* values, int first,

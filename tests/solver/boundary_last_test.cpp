@@ -24,13 +24,16 @@ using namespace fetic;
 
 namespace {
 
+// Two pairs of struts, each 24 x 8 elements in 4 x 2 subdomains (bars: 4 along).
 scenes::Scene generated(scenes::ModelKind kind) {
-  return scenes::generate_scene({.model = kind,
-                                 .pairs = 2,
-                                 .elements = 24,
-                                 .elements_across = 8,
-                                 .subdomains = 4,
-                                 .subdomains_across = 2});
+  scenes::GenerateOptions options;
+  options.model = kind;
+  options.pairs = 2;
+  options.elements = 24;
+  options.elements_across = 8;
+  options.subdomains = 4;
+  options.subdomains_across = 2;
+  return scenes::generate_scene(options);
 }
 
 // The scenes checked: generated plane, bar and frame scenes and bundled ones.
